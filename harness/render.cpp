@@ -1,0 +1,161 @@
+#include "harness/render.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "harness/image_io.h"
+#include "renderer/scene/scene_loader.h"
+#include "renderer/techniques/technique.h"
+
+namespace gib {
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+Settings make_settings(const RenderOptions& o, const Technique& t) {
+  Settings s;
+  s.width = o.width;
+  s.height = o.height;
+  s.seed = o.seed;
+  s = apply_preset(t, o.preset, s);
+  return s;
+}
+
+// Samples per frame: the largest of 16, 8, 4, 2, 1 that divides the total.
+uint32_t samples_per_frame(uint32_t spp) {
+  for (uint32_t c : {16u, 8u, 4u, 2u})
+    if (spp % c == 0) return c;
+  return 1;
+}
+
+std::vector<std::string> requested_outputs(const RenderOptions& o, const Technique& t) {
+  std::vector<std::string> out{t.output};
+  for (auto& d : o.dumps)
+    if (std::find(out.begin(), out.end(), d) == out.end()) out.push_back(d);
+  return out;
+}
+
+std::string stem_path(const std::string& out, const std::string& suffix) {
+  std::filesystem::path p(out);
+  return (p.parent_path() / (p.stem().string() + suffix)).string();
+}
+
+}  // namespace
+
+std::vector<PassStats> summarize(const std::vector<FrameResult>& frames) {
+  std::vector<PassStats> out;
+  if (frames.empty()) return out;
+  for (size_t i = 0; i < frames[0].passes.size(); ++i) {
+    std::vector<double> ms;
+    for (auto& f : frames) ms.push_back(f.passes[i].ms);
+    out.push_back({frames[0].passes[i].name, median(ms), *std::min_element(ms.begin(), ms.end()),
+                   *std::max_element(ms.begin(), ms.end())});
+  }
+  return out;
+}
+
+RenderRun render(const RenderOptions& o) {
+  const Technique& t = find_technique(o.technique);
+  Scene scene = load_scene(o.scene);
+  Settings settings = make_settings(o, t);
+  uint32_t frames = o.frames ? o.frames : 1;
+  if (t.name == "reference") {
+    uint32_t spp = o.spp ? o.spp : 64;
+    settings.spp_per_frame = samples_per_frame(spp);
+    if (!o.frames) frames = spp / settings.spp_per_frame;
+  }
+  auto gpu = Gpu::create({o.device, o.validate});
+  Executor ex(*gpu, scene, settings, make_passes(t), requested_outputs(o, t));
+  RenderRun run;
+  run.device = gpu->info();
+  run.plan = ex.plan();
+  run.settings = settings;
+  run.frames = frames;
+  std::vector<FrameResult> results;
+  for (uint32_t f = 0; f < frames; ++f) results.push_back(ex.run_frame());
+  run.passes = summarize(results);
+  std::vector<double> totals;
+  for (auto& r : results) totals.push_back(r.total_ms);
+  run.frame_median_ms = median(totals);
+  run.output = ex.read(t.output);
+  for (auto& d : o.dumps) write_exr(stem_path(o.out, "." + d + ".exr"), ex.read(d));
+  run.validation_messages = gpu->validation_messages();
+  return run;
+}
+
+int cmd_devices() {
+  for (auto& d : Gpu::list_devices())
+    fmt::print("{} {}: {} ({}, driver {} {}, Vulkan {}, subgroup {}){}\n", d.is_default ? "*" : " ", d.index, d.name,
+               d.type, d.driver_name, d.driver_info, d.api_version, d.subgroup_size,
+               d.is_default ? "  [default]" : "");
+  return 0;
+}
+
+int cmd_render(const RenderOptions& o) {
+  const Technique& t = find_technique(o.technique);
+  if (o.plan_only || !o.dot.empty()) {
+    Scene scene = load_scene(o.scene);
+    Settings settings = make_settings(o, t);
+    std::vector<PassDecl> decls;
+    for (auto& p : make_passes(t)) decls.push_back(p->declare(scene, settings));
+    CompileOptions co{scene.features(), requested_outputs(o, t), settings.width, settings.height};
+    Plan plan = compile(decls, co);
+    fmt::print("scene features: {}\n{}", to_string(scene.features()), plan.to_text());
+    if (!o.dot.empty()) {
+      std::ofstream(o.dot) << plan.to_dot();
+      fmt::print("wrote {}\n", o.dot);
+    }
+    if (o.plan_only) return 0;
+  }
+  if (o.out.empty()) throw std::invalid_argument("--out: expected an output path FILE.exr");
+  RenderRun run = render(o);
+  fmt::print("device: {} ({}, {} {})\n", run.device.name, run.device.type, run.device.driver_name,
+             run.device.driver_info);
+  fmt::print("technique: {} preset {}  size {}x{}  frames {}  spp/frame {}\n", t.name, run.settings.preset,
+             run.settings.width, run.settings.height, run.frames, run.settings.spp_per_frame);
+  fmt::print("{:<22} {:>7} {:>10} {:>10} {:>10}  {}\n", "pass", "status", "median ms", "min ms", "max ms", "reason");
+  for (auto& p : run.passes)
+    fmt::print("{:<22} {:>7} {:>10.3f} {:>10.3f} {:>10.3f}\n", p.name, "ran", p.median_ms, p.min_ms, p.max_ms);
+  for (auto& p : run.plan.passes)
+    if (!p.runs) fmt::print("{:<22} {:>7} {:>10} {:>10} {:>10}  {}\n", p.name, "culled", "-", "-", "-", p.reason);
+  fmt::print("frame median {:.3f} ms; resources {:.2f} MiB\n", run.frame_median_ms, run.plan.total_bytes() / 1048576.0);
+  write_exr(o.out, run.output);
+  write_png_preview(stem_path(o.out, ".png"), run.output);
+  fmt::print("wrote {} and {}\n", o.out, stem_path(o.out, ".png"));
+  for (auto& m : run.validation_messages) fmt::print(stderr, "validation: {}\n", m);
+
+  if (!o.json.empty()) {
+    nlohmann::json j;
+    j["device"] = {{"name", run.device.name}, {"type", run.device.type}, {"driver", run.device.driver_name},
+                   {"driver_info", run.device.driver_info}, {"api_version", run.device.api_version}};
+    j["scene"] = o.scene;
+    j["technique"] = t.name;
+    j["preset"] = run.settings.preset;
+    j["size"] = {run.settings.width, run.settings.height};
+    j["frames"] = run.frames;
+    j["spp"] = run.frames * run.settings.spp_per_frame;
+    j["frame_median_ms"] = run.frame_median_ms;
+    j["resource_bytes"] = run.plan.total_bytes();
+    auto& passes = j["passes"] = nlohmann::json::array();
+    for (auto& p : run.plan.passes) {
+      nlohmann::json pj{{"name", p.name}, {"status", p.runs ? "ran" : "culled"}, {"reason", p.reason}};
+      for (auto& s : run.passes)
+        if (s.name == p.name) pj.update({{"ms", s.median_ms}, {"min_ms", s.min_ms}, {"max_ms", s.max_ms}});
+      passes.push_back(pj);
+    }
+    j["validation_messages"] = run.validation_messages;
+    std::ofstream(o.json) << j.dump(2) << "\n";
+  }
+  return run.validation_messages.empty() || !o.validate ? 0 : 3;
+}
+
+}  // namespace gib

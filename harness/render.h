@@ -1,0 +1,51 @@
+// `gibench render`: one scene, one technique, N frames; prints the device, the plan and the GPU
+// time of every pass; writes the output EXR (+ PNG preview), dumps, and a JSON record.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "renderer/graph/executor.h"
+
+namespace gib {
+
+struct RenderOptions {
+  std::string scene;
+  std::string technique = "direct";
+  std::string preset = "medium";
+  uint32_t spp = 0;     // reference: total samples per pixel (0: technique default)
+  uint32_t frames = 0;  // 0: 1, or what spp needs
+  uint32_t width = 256, height = 144;
+  uint32_t seed = 1;
+  std::string device;
+  bool validate = false;
+  bool plan_only = false;
+  std::string dot;                  // write the graph as graphviz here
+  std::vector<std::string> dumps;   // resources to write as EXR
+  std::string out;                  // output EXR
+  std::string json;                 // machine-readable record
+};
+
+struct PassStats {
+  std::string name;
+  double median_ms = 0, min_ms = 0, max_ms = 0;
+};
+
+struct RenderRun {
+  DeviceInfo device;
+  Plan plan;
+  Settings settings;
+  uint32_t frames = 0;
+  std::vector<PassStats> passes;  // running passes, execution order
+  double frame_median_ms = 0;
+  FloatImage output;
+  std::vector<std::string> validation_messages;
+};
+
+// Renders and returns the result; the CLI wrapper prints and writes files.
+RenderRun render(const RenderOptions& options);
+int cmd_render(const RenderOptions& options);  // returns the process exit code
+int cmd_devices();
+
+std::vector<PassStats> summarize(const std::vector<FrameResult>& frames);
+
+}  // namespace gib

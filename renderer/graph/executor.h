@@ -1,0 +1,67 @@
+// Runs a compiled graph: allocates the plan's resources, uploads the scene (again each frame
+// when it moves), records every running pass between a timestamp pair and a debug label with
+// the barriers the plan placed, and reads back GPU time per pass.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "renderer/graph/pass.h"
+
+namespace gib {
+
+struct PassTiming {
+  std::string name;
+  double ms = 0;
+};
+
+struct FrameResult {
+  uint32_t frame = 0;
+  std::vector<PassTiming> passes;  // running passes, execution order
+  double total_ms = 0;             // first timestamp to last
+};
+
+struct FloatImage {
+  uint32_t width = 0, height = 0, channels = 4;
+  std::vector<float> pixels;  // row-major, `channels` floats per pixel
+  float at(uint32_t x, uint32_t y, uint32_t c) const { return pixels[(size_t(y) * width + x) * channels + c]; }
+};
+
+class Executor {
+ public:
+  Executor(Gpu& gpu, const Scene& scene, Settings settings, std::vector<std::unique_ptr<Pass>> passes,
+           std::vector<std::string> outputs);
+  ~Executor();
+  const Plan& plan() const { return plan_; }
+  const Settings& settings() const { return settings_; }
+  FrameResult run_frame();
+  uint32_t frames_run() const { return frame_; }
+  // Any image resource of the plan as float texels (ids and packed formats decoded to floats).
+  FloatImage read(const std::string& name);
+  std::vector<std::string> image_names() const;
+
+ private:
+  void upload_scene(float time);
+  void upload_frame_constants(float time);
+  Gpu& gpu_;
+  const Scene& scene_;
+  Settings settings_;
+  std::vector<std::unique_ptr<Pass>> passes_;
+  std::vector<PassDecl> decls_;
+  Plan plan_;
+  SceneGpu scene_gpu_;
+  struct Allocation {
+    std::shared_ptr<Image> image[2];
+    std::shared_ptr<Buffer> buffer[2];
+    bool ping_pong = false;
+  };
+  std::map<std::string, Allocation> allocations_;
+  uint32_t frame_ = 0;
+  bool scene_uploaded_ = false;
+  float prev_view_proj_[16] = {};
+};
+
+// Converts raw texels of `format` to floats (1-4 channels as the format has, depth 1).
+FloatImage decode_texels(Format format, uint32_t width, uint32_t height, const std::vector<uint8_t>& raw);
+
+}  // namespace gib

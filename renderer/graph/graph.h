@@ -1,0 +1,115 @@
+// Render graph declarations and compilation. Pure CPU, no Vulkan: passes declare what they
+// read and write; compile() decides what runs, in what order, what is allocated, where
+// barriers go, and records why everything else was culled.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "renderer/scene/features.h"
+
+namespace gib {
+
+enum class Format : uint32_t {
+  r32_uint, rg32_uint, rgba32_uint, r32_float, rg32_float, rgba32_float,
+  rg16_float, rgba16_float, rgba8_unorm, b10g11r11_float, e5b9g9r9_float,
+  d32_float, buffer
+};
+const char* format_name(Format f);
+uint32_t format_bytes_per_texel(Format f);  // 0 for buffer
+
+enum class SizeRule : uint32_t { render, half, quarter, fixed, buffer };
+
+struct ResourceDesc {
+  Format format = Format::rgba32_float;
+  SizeRule size = SizeRule::render;
+  uint32_t width = 0, height = 0;  // SizeRule::fixed
+  uint64_t bytes = 0;              // SizeRule::buffer
+  bool persistent = false;         // lives across frames (history, accumulation)
+};
+
+// Same resource: format, size rule, extent (fixed) / bytes (buffer) and persistence agree.
+bool same_desc(const ResourceDesc& a, const ResourceDesc& b);
+std::string describe(const ResourceDesc& d);  // "rgba16_float half persistent"
+
+enum class Access : uint32_t { read, write, read_write, read_prev };
+const char* access_name(Access a);
+
+struct Slot {
+  std::string name;  // resource name: a noun, e.g. "vbuffer", "gbuffer_normal"
+  Access access = Access::read;
+  ResourceDesc desc;  // meaningful on write / read_write (the producer defines the resource)
+};
+
+enum class PassKind : uint32_t { compute, graphics, transfer };
+const char* pass_kind_name(PassKind k);
+
+struct PassDecl {
+  std::string name;     // == folder == timer label == bench key
+  PassKind kind = PassKind::compute;
+  SceneFeatures needs;  // culled when the scene lacks any of these
+  std::vector<Slot> slots;
+  bool side_effect = false;  // never culled for unused outputs (readbacks, stats)
+};
+
+struct GraphError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct CompileOptions {
+  SceneFeatures features;                  // what the scene has
+  std::vector<std::string> outputs;        // requested sinks (e.g. "final_color", a --dump name)
+  uint32_t render_width = 256, render_height = 144;
+};
+
+struct ResolvedResource {
+  std::string name;
+  ResourceDesc desc;
+  uint32_t width = 0, height = 0;  // resolved extent (images)
+  uint64_t bytes = 0;              // memory it occupies
+  int producer = -1;               // index into Plan::passes of the pass that first writes it
+  uint32_t copies = 1;             // 2 for a persistent resource read with read_prev (ping-pong)
+  uint64_t bytes_per_copy = 0;     // bytes == bytes_per_copy * copies
+};
+
+// A barrier before a pass: the listed resources were last written by an earlier pass.
+struct Barrier {
+  std::vector<std::string> resources;
+  uint32_t src_kinds = 0;  // bitmask of (1 << PassKind) of the writers
+  uint32_t dst_kind = 0;   // (1 << PassKind) of the pass about to run
+};
+
+struct PlannedPass {
+  uint32_t decl_index = 0;  // index into the decls given to compile()
+  std::string name;
+  bool runs = false;
+  std::string reason;       // why culled ("" when it runs)
+  Barrier barrier_before;   // empty resources: none needed
+  uint64_t bytes_written = 0;  // sum of the sizes (one copy) of resources it writes
+  PassKind kind = PassKind::compute;
+  std::vector<Slot> slots;     // as declared
+};
+
+struct Plan {
+  std::vector<PlannedPass> passes;       // running passes in execution order, then culled ones
+  std::vector<ResolvedResource> resources;  // only those used by running passes, first use first
+  std::vector<std::string> unproduced_outputs;  // requested outputs whose producers were all culled
+  uint32_t render_width = 0, render_height = 0;
+  uint64_t total_bytes() const;
+  const ResolvedResource* find(const std::string& name) const;
+  std::vector<const PlannedPass*> running() const;
+  std::string to_text() const;  // the --plan listing
+  std::string to_dot() const;   // graphviz
+};
+
+// Errors (GraphError, message names the pass and slot): a read of a resource no pass declares
+// writing; two passes `write` the same resource; a cycle; a requested output nobody produces;
+// inconsistent descs between writers of one resource; read_prev of a non-persistent resource.
+// A read_write slot whose desc is left default-constructed inherits the resource's desc; a
+// non-default one must match the writer's. Persistent resources may be produced by read_write
+// alone (they start zeroed).
+Plan compile(const std::vector<PassDecl>& decls, const CompileOptions& options);
+
+}  // namespace gib

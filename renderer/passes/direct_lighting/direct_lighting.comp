@@ -1,0 +1,88 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "renderer/passes/direct_lighting/direct_lighting_shared.h"
+#include "frame.glsl"
+#include "scene.glsl"
+GIB_SCENE_BUFFERS(0, kBindSceneFirst)
+#include "hash.glsl"
+#include "material.glsl"
+layout(constant_id = kDirectSpecSun) const bool kHasSun = true;
+layout(constant_id = kDirectSpecSky) const bool kHasSky = true;
+layout(constant_id = kDirectSpecLocal) const bool kHasLocal = true;
+layout(constant_id = kDirectSpecAlpha) const bool kHasAlpha = true;
+#define GIB_ALPHA_TEST
+bool gib_alpha_accept(uint triangle, float u, float v) {
+  return !kHasAlpha || gib_alpha_accept_default(triangle, u, v, gib_pcg(triangle ^ gib_frame_index()));
+}
+#include "bvh.glsl"
+#include "lights.glsl"
+#include "surface.glsl"
+
+layout(local_size_x = kDirectGroup, local_size_y = kDirectGroup) in;
+layout(set = 0, binding = kDirectBindAlbedo, rgba16f) uniform readonly image2D gb_albedo;
+layout(set = 0, binding = kDirectBindNormal, rgba16f) uniform readonly image2D gb_normal;
+layout(set = 0, binding = kDirectBindPosition, rgba32f) uniform readonly image2D gb_position;
+layout(set = 0, binding = kDirectBindEmissive, rgba16f) uniform readonly image2D gb_emissive;
+layout(set = 0, binding = kDirectBindOut, rgba32f) uniform writeonly image2D out_direct;
+layout(push_constant) uniform Push { DirectPush push; };
+
+const float kShadowMax = 3.4e38;
+
+// Lambertian response to light arriving from wi with irradiance-like weight e at a point
+// with normal n: reflected on the front, transmitted (scaled by translucency) from the back.
+vec3 diffuse_response(vec3 albedo, float translucency, vec3 n, vec3 wi) {
+  float c = dot(n, wi);
+  return c > 0.0 ? albedo * (1.0 - translucency) * c / GIB_PI : albedo * translucency * (-c) / GIB_PI;
+}
+
+void main() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(p, imageSize(out_direct)))) return;
+  vec4 pos = imageLoad(gb_position, p);
+  if (pos.w == 0.0) {
+    vec3 o, d;
+    gib_camera_ray(vec2(p) + 0.5, o, d);
+    imageStore(out_direct, p, vec4(gib_sky_radiance(d), 1.0));
+    return;
+  }
+  vec3 albedo = imageLoad(gb_albedo, p).rgb;
+  vec3 n = imageLoad(gb_normal, p).xyz;
+  vec4 em = imageLoad(gb_emissive, p);
+  float translucency = em.w;
+  vec3 x = pos.xyz;
+  GibRng rng = gib_rng(gib_seed(), gib_frame_index(), uvec2(p), 1u);
+  vec3 result = em.rgb;
+
+  if (kHasSun && gib_frame.sun_irradiance.w > 0.0) {
+    vec3 wi = gib_uniform_cone(gib_frame.sun_dir.xyz, gib_frame.sun_dir.w, gib_next2(rng));
+    vec3 resp = diffuse_response(albedo, translucency, n, wi);
+    if (any(greaterThan(resp, vec3(0.0)))) {
+      vec3 side = dot(n, wi) > 0.0 ? n : -n;
+      if (!trace_any(gib_offset_ray(x, side), wi, 0.0, kShadowMax)) result += resp * gib_frame.sun_irradiance.rgb;
+    }
+  }
+  if (kHasSky && push.sky_rays > 0u) {
+    // Cosine-distributed visibility rays: each unoccluded one carries albedo * L_sky(wi).
+    vec3 sky = vec3(0.0);
+    for (uint i = 0u; i < push.sky_rays; ++i) {
+      bool back = translucency > 0.0 && gib_next(rng) < translucency;
+      vec3 side = back ? -n : n;
+      vec3 wi = gib_cosine_hemisphere(side, gib_next2(rng));
+      if (!trace_any(gib_offset_ray(x, side), wi, 0.0, kShadowMax)) sky += gib_sky_radiance(wi);
+    }
+    result += albedo * sky / float(push.sky_rays);
+  }
+  if (kHasLocal) {
+    for (uint i = 0u; i < gib_light_count(); ++i) {
+      vec3 wi;
+      float dist;
+      vec3 e = gib_local_light(gib_lights[i], x, wi, dist);
+      if (all(equal(e, vec3(0.0)))) continue;
+      vec3 resp = diffuse_response(albedo, translucency, n, wi);
+      if (all(equal(resp, vec3(0.0)))) continue;
+      vec3 side = dot(n, wi) > 0.0 ? n : -n;
+      if (!trace_any(gib_offset_ray(x, side), wi, 0.0, dist * 0.999)) result += resp * e;
+    }
+  }
+  imageStore(out_direct, p, vec4(result, 1.0));
+}

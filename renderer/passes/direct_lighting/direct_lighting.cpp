@@ -1,0 +1,46 @@
+#include "renderer/passes/direct_lighting/direct_lighting.h"
+
+#include "renderer/passes/direct_lighting/direct_lighting_shared.h"
+
+namespace gib {
+namespace {
+
+class DirectLightingPass final : public Pass {
+ public:
+  PassDecl declare(const Scene&, const Settings&) const override {
+    PassDecl d;
+    d.name = "direct_lighting";
+    d.slots = {{"gbuffer_albedo", Access::read},
+               {"gbuffer_normal", Access::read},
+               {"gbuffer_position", Access::read},
+               {"gbuffer_emissive", Access::read},
+               {"direct_light", Access::write, {Format::rgba32_float, SizeRule::render}}};
+    return d;
+  }
+
+  void record(RecordContext& ctx) override {
+    using namespace glsl;
+    SceneFeatures f = ctx.scene.features();
+    DirectPush push{ctx.settings.sky_rays, 0, 0, 0};
+    record_compute(ctx, {.shader = "direct_lighting.comp",
+                         .images = {{kDirectBindAlbedo, "gbuffer_albedo"},
+                                    {kDirectBindNormal, "gbuffer_normal"},
+                                    {kDirectBindPosition, "gbuffer_position"},
+                                    {kDirectBindEmissive, "gbuffer_emissive"},
+                                    {kDirectBindOut, "direct_light"}},
+                         .groups_x = div_up(ctx.width("direct_light"), kDirectGroup),
+                         .groups_y = div_up(ctx.height("direct_light"), kDirectGroup),
+                         .push = &push,
+                         .push_bytes = sizeof(push),
+                         .spec_constants = {{kDirectSpecSun, f.has(Feature::sun)},
+                                            {kDirectSpecSky, f.has(Feature::sky)},
+                                            {kDirectSpecLocal, f.has(Feature::local_lights)},
+                                            {kDirectSpecAlpha, f.has(Feature::alpha_tested)}}});
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Pass> make_direct_lighting_pass() { return std::make_unique<DirectLightingPass>(); }
+
+}  // namespace gib

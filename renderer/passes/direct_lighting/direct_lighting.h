@@ -1,0 +1,18 @@
+// direct_lighting: lights every G-buffer pixel from the sun (one shadow ray per pixel into a
+// cone of the sun's angular radius), the sky (`sky_rays` cosine-distributed visibility rays)
+// and every local light (point and spot, one shadow ray each), plus emission; Lambertian, with
+// diffuse transmission for translucent materials (light from the back face scaled by
+// translucency). Sky pixels get the sky radiance. Output is linear HDR (RGBA32F).
+// Slots: reads gbuffer_albedo, gbuffer_normal, gbuffer_position, gbuffer_emissive; writes direct_light.
+// Seed: the `direct` base technique in DESIGN.md; shadows are traced with our BVH (god-of-war
+// PCF/contact-hardening shadows are a later pass).
+// Limits: loops over all local lights (the light grid of radiance-cache will bound this);
+// specular terms are not shaded (roughness/metalness are stored but the BRDF is Lambertian).
+#pragma once
+#include <memory>
+
+#include "renderer/graph/pass.h"
+
+namespace gib {
+std::unique_ptr<Pass> make_direct_lighting_pass();
+}

@@ -1,0 +1,21 @@
+#ifndef GIB_DIRECT_LIGHTING_SHARED_H
+#define GIB_DIRECT_LIGHTING_SHARED_H
+#include "frame_shared.h"
+GIB_SHARED_BEGIN
+GIB_CONST(uint, kDirectGroup, 8)
+GIB_CONST(uint, kDirectBindAlbedo, 8)
+GIB_CONST(uint, kDirectBindNormal, 9)
+GIB_CONST(uint, kDirectBindPosition, 10)
+GIB_CONST(uint, kDirectBindEmissive, 11)
+GIB_CONST(uint, kDirectBindOut, 12)  // rgba32f direct radiance (HDR)
+// Specialization constants: which light types the scene has (dead code elimination).
+GIB_CONST(uint, kDirectSpecSun, 0)
+GIB_CONST(uint, kDirectSpecSky, 1)
+GIB_CONST(uint, kDirectSpecLocal, 2)
+GIB_CONST(uint, kDirectSpecAlpha, 3)
+struct DirectPush {
+  uint sky_rays;  // cosine rays per pixel for sky visibility
+  uint pad0, pad1, pad2;
+};
+GIB_SHARED_END
+#endif

@@ -1,0 +1,43 @@
+#include "renderer/passes/path_trace/path_trace.h"
+
+#include "renderer/passes/path_trace/path_trace_shared.h"
+
+namespace gib {
+namespace {
+
+class PathTracePass final : public Pass {
+ public:
+  PassDecl declare(const Scene&, const Settings&) const override {
+    PassDecl d;
+    d.name = "path_trace";
+    ResourceDesc sum{Format::rgba32_float, SizeRule::render};
+    sum.persistent = true;
+    d.slots = {{"pt_radiance_sum", Access::read_write, sum},
+               {"pt_direct_sum", Access::read_write, sum},
+               {"pt_indirect_sum", Access::read_write, sum}};
+    return d;
+  }
+
+  void record(RecordContext& ctx) override {
+    using namespace glsl;
+    SceneFeatures f = ctx.scene.features();
+    PathTracePush push{ctx.settings.spp_per_frame, ctx.settings.max_bounces, ctx.frame * ctx.settings.spp_per_frame, 0};
+    record_compute(ctx, {.shader = "path_trace.comp",
+                         .images = {{kPathTraceBindRadiance, "pt_radiance_sum"},
+                                    {kPathTraceBindDirect, "pt_direct_sum"},
+                                    {kPathTraceBindIndirect, "pt_indirect_sum"}},
+                         .groups_x = div_up(ctx.width("pt_radiance_sum"), kPathTraceGroup),
+                         .groups_y = div_up(ctx.height("pt_radiance_sum"), kPathTraceGroup),
+                         .push = &push,
+                         .push_bytes = sizeof(push),
+                         .spec_constants = {{kPathTraceSpecSun, f.has(Feature::sun)},
+                                            {kPathTraceSpecLocal, f.has(Feature::local_lights)},
+                                            {kPathTraceSpecAlpha, f.has(Feature::alpha_tested)}}});
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Pass> make_path_trace_pass() { return std::make_unique<PathTracePass>(); }
+
+}  // namespace gib

@@ -1,0 +1,104 @@
+// Must round like material.glsl (precise): no fused multiply-add contraction.
+#if defined(__clang__)
+#pragma clang fp contract(off)
+#elif defined(__GNUC__)
+#pragma GCC optimize("fp-contract=off")
+#endif
+
+#include "renderer/scene/material_eval.h"
+
+#include <cmath>
+
+namespace gib {
+namespace {
+constexpr float kLeafInvHalfWidth = 3.125f;   // GIB_LEAF_INV_HALF_WIDTH
+constexpr float kLeafInvHalfLength = 2.125f;  // GIB_LEAF_INV_HALF_LENGTH
+}  // namespace
+
+uint32_t material_hash(uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+uint32_t material_hash2(uint32_t x, uint32_t y) { return material_hash(x ^ material_hash(y + 0x9e3779b9u)); }
+
+float material_hash01(uint32_t h) { return float(h >> 8) * (1.0f / 16777216.0f); }
+
+float material_value_noise(Vec2 p) {
+  const float ipx = std::floor(p.x), ipy = std::floor(p.y);
+  const float fx = p.x - ipx, fy = p.y - ipy;
+  const int ix = int(ipx), iy = int(ipy);
+  const float n00 = material_hash01(material_hash2(uint32_t(ix), uint32_t(iy)));
+  const float n10 = material_hash01(material_hash2(uint32_t(ix + 1), uint32_t(iy)));
+  const float n01 = material_hash01(material_hash2(uint32_t(ix), uint32_t(iy + 1)));
+  const float n11 = material_hash01(material_hash2(uint32_t(ix + 1), uint32_t(iy + 1)));
+  const float sx = fx * fx * (3.0f - 2.0f * fx);
+  const float sy = fy * fy * (3.0f - 2.0f * fy);
+  const float a = n00 + (n10 - n00) * sx;
+  const float b = n01 + (n11 - n01) * sx;
+  return a + (b - a) * sy;
+}
+
+float material_checker(Vec2 uv, float scale) {
+  const float cx = std::floor(uv.x * scale), cy = std::floor(uv.y * scale);
+  const float s = cx + cy;
+  return s - 2.0f * std::floor(s * 0.5f);
+}
+
+Vec3 material_albedo(const GpuMaterial& m, Vec2 uv) {
+  const Vec3 a{m.albedo[0], m.albedo[1], m.albedo[2]};
+  const Vec3 b{m.albedo2[0], m.albedo2[1], m.albedo2[2]};
+  switch (static_cast<TextureKind>(m.texture)) {
+    case TextureKind::checker:
+      return material_checker(uv, m.texture_scale) < 0.5f ? a : b;
+    case TextureKind::value_noise: {
+      const float n = material_value_noise({uv.x * m.texture_scale, uv.y * m.texture_scale});
+      return {a.x + (b.x - a.x) * n, a.y + (b.y - a.y) * n, a.z + (b.z - a.z) * n};
+    }
+    default:
+      return a;
+  }
+}
+
+float material_alpha(const GpuMaterial& m, Vec2 uv, uint32_t /*hash_seed*/) {
+  switch (static_cast<AlphaKind>(m.alpha)) {
+    case AlphaKind::leaf_mask: {
+      const float x = (uv.x - 0.5f) * kLeafInvHalfWidth;
+      const float y = (uv.y - 0.5f) * kLeafInvHalfLength;
+      return x * x + y * y <= 1.0f ? 1.0f : 0.0f;
+    }
+    case AlphaKind::checker_mask:
+      return material_checker(uv, m.texture_scale) < 0.5f ? 1.0f : 0.0f;
+    case AlphaKind::opacity:
+      return m.opacity;
+    default:
+      return 1.0f;
+  }
+}
+
+Vec2 triangle_uv(const FlatScene& scene, uint32_t triangle, float u, float v) {
+  const GpuTriangle& t = scene.triangles[triangle];
+  const GpuVertex& a = scene.vertices[t.i0];
+  const GpuVertex& b = scene.vertices[t.i1];
+  const GpuVertex& c = scene.vertices[t.i2];
+  const float w = 1.0f - u - v;
+  return {(a.u * w + b.u * u) + c.u * v, (a.v * w + b.v * u) + c.v * v};
+}
+
+bool alpha_accept_default(const FlatScene& scene, uint32_t triangle, float u, float v,
+                          uint32_t hash_seed) {
+  const GpuMaterial& m =
+      scene.materials[scene.instances[scene.triangles[triangle].instance].material];
+  if (static_cast<AlphaKind>(m.alpha) == AlphaKind::none) return true;
+  const float a = material_alpha(m, triangle_uv(scene, triangle, u, v), hash_seed);
+  if (static_cast<AlphaKind>(m.alpha) == AlphaKind::opacity) {
+    return material_hash01(material_hash2(hash_seed, triangle)) < a;
+  }
+  return a >= m.alpha_cutoff;
+}
+
+}  // namespace gib

@@ -1,0 +1,166 @@
+// Scene model: what a JSON scene file describes, after procedural primitives are expanded
+// into triangles. The loader (scene_loader.cpp) fills it; flatten() produces the world-space
+// triangle soup every GPU pass and the BVH consume.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "renderer/scene/features.h"
+#include "renderer/scene/math.h"
+
+namespace gib {
+
+enum class TextureKind : uint32_t { none = 0, checker = 1, value_noise = 2 };
+enum class AlphaKind : uint32_t { none = 0, leaf_mask = 1, checker_mask = 2, opacity = 3 };
+
+struct Material {
+  std::string name;
+  Vec3 albedo{0.8f, 0.8f, 0.8f};
+  float roughness = 1.0f;
+  float metalness = 0.0f;
+  Vec3 emissive{0, 0, 0};        // radiance emitted (linear, W/(sr m^2) in scene units)
+  float translucency = 0.0f;     // fraction of diffuse scattering transmitted to the back face
+  AlphaKind alpha = AlphaKind::none;
+  float alpha_cutoff = 0.5f;     // for masks: texel alpha < cutoff is a miss
+  float opacity = 1.0f;          // for AlphaKind::opacity: stochastic coverage
+  TextureKind texture = TextureKind::none;
+  Vec3 albedo2{0.2f, 0.2f, 0.2f};  // second colour of checker / noise
+  float texture_scale = 1.0f;      // pattern repeats per UV unit
+};
+
+struct Keyframe {
+  float time = 0;  // seconds
+  Vec3 translation{0, 0, 0};
+  Vec3 rotation_deg{0, 0, 0};  // XYZ Euler, applied Z then Y then X (R = Rx*Ry*Rz)
+  Vec3 scale{1, 1, 1};
+};
+
+struct Mesh {
+  std::string name;
+  std::vector<Vec3> positions;
+  std::vector<Vec3> normals;
+  std::vector<Vec2> uvs;
+  std::vector<uint32_t> indices;  // 3 per triangle
+};
+
+struct Instance {
+  std::string name;
+  uint32_t mesh = 0;
+  uint32_t material = 0;
+  Mat4 transform = Mat4::identity();  // static transform (or base when animated)
+  std::vector<Keyframe> animation;    // empty: static; else overrides transform
+};
+
+enum class LightKind : uint32_t { point = 0, spot = 1 };
+struct LocalLight {
+  LightKind kind = LightKind::point;
+  Vec3 position{0, 0, 0};
+  Vec3 direction{0, -1, 0};  // spot axis (normalised by the loader)
+  Vec3 intensity{1, 1, 1};   // W/sr (radiant intensity), falls off with 1/d^2
+  float range = 100.0f;      // bound for culling; contribution beyond it is zero
+  float inner_cone_deg = 20.0f;
+  float outer_cone_deg = 30.0f;
+};
+
+struct Sun {
+  bool enabled = false;
+  Vec3 direction{0, 1, 0};   // towards the sun, normalised
+  Vec3 irradiance{0, 0, 0};  // W/m^2 on a surface facing the sun
+  float angular_radius_deg = 0.27f;
+};
+
+enum class SkyKind : uint32_t { none = 0, constant = 1, gradient = 2, analytic = 3 };
+struct Sky {
+  SkyKind kind = SkyKind::none;
+  Vec3 radiance{0, 0, 0};  // constant; gradient: zenith
+  Vec3 horizon{0, 0, 0};   // gradient: horizon; analytic: horizon tint
+  Vec3 ground{0, 0, 0};    // radiance below the horizon (gradient/analytic)
+  float turbidity = 3.0f;  // analytic only
+};
+
+struct CameraKey {
+  float time = 0;
+  Vec3 position{0, 1, 5};
+  Vec3 target{0, 1, 0};
+  float fov_y_deg = 60.0f;
+};
+
+struct Camera {
+  Vec3 position{0, 1, 5};
+  Vec3 target{0, 1, 0};
+  Vec3 up{0, 1, 0};
+  float fov_y_deg = 60.0f;
+  float near_plane = 0.05f;
+  float far_plane = 1000.0f;
+  std::vector<CameraKey> animation;  // empty: static
+};
+
+struct Scene {
+  std::string source;  // file it came from (for messages)
+  std::vector<Material> materials;
+  std::vector<Mesh> meshes;
+  std::vector<Instance> instances;
+  std::vector<LocalLight> lights;
+  Sun sun;
+  Sky sky;
+  Camera camera;
+  float frame_time = 1.0f / 60.0f;  // seconds per frame for animation
+
+  SceneFeatures features() const;  // derived, never typed by hand
+  Mat4 instance_transform(uint32_t instance, float time) const;
+  Camera camera_at(float time) const;  // animation resolved
+};
+
+// ---- GPU layout (std430), mirrored in renderer/shaders/include/scene.glsl ----
+struct GpuVertex {  // 32 bytes
+  float px, py, pz, u;
+  float nx, ny, nz, v;
+};
+struct GpuTriangle {  // 16 bytes
+  uint32_t i0, i1, i2;
+  uint32_t instance;  // index into GpuInstance
+};
+struct GpuInstance {  // 16 bytes
+  uint32_t material;
+  uint32_t first_triangle;
+  uint32_t triangle_count;
+  uint32_t pad;
+};
+struct GpuMaterial {  // 80 bytes
+  float albedo[3];
+  float roughness;
+  float emissive[3];
+  float metalness;
+  float albedo2[3];
+  float translucency;
+  uint32_t texture;  // TextureKind
+  uint32_t alpha;    // AlphaKind
+  float alpha_cutoff;
+  float texture_scale;
+  float opacity;
+  float pad[3];
+};
+struct GpuLight {  // 64 bytes
+  float position[3];
+  uint32_t kind;
+  float direction[3];
+  float range;
+  float intensity[3];
+  float cos_inner;
+  float cos_outer;
+  float pad[3];
+};
+
+// World-space triangle soup at a given time: what the BVH and the passes consume.
+struct FlatScene {
+  std::vector<GpuVertex> vertices;
+  std::vector<GpuTriangle> triangles;
+  std::vector<GpuInstance> instances;
+  std::vector<GpuMaterial> materials;
+  std::vector<GpuLight> lights;
+};
+FlatScene flatten(const Scene& scene, float time);
+
+}  // namespace gib

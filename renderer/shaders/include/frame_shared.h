@@ -1,0 +1,29 @@
+// Per-frame constants (a uniform buffer at binding 0 of every pass that uses the scene),
+// written by the executor, read by passes through frame.glsl.
+#ifndef GIB_FRAME_SHARED_H
+#define GIB_FRAME_SHARED_H
+#include "gib_shared.h"
+GIB_SHARED_BEGIN
+
+// Binding numbers of the scene bundle: frame constants, then the buffers scene.glsl declares.
+GIB_CONST(uint, kBindFrame, 0)
+GIB_CONST(uint, kBindSceneFirst, 1)  // vertices, triangles, instances, materials, bvh nodes, bvh tri index, lights
+GIB_CONST(uint, kSceneBufferCount, 7)
+GIB_CONST(uint, kBindPassFirst, 8)   // a pass's own slots start here
+
+struct GpuFrame {
+  mat4 view_proj;
+  mat4 inv_view_proj;
+  mat4 prev_view_proj;
+  vec4 camera_pos;      // xyz, w: tan(fov_y / 2)
+  vec4 sun_dir;         // xyz towards the sun, w: cos(angular radius)
+  vec4 sun_irradiance;  // rgb W/m^2, w: 1 when the sun is on
+  vec4 sky_zenith;      // rgb, w: SkyKind
+  vec4 sky_horizon;     // rgb, w: turbidity
+  vec4 sky_ground;      // rgb, w: unused
+  uvec4 frame_info;     // frame index, render width, render height, light count
+  uvec4 scene_info;     // triangle count, instance count, seed, samples accumulated so far
+};
+
+GIB_SHARED_END
+#endif

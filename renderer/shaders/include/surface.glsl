@@ -1,0 +1,46 @@
+// Surface attributes at a hit (triangle + barycentrics), and self-intersection-safe ray origins.
+// Requires scene.glsl's buffers (GIB_SCENE_BUFFERS) to be declared first.
+#ifndef GIB_SURFACE_GLSL
+#define GIB_SURFACE_GLSL
+
+struct GibSurface {
+  vec3 position;
+  vec3 normal;      // interpolated shading normal (unit; falls back to geo_normal when zero)
+  vec3 geo_normal;  // unit face normal (arbitrary side)
+  vec2 uv;
+  uint material;
+  uint instance;
+};
+
+GibSurface gib_surface(uint tri, float u, float v) {
+  GpuTriangle t = gib_triangles[tri];
+  GpuVertex a = gib_vertices[t.i0], b = gib_vertices[t.i1], c = gib_vertices[t.i2];
+  float w = 1.0 - u - v;
+  GibSurface s;
+  s.position = a.position * w + b.position * u + c.position * v;
+  vec3 g = cross(b.position - a.position, c.position - a.position);
+  float gl = length(g);
+  s.geo_normal = gl > 0.0 ? g / gl : vec3(0.0, 1.0, 0.0);
+  vec3 n = a.normal * w + b.normal * u + c.normal * v;
+  float nl = length(n);
+  s.normal = nl > 1e-12 ? n / nl : s.geo_normal;
+  s.uv = vec2(a.u, a.v) * w + vec2(b.u, b.v) * u + vec2(c.u, c.v) * v;
+  s.instance = t.instance;
+  s.material = gib_instances[t.instance].material;
+  return s;
+}
+
+// Offset a ray origin off a surface along its normal by a few float ulps of the position
+// (integer offset in the float's bits), so it works equally at the origin and 10 km away
+// (after Waechter and Binder, Ray Tracing Gems ch. 6: the method, written anew here).
+vec3 gib_offset_ray(vec3 p, vec3 n) {
+  const float kOrigin = 1.0 / 32.0, kFloatScale = 1.0 / 65536.0, kIntScale = 256.0;
+  ivec3 of = ivec3(kIntScale * n);
+  vec3 pi = vec3(intBitsToFloat(floatBitsToInt(p.x) + (p.x < 0.0 ? -of.x : of.x)),
+                 intBitsToFloat(floatBitsToInt(p.y) + (p.y < 0.0 ? -of.y : of.y)),
+                 intBitsToFloat(floatBitsToInt(p.z) + (p.z < 0.0 ? -of.z : of.z)));
+  return vec3(abs(p.x) < kOrigin ? p.x + kFloatScale * n.x : pi.x,
+              abs(p.y) < kOrigin ? p.y + kFloatScale * n.y : pi.y,
+              abs(p.z) < kOrigin ? p.z + kFloatScale * n.z : pi.z);
+}
+#endif

@@ -1,0 +1,153 @@
+// The Vulkan layer's public face. Nothing here exposes a Vulkan type: the graph, the passes
+// and the harness talk to the GPU through these handles, and only renderer/vk/*.cpp includes
+// <vulkan/vulkan.h>. One Gpu per process run; everything it creates dies with it.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "renderer/graph/graph.h"  // Format
+
+namespace gib {
+
+struct GpuError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct DeviceInfo {
+  uint32_t index = 0;
+  std::string name;
+  std::string type;         // discrete, integrated, virtual, cpu, other
+  std::string driver_name;  // e.g. llvmpipe, NVIDIA
+  std::string driver_info;  // e.g. "Mesa 22.3.6 (LLVM 15.0.6)", "580.65"
+  std::string api_version;  // "1.3.230"
+  uint32_t subgroup_size = 0;
+  double timestamp_period_ns = 0;  // 0: no timestamps on the compute queue
+  bool is_default = false;
+  bool is_software() const { return type == "cpu"; }
+};
+
+struct GpuOptions {
+  std::string device;     // "" default; an index; or a substring of the device name
+  bool validate = false;  // Khronos validation layer + messenger (also env GIB_VALIDATE=1)
+};
+
+enum class BufferUsage : uint32_t { storage, uniform, indirect };
+enum class DescriptorKind : uint32_t { storage_buffer, uniform_buffer, storage_image, sampled_image };
+
+struct BindingDecl {
+  uint32_t binding;
+  DescriptorKind kind;
+};
+
+class Gpu;
+class Buffer {
+ public:
+  virtual ~Buffer() = default;
+  virtual uint64_t size() const = 0;
+};
+class Image {
+ public:
+  virtual ~Image() = default;
+  virtual Format format() const = 0;
+  virtual uint32_t width() const = 0;
+  virtual uint32_t height() const = 0;
+};
+class Pipeline {
+ public:
+  virtual ~Pipeline() = default;
+  virtual const std::string& name() const = 0;
+};
+
+struct Bind {
+  uint32_t binding;
+  const Buffer* buffer = nullptr;
+  const Image* image = nullptr;
+};
+
+struct SpecConstant {
+  uint32_t id;
+  uint32_t value;  // reinterpret floats with std::bit_cast
+};
+
+struct ComputePipelineDesc {
+  std::string shader;  // embedded name, e.g. "path_trace.comp"
+  std::vector<BindingDecl> bindings;
+  uint32_t push_constant_bytes = 0;
+  std::vector<SpecConstant> spec_constants;
+};
+
+struct GraphicsPipelineDesc {
+  std::string vertex_shader, fragment_shader;
+  std::vector<BindingDecl> bindings;
+  uint32_t push_constant_bytes = 0;
+  std::vector<Format> color_formats;
+  bool depth = true;  // D32 depth test (less), depth write
+};
+
+// Pipeline stage classes for barriers; matches 1 << PassKind in graph.h.
+inline constexpr uint32_t kStageCompute = 1u << static_cast<uint32_t>(PassKind::compute);
+inline constexpr uint32_t kStageGraphics = 1u << static_cast<uint32_t>(PassKind::graphics);
+inline constexpr uint32_t kStageTransfer = 1u << static_cast<uint32_t>(PassKind::transfer);
+inline constexpr uint32_t kStageHost = 1u << 8;
+
+// A command list under construction. Recording is cheap; submit() runs it and waits.
+class Cmd {
+ public:
+  virtual ~Cmd() = default;
+  virtual void bind(const Pipeline& pipeline, std::span<const Bind> binds,
+                    const void* push = nullptr, uint32_t push_bytes = 0) = 0;
+  virtual void dispatch(uint32_t x, uint32_t y = 1, uint32_t z = 1) = 0;
+  virtual void dispatch_indirect(const Buffer& args, uint64_t offset) = 0;
+  virtual void begin_rendering(std::span<const Image* const> colors, const Image* depth,
+                               const float clear_color[4]) = 0;
+  virtual void draw(uint32_t vertex_count) = 0;
+  virtual void end_rendering() = 0;
+  virtual void barrier(uint32_t src_stages, uint32_t dst_stages) = 0;  // global memory barrier
+  virtual void fill(const Buffer& buffer, uint32_t value) = 0;
+  virtual void clear(const Image& image, const float value[4]) = 0;  // float or uint formats
+  virtual void copy(const Image& src, const Image& dst) = 0;         // same format and extent
+  virtual void timestamp(uint32_t query) = 0;                        // bottom-of-pipe
+  virtual void begin_label(const std::string& name) = 0;
+  virtual void end_label() = 0;
+};
+
+class Gpu {
+ public:
+  static std::unique_ptr<Gpu> create(const GpuOptions& options);
+  static std::vector<DeviceInfo> list_devices();  // with is_default set
+  virtual ~Gpu() = default;
+
+  virtual const DeviceInfo& info() const = 0;
+  virtual std::shared_ptr<Buffer> create_buffer(uint64_t bytes, BufferUsage usage,
+                                                const std::string& debug_name) = 0;
+  virtual std::shared_ptr<Image> create_image(Format format, uint32_t width, uint32_t height,
+                                              const std::string& debug_name) = 0;
+  virtual void upload(const Buffer& dst, const void* data, uint64_t bytes, uint64_t offset = 0) = 0;
+  virtual void download(const Buffer& src, void* data, uint64_t bytes, uint64_t offset = 0) = 0;
+  virtual void upload(const Image& dst, const void* texels, uint64_t bytes) = 0;  // tightly packed
+  virtual std::vector<uint8_t> download(const Image& src) = 0;  // tightly packed texels
+  // Pipelines are cached by their description; creating the same one twice is free.
+  virtual std::shared_ptr<Pipeline> compute_pipeline(const ComputePipelineDesc& desc) = 0;
+  virtual std::shared_ptr<Pipeline> graphics_pipeline(const GraphicsPipelineDesc& desc) = 0;
+
+  // Timestamps: queries are indices into a per-submission pool of `query_count` entries.
+  virtual std::unique_ptr<Cmd> begin(uint32_t query_count = 0) = 0;
+  // Runs the commands and waits. Returns the timestamps (ns since an arbitrary origin; masked
+  // to the queue's valid bits) of every query written.
+  virtual std::vector<double> submit(std::unique_ptr<Cmd> cmd) = 0;
+
+  // Validation messages (warnings and errors) seen so far; tests fail on any.
+  virtual std::vector<std::string> validation_messages() const = 0;
+  virtual void clear_validation_messages() = 0;
+  virtual bool validating() const = 0;
+};
+
+const std::map<std::string, std::span<const uint32_t>>& shader_registry();
+
+}  // namespace gib

@@ -1,0 +1,141 @@
+// Concrete Vulkan objects behind gpu.h. Included only by renderer/vk/*.cpp.
+#pragma once
+#include <vulkan/vulkan.h>
+
+#include <functional>
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "renderer/vk/gpu.h"
+
+namespace gib::vkimpl {
+
+void check(VkResult r, const char* what);
+VkFormat to_vk(Format f);
+bool is_uint_format(Format f);
+
+class VkGpu;
+
+class VkBufferObj final : public Buffer {
+ public:
+  VkBufferObj(VkGpu& gpu, uint64_t bytes, BufferUsage usage, const std::string& name);
+  ~VkBufferObj() override;
+  uint64_t size() const override { return bytes_; }
+  VkBuffer handle = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  void* mapped = nullptr;  // non-null when host visible
+ private:
+  VkGpu& gpu_;
+  uint64_t bytes_;
+};
+
+class VkImageObj final : public Image {
+ public:
+  VkImageObj(VkGpu& gpu, Format format, uint32_t w, uint32_t h, const std::string& name);
+  ~VkImageObj() override;
+  Format format() const override { return format_; }
+  uint32_t width() const override { return w_; }
+  uint32_t height() const override { return h_; }
+  VkImage handle = VK_NULL_HANDLE;
+  VkImageView view = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
+ private:
+  VkGpu& gpu_;
+  Format format_;
+  uint32_t w_, h_;
+};
+
+class VkPipelineObj final : public Pipeline {
+ public:
+  ~VkPipelineObj() override;
+  const std::string& name() const override { return name_; }
+  std::string name_;
+  VkDevice device = VK_NULL_HANDLE;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+  VkPipelineBindPoint bind_point = VK_PIPELINE_BIND_POINT_COMPUTE;
+  std::vector<BindingDecl> bindings;
+  uint32_t push_bytes = 0;
+};
+
+class VkGpu final : public Gpu {
+ public:
+  VkGpu(const GpuOptions& options);
+  ~VkGpu() override;
+  const DeviceInfo& info() const override { return info_; }
+  std::shared_ptr<Buffer> create_buffer(uint64_t bytes, BufferUsage usage, const std::string& name) override;
+  std::shared_ptr<Image> create_image(Format format, uint32_t w, uint32_t h, const std::string& name) override;
+  void upload(const Buffer& dst, const void* data, uint64_t bytes, uint64_t offset) override;
+  void download(const Buffer& src, void* data, uint64_t bytes, uint64_t offset) override;
+  void upload(const Image& dst, const void* texels, uint64_t bytes) override;
+  std::vector<uint8_t> download(const Image& src) override;
+  std::shared_ptr<Pipeline> compute_pipeline(const ComputePipelineDesc& desc) override;
+  std::shared_ptr<Pipeline> graphics_pipeline(const GraphicsPipelineDesc& desc) override;
+  std::unique_ptr<Cmd> begin(uint32_t query_count) override;
+  std::vector<double> submit(std::unique_ptr<Cmd> cmd) override;
+  std::vector<std::string> validation_messages() const override;
+  void clear_validation_messages() override;
+  bool validating() const override { return messenger_ != VK_NULL_HANDLE; }
+
+  uint32_t memory_type(uint32_t type_bits, VkMemoryPropertyFlags want, VkMemoryPropertyFlags fallback) const;
+  void set_name(VkObjectType type, uint64_t handle, const std::string& name);
+  void one_shot(const std::function<void(VkCommandBuffer)>& record);
+  void add_message(std::string msg);
+
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physical = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  VkQueue queue = VK_NULL_HANDLE;
+  uint32_t queue_family = 0;
+  uint32_t timestamp_valid_bits = 0;
+  VkPhysicalDeviceMemoryProperties memory_props{};
+  VkSampler nearest_sampler = VK_NULL_HANDLE;  // for sampled_image bindings (format checks)
+  VkCommandPool command_pool() const { return pool_; }
+  PFN_vkCmdBeginDebugUtilsLabelEXT begin_label_fn = nullptr;
+  PFN_vkCmdEndDebugUtilsLabelEXT end_label_fn = nullptr;
+  PFN_vkSetDebugUtilsObjectNameEXT set_name_fn = nullptr;
+
+ private:
+  DeviceInfo info_;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkCommandPool pool_ = VK_NULL_HANDLE;
+  mutable std::mutex messages_mutex_;
+  std::vector<std::string> messages_;
+  std::map<std::string, std::shared_ptr<Pipeline>> pipelines_;
+};
+
+class VkCmd final : public Cmd {
+ public:
+  VkCmd(VkGpu& gpu, VkCommandPool pool, uint32_t query_count);
+  ~VkCmd() override;
+  void bind(const Pipeline& pipeline, std::span<const Bind> binds, const void* push, uint32_t push_bytes) override;
+  void dispatch(uint32_t x, uint32_t y, uint32_t z) override;
+  void dispatch_indirect(const Buffer& args, uint64_t offset) override;
+  void begin_rendering(std::span<const Image* const> colors, const Image* depth, const float clear_color[4]) override;
+  void draw(uint32_t vertex_count) override;
+  void end_rendering() override;
+  void barrier(uint32_t src_stages, uint32_t dst_stages) override;
+  void fill(const Buffer& buffer, uint32_t value) override;
+  void clear(const Image& image, const float value[4]) override;
+  void copy(const Image& src, const Image& dst) override;
+  void timestamp(uint32_t query) override;
+  void begin_label(const std::string& name) override;
+  void end_label() override;
+
+  VkGpu& gpu;
+  VkCommandPool pool;
+  VkCommandBuffer cb = VK_NULL_HANDLE;
+  VkQueryPool queries = VK_NULL_HANDLE;
+  uint32_t query_count = 0;
+  uint32_t queries_written = 0;
+ private:
+  VkDescriptorPool descriptor_pool();
+  std::vector<VkDescriptorPool> descriptor_pools_;
+  uint32_t sets_in_pool_ = 0;
+};
+
+}  // namespace gib::vkimpl

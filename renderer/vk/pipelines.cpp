@@ -1,0 +1,179 @@
+// Compute and graphics pipelines from embedded SPIR-V, cached by description.
+#include <fmt/format.h>
+
+#include "renderer/vk/internal.h"
+
+namespace gib::vkimpl {
+namespace {
+
+VkDescriptorType descriptor_type(DescriptorKind k) {
+  switch (k) {
+    case DescriptorKind::storage_buffer: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    case DescriptorKind::uniform_buffer: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    case DescriptorKind::storage_image: return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    case DescriptorKind::sampled_image: return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  }
+  return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+}
+
+VkShaderModule load_module(VkDevice device, const std::string& name) {
+  auto& reg = shader_registry();
+  auto it = reg.find(name);
+  if (it == reg.end()) throw GpuError(fmt::format("shader '{}': not embedded in this binary (unknown kernel name)", name));
+  VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  ci.codeSize = it->second.size() * sizeof(uint32_t);
+  ci.pCode = it->second.data();
+  VkShaderModule m = VK_NULL_HANDLE;
+  check(vkCreateShaderModule(device, &ci, nullptr, &m), "vkCreateShaderModule");
+  return m;
+}
+
+void make_layout(VkGpu& gpu, VkPipelineObj& p, VkShaderStageFlags stages) {
+  std::vector<VkDescriptorSetLayoutBinding> bs;
+  for (auto& b : p.bindings) {
+    VkDescriptorSetLayoutBinding lb{};
+    lb.binding = b.binding;
+    lb.descriptorType = descriptor_type(b.kind);
+    lb.descriptorCount = 1;
+    lb.stageFlags = stages;
+    bs.push_back(lb);
+  }
+  VkDescriptorSetLayoutCreateInfo dl{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  dl.bindingCount = static_cast<uint32_t>(bs.size());
+  dl.pBindings = bs.data();
+  check(vkCreateDescriptorSetLayout(gpu.device, &dl, nullptr, &p.set_layout), "vkCreateDescriptorSetLayout");
+  VkPushConstantRange range{stages, 0, p.push_bytes};
+  VkPipelineLayoutCreateInfo pl{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  pl.setLayoutCount = 1;
+  pl.pSetLayouts = &p.set_layout;
+  pl.pushConstantRangeCount = p.push_bytes ? 1 : 0;
+  pl.pPushConstantRanges = &range;
+  check(vkCreatePipelineLayout(gpu.device, &pl, nullptr, &p.layout), "vkCreatePipelineLayout");
+}
+
+std::string binding_key(const std::vector<BindingDecl>& bs) {
+  std::string k;
+  for (auto& b : bs) k += fmt::format("{}:{},", b.binding, static_cast<uint32_t>(b.kind));
+  return k;
+}
+
+}  // namespace
+
+VkPipelineObj::~VkPipelineObj() {
+  if (!device) return;
+  vkDestroyPipeline(device, pipeline, nullptr);
+  vkDestroyPipelineLayout(device, layout, nullptr);
+  vkDestroyDescriptorSetLayout(device, set_layout, nullptr);
+}
+
+std::shared_ptr<Pipeline> VkGpu::compute_pipeline(const ComputePipelineDesc& desc) {
+  std::string key = fmt::format("C|{}|{}|{}|", desc.shader, binding_key(desc.bindings), desc.push_constant_bytes);
+  for (auto& s : desc.spec_constants) key += fmt::format("{}={},", s.id, s.value);
+  if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second;
+
+  auto p = std::make_shared<VkPipelineObj>();
+  p->name_ = desc.shader;
+  p->device = device;
+  p->bindings = desc.bindings;
+  p->push_bytes = desc.push_constant_bytes;
+  make_layout(*this, *p, VK_SHADER_STAGE_COMPUTE_BIT);
+  VkShaderModule module = load_module(device, desc.shader);
+  std::vector<VkSpecializationMapEntry> entries;
+  std::vector<uint32_t> values;
+  for (size_t i = 0; i < desc.spec_constants.size(); ++i) {
+    entries.push_back({desc.spec_constants[i].id, static_cast<uint32_t>(i * 4), 4});
+    values.push_back(desc.spec_constants[i].value);
+  }
+  VkSpecializationInfo spec{static_cast<uint32_t>(entries.size()), entries.data(), values.size() * 4, values.data()};
+  VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  ci.stage.module = module;
+  ci.stage.pName = "main";
+  ci.stage.pSpecializationInfo = entries.empty() ? nullptr : &spec;
+  ci.layout = p->layout;
+  VkResult r = vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &ci, nullptr, &p->pipeline);
+  vkDestroyShaderModule(device, module, nullptr);
+  check(r, "vkCreateComputePipelines");
+  set_name(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<uint64_t>(p->pipeline), desc.shader);
+  pipelines_[key] = p;
+  return p;
+}
+
+std::shared_ptr<Pipeline> VkGpu::graphics_pipeline(const GraphicsPipelineDesc& desc) {
+  std::string key = fmt::format("G|{}|{}|{}|{}|{}|", desc.vertex_shader, desc.fragment_shader, binding_key(desc.bindings),
+                                desc.push_constant_bytes, desc.depth);
+  for (auto f : desc.color_formats) key += format_name(f);
+  if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second;
+
+  auto p = std::make_shared<VkPipelineObj>();
+  p->name_ = desc.vertex_shader + "+" + desc.fragment_shader;
+  p->device = device;
+  p->bindings = desc.bindings;
+  p->push_bytes = desc.push_constant_bytes;
+  p->bind_point = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  make_layout(*this, *p, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT);
+  VkShaderModule vs = load_module(device, desc.vertex_shader);
+  VkShaderModule fs = load_module(device, desc.fragment_shader);
+  VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+                                               {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
+  stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+  stages[0].module = vs;
+  stages[0].pName = "main";
+  stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+  stages[1].module = fs;
+  stages[1].pName = "main";
+  VkPipelineVertexInputStateCreateInfo vin{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+  vp.viewportCount = 1;
+  vp.scissorCount = 1;
+  VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  rs.polygonMode = VK_POLYGON_MODE_FILL;
+  rs.cullMode = VK_CULL_MODE_NONE;  // every surface is double-sided, as in the tracer
+  rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+  rs.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+  ds.depthTestEnable = desc.depth;
+  ds.depthWriteEnable = desc.depth;
+  ds.depthCompareOp = VK_COMPARE_OP_LESS;
+  std::vector<VkPipelineColorBlendAttachmentState> blends(desc.color_formats.size());
+  for (auto& b : blends) b.colorWriteMask = 0xF;
+  VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  cb.attachmentCount = static_cast<uint32_t>(blends.size());
+  cb.pAttachments = blends.data();
+  VkDynamicState dyn[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  VkPipelineDynamicStateCreateInfo dy{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+  dy.dynamicStateCount = 2;
+  dy.pDynamicStates = dyn;
+  std::vector<VkFormat> colors;
+  for (auto f : desc.color_formats) colors.push_back(to_vk(f));
+  VkPipelineRenderingCreateInfo ri{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+  ri.colorAttachmentCount = static_cast<uint32_t>(colors.size());
+  ri.pColorAttachmentFormats = colors.data();
+  ri.depthAttachmentFormat = desc.depth ? VK_FORMAT_D32_SFLOAT : VK_FORMAT_UNDEFINED;
+  VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+  ci.pNext = &ri;
+  ci.stageCount = 2;
+  ci.pStages = stages;
+  ci.pVertexInputState = &vin;
+  ci.pInputAssemblyState = &ia;
+  ci.pViewportState = &vp;
+  ci.pRasterizationState = &rs;
+  ci.pMultisampleState = &ms;
+  ci.pDepthStencilState = &ds;
+  ci.pColorBlendState = &cb;
+  ci.pDynamicState = &dy;
+  ci.layout = p->layout;
+  VkResult r = vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &ci, nullptr, &p->pipeline);
+  vkDestroyShaderModule(device, vs, nullptr);
+  vkDestroyShaderModule(device, fs, nullptr);
+  check(r, "vkCreateGraphicsPipelines");
+  pipelines_[key] = p;
+  return p;
+}
+
+}  // namespace gib::vkimpl

@@ -1,0 +1,765 @@
+// Scene module: math, primitives, feature derivation, loader errors, flatten, sample scenes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <set>
+#include <string>
+
+#include "renderer/scene/features.h"
+#include "renderer/scene/math.h"
+#include "renderer/scene/primitives.h"
+#include "renderer/scene/scene.h"
+#include "renderer/scene/scene_loader.h"
+
+#ifndef GIB_SOURCE_DIR
+#error "GIB_SOURCE_DIR must point at the source tree"
+#endif
+
+namespace gib {
+namespace {
+
+using json = nlohmann::json;
+constexpr float kPi = std::numbers::pi_v<float>;
+
+std::string scene_path(const std::string& name) { return std::string(GIB_SOURCE_DIR) + "/cases/scenes/" + name; }
+
+void expect_near(Vec3 a, Vec3 b, float eps = 1e-5f) {
+  EXPECT_NEAR(a.x, b.x, eps);
+  EXPECT_NEAR(a.y, b.y, eps);
+  EXPECT_NEAR(a.z, b.z, eps);
+}
+
+bool finite(Vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// ---------------------------------------------------------------- math
+
+TEST(SceneMath, InverseTimesMatrixIsIdentity) {
+  Mat4 mats[] = {Mat4::trs({1, -2, 3}, {30, 45, -60}, {2, 0.5f, 3}),
+                 Mat4::trs({1e4f, 0, -1e4f}, {0, 90, 0}, {-1, 1, 1}),
+                 Mat4::perspective(1.0f, 1.5f, 0.1f, 100.0f),
+                 Mat4::look_at({3, 4, 5}, {0, 1, 0}, {0, 1, 0})};
+  for (const Mat4& m : mats) {
+    Mat4 p = m.inverse() * m;
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) EXPECT_NEAR(p.m[c][r], c == r ? 1.0f : 0.0f, 2e-4f);
+  }
+}
+
+TEST(SceneMath, SingularInverseIsZeroNotNaN) {
+  Mat4 inv = Mat4::scaling({0, 1, 1}).inverse();
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) EXPECT_EQ(inv.m[c][r], 0.0f);
+}
+
+TEST(SceneMath, TransposeSwapsRowsAndColumns) {
+  Mat4 m = Mat4::trs({1, 2, 3}, {10, 20, 30}, {1, 2, 3});
+  Mat4 t = m.transpose();
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) EXPECT_EQ(t.m[c][r], m.m[r][c]);
+}
+
+TEST(SceneMath, RotationsAreRightHanded) {
+  expect_near(Mat4::rotation_z(kPi / 2).transform_vector({1, 0, 0}), {0, 1, 0});
+  expect_near(Mat4::rotation_x(kPi / 2).transform_vector({0, 1, 0}), {0, 0, 1});
+  expect_near(Mat4::rotation_y(kPi / 2).transform_vector({0, 0, 1}), {1, 0, 0});
+}
+
+TEST(SceneMath, TrsAppliesScaleThenRzRyRxThenTranslation) {
+  Vec3 t{1, 2, 3}, r{30, -45, 60}, s{2, 3, 4};
+  Vec3 p{0.3f, -0.7f, 1.1f};
+  constexpr float d = kPi / 180.0f;
+  Vec3 expected = Mat4::translation(t).transform_point(Mat4::rotation_x(r.x * d).transform_point(
+      Mat4::rotation_y(r.y * d).transform_point(Mat4::rotation_z(r.z * d).transform_point(Mat4::scaling(s).transform_point(p)))));
+  expect_near(Mat4::trs(t, r, s).transform_point(p), expected);
+}
+
+TEST(SceneMath, PerspectiveMapsNearFarToZeroOneAndFlipsY) {
+  float n = 0.1f, f = 50.0f;
+  Mat4 p = Mat4::perspective(kPi / 3, 16.0f / 9.0f, n, f);
+  Vec4 a = p.transform({0, 0, -n, 1});
+  Vec4 b = p.transform({0, 0, -f, 1});
+  EXPECT_NEAR(a.z / a.w, 0.0f, 1e-6f);
+  EXPECT_NEAR(b.z / b.w, 1.0f, 1e-5f);
+  // A point above the axis lands in the upper half of the image: negative NDC y in Vulkan.
+  Vec4 up = p.transform({0, 1, -5, 1});
+  EXPECT_LT(up.y / up.w, 0.0f);
+  // The top edge of the frustum is exactly y = -1.
+  Vec4 top = p.transform({0, std::tan(kPi / 6) * 5.0f, -5, 1});
+  EXPECT_NEAR(top.y / top.w, -1.0f, 1e-5f);
+  Vec4 right = p.transform({std::tan(kPi / 6) * 5.0f * 16.0f / 9.0f, 0, -5, 1});
+  EXPECT_NEAR(right.x / right.w, 1.0f, 1e-5f);
+}
+
+TEST(SceneMath, LookAtPutsTargetOnMinusZ) {
+  Vec3 eye{3, 4, 5}, target{0, 1, 0};
+  Mat4 v = Mat4::look_at(eye, target, {0, 1, 0});
+  expect_near(v.transform_point(eye), {0, 0, 0});
+  Vec3 t = v.transform_point(target);
+  expect_near(t, {0, 0, -length(target - eye)}, 1e-4f);
+  // World up stays in the upper half of the view.
+  EXPECT_GT(v.transform_vector({0, 1, 0}).y, 0.0f);
+  // World +x is to the right for a camera on +z looking at the origin.
+  Mat4 v2 = Mat4::look_at({0, 0, 5}, {0, 0, 0}, {0, 1, 0});
+  expect_near(v2.transform_vector({1, 0, 0}), {1, 0, 0});
+}
+
+TEST(SceneMath, LookAtStraightDownStaysFinite) {
+  Mat4 v = Mat4::look_at({0, 10, 0}, {0, 0, 0}, {0, 1, 0});
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) EXPECT_TRUE(std::isfinite(v.m[c][r]));
+  expect_near(v.transform_point({0, 0, 0}), {0, 0, -10});
+  Mat4 p = v * v.inverse();
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) EXPECT_NEAR(p.m[c][r], c == r ? 1.0f : 0.0f, 1e-5f);
+}
+
+// ---------------------------------------------------------------- features
+
+TEST(SceneFeatures, NamesAndToString) {
+  EXPECT_EQ(feature_name(Feature::local_lights), "local_lights");
+  EXPECT_EQ(feature_name(Feature::alpha_tested), "alpha_tested");
+  EXPECT_EQ(to_string(SceneFeatures{}), "none");
+  EXPECT_EQ(to_string(SceneFeatures(Feature::sun) | Feature::sky), "sun,sky");
+  SceneFeatures all;
+  for (uint32_t i = 0; i < kFeatureCount; ++i) all |= static_cast<Feature>(1u << i);
+  EXPECT_EQ(to_string(all), "sun,sky,local_lights,emissive,alpha_tested,translucent,textured,motion");
+}
+
+Scene minimal_scene() {
+  Scene s;
+  s.materials.push_back(Material{});
+  s.meshes.push_back(make_box({1, 1, 1}));
+  s.instances.push_back(Instance{});
+  return s;
+}
+
+TEST(SceneFeatures, EmptySceneHasNone) { EXPECT_TRUE(minimal_scene().features().empty()); }
+
+TEST(SceneFeatures, SunAndSky) {
+  Scene s = minimal_scene();
+  s.sun.enabled = true;
+  EXPECT_FALSE(s.features().has(Feature::sun));  // zero irradiance lights nothing
+  s.sun.irradiance = {1, 1, 1};
+  EXPECT_TRUE(s.features().has(Feature::sun));
+  s.sun.enabled = false;
+  EXPECT_FALSE(s.features().has(Feature::sun));
+
+  s.sky.radiance = {1, 1, 1};
+  EXPECT_FALSE(s.features().has(Feature::sky));  // kind none
+  s.sky.kind = SkyKind::constant;
+  EXPECT_TRUE(s.features().has(Feature::sky));
+  s.sky.radiance = {0, 0, 0};
+  EXPECT_FALSE(s.features().has(Feature::sky));
+  s.sky.kind = SkyKind::gradient;
+  s.sky.horizon = {0.5f, 0, 0};
+  EXPECT_TRUE(s.features().has(Feature::sky));
+  EXPECT_EQ(s.features(), SceneFeatures(Feature::sky));
+}
+
+TEST(SceneFeatures, LocalLights) {
+  Scene s = minimal_scene();
+  s.lights.push_back(LocalLight{});
+  EXPECT_EQ(s.features(), SceneFeatures(Feature::local_lights));
+}
+
+TEST(SceneFeatures, MaterialFeaturesOnlyFromUsedMaterials) {
+  struct Case {
+    Feature f;
+    void (*set)(Material&);
+  };
+  Case cases[] = {
+      {Feature::emissive, [](Material& m) { m.emissive = {0, 0, 2}; }},
+      {Feature::alpha_tested, [](Material& m) { m.alpha = AlphaKind::checker_mask; }},
+      {Feature::translucent, [](Material& m) { m.translucency = 0.25f; }},
+      {Feature::textured, [](Material& m) { m.texture = TextureKind::value_noise; }},
+  };
+  for (const Case& c : cases) {
+    Scene s = minimal_scene();
+    Material unused;
+    c.set(unused);
+    s.materials.push_back(unused);
+    EXPECT_TRUE(s.features().empty()) << feature_name(c.f);
+    s.instances.push_back(Instance{});
+    s.instances.back().material = 1;
+    EXPECT_EQ(s.features(), SceneFeatures(c.f)) << feature_name(c.f);
+  }
+}
+
+TEST(SceneFeatures, Motion) {
+  Scene s = minimal_scene();
+  s.instances[0].animation.push_back(Keyframe{});
+  EXPECT_FALSE(s.features().has(Feature::motion));  // one key holds still
+  s.instances[0].animation.push_back(Keyframe{1.0f});
+  EXPECT_TRUE(s.features().has(Feature::motion));
+
+  Scene c = minimal_scene();
+  c.camera.animation = {CameraKey{0.0f}, CameraKey{1.0f}};  // two keys, same pose
+  EXPECT_FALSE(c.features().has(Feature::motion));
+  c.camera.animation[1].fov_y_deg = 50;
+  EXPECT_TRUE(c.features().has(Feature::motion));
+}
+
+// ---------------------------------------------------------------- primitives
+
+float triangle_area(const Mesh& m, size_t t) {
+  Vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]], c = m.positions[m.indices[3 * t + 2]];
+  return 0.5f * length(cross(b - a, c - a));
+}
+
+float total_area(const Mesh& m) {
+  double sum = 0;
+  for (size_t t = 0; t < m.indices.size() / 3; ++t) sum += triangle_area(m, t);
+  return static_cast<float>(sum);
+}
+
+// Shared sanity: attribute arrays agree, indices in range, unit normals, UVs in [0,1], and
+// the winding agrees with the vertex normals (counter-clockwise seen from the front).
+void check_mesh(const Mesh& m, size_t expected_triangles) {
+  ASSERT_EQ(m.indices.size(), 3 * expected_triangles) << m.name;
+  ASSERT_EQ(m.normals.size(), m.positions.size()) << m.name;
+  ASSERT_EQ(m.uvs.size(), m.positions.size()) << m.name;
+  for (uint32_t i : m.indices) ASSERT_LT(i, m.positions.size()) << m.name;
+  for (Vec3 n : m.normals) EXPECT_NEAR(length(n), 1.0f, 1e-5f) << m.name;
+  for (Vec2 uv : m.uvs) {
+    EXPECT_GE(uv.x, 0.0f);
+    EXPECT_LE(uv.x, 1.0f);
+    EXPECT_GE(uv.y, 0.0f);
+    EXPECT_LE(uv.y, 1.0f);
+  }
+  for (size_t t = 0; t < expected_triangles; ++t) {
+    uint32_t i0 = m.indices[3 * t], i1 = m.indices[3 * t + 1], i2 = m.indices[3 * t + 2];
+    Vec3 g = cross(m.positions[i1] - m.positions[i0], m.positions[i2] - m.positions[i0]);
+    EXPECT_GT(length(g), 0.0f) << m.name << " triangle " << t << " is degenerate";
+    EXPECT_GT(dot(g, m.normals[i0] + m.normals[i1] + m.normals[i2]), 0.0f) << m.name << " triangle " << t;
+  }
+}
+
+Vec3 bounds_extent(const Mesh& m) {
+  Vec3 lo{1e30f, 1e30f, 1e30f}, hi{-1e30f, -1e30f, -1e30f};
+  for (Vec3 p : m.positions) { lo = vmin(lo, p); hi = vmax(hi, p); }
+  return hi - lo;
+}
+
+TEST(ScenePrimitives, Box) {
+  Mesh m = make_box({1, 2, 3});
+  check_mesh(m, 12);
+  EXPECT_NEAR(total_area(m), 2 * (1 * 2 + 2 * 3 + 3 * 1), 1e-4f);
+  expect_near(bounds_extent(m), {1, 2, 3});
+}
+
+TEST(ScenePrimitives, QuadEveryFacing) {
+  for (Facing f : {Facing::pos_x, Facing::neg_x, Facing::pos_y, Facing::neg_y, Facing::pos_z, Facing::neg_z}) {
+    Mesh m = make_quad({2, 3}, f);
+    check_mesh(m, 2);
+    EXPECT_NEAR(total_area(m), 6.0f, 1e-5f);
+    for (Vec3 n : m.normals) expect_near(n, facing_normal(f));
+    EXPECT_EQ(parse_facing(facing_name(f)), f);
+  }
+  expect_near(bounds_extent(make_quad({2, 3}, Facing::pos_y)), {2, 0, 3});  // floor: V along z
+  EXPECT_FALSE(parse_facing("up").has_value());
+}
+
+TEST(ScenePrimitives, Sphere) {
+  Mesh m = make_sphere(2.0f, 64);
+  check_mesh(m, 2 * 64 * (32 - 1));
+  EXPECT_NEAR(total_area(m), 4 * kPi * 4, 0.02f * 4 * kPi * 4);
+  for (size_t i = 0; i < m.positions.size(); ++i) {
+    EXPECT_NEAR(length(m.positions[i]), 2.0f, 1e-5f);
+    expect_near(m.normals[i], m.positions[i] / 2.0f, 1e-5f);
+  }
+  check_mesh(make_sphere(1.0f, 3), 2 * 3 * (2 - 1));  // coarsest allowed
+}
+
+TEST(ScenePrimitives, Cylinder) {
+  float r = 0.5f, h = 2.0f;
+  Mesh capped = make_cylinder(r, h, 48, true);
+  check_mesh(capped, 4 * 48);
+  EXPECT_NEAR(total_area(capped), 2 * kPi * r * h + 2 * kPi * r * r, 0.01f * (2 * kPi * r * (h + r)));
+  Mesh open = make_cylinder(r, h, 48, false);
+  check_mesh(open, 2 * 48);
+  expect_near(bounds_extent(open), {1, 2, 1}, 1e-3f);
+}
+
+TEST(ScenePrimitives, ThinSlab) {
+  Mesh m = make_thin_slab({1.5f, 2.0f}, 0.02f, Facing::pos_x);
+  check_mesh(m, 12);
+  expect_near(bounds_extent(m), {0.02f, 2.0f, 1.5f});
+  EXPECT_NEAR(total_area(m), 2 * (1.5f * 2.0f + 0.02f * 2.0f + 0.02f * 1.5f), 1e-4f);
+}
+
+TEST(ScenePrimitives, LeafCardsAreDeterministicAndInsideRegion) {
+  Vec3 region{2, 1, 3};
+  Vec2 card{0.2f, 0.1f};
+  Mesh a = make_leaf_cards(100, region, card, 42);
+  check_mesh(a, 200);
+  EXPECT_NEAR(total_area(a), 100 * 0.2f * 0.1f, 1e-3f);
+  float reach = 0.5f * length(Vec3{card.x, card.y, 0});
+  for (Vec3 p : a.positions) {
+    EXPECT_LE(std::fabs(p.x), 0.5f * region.x + reach);
+    EXPECT_LE(std::fabs(p.y), 0.5f * region.y + reach);
+    EXPECT_LE(std::fabs(p.z), 0.5f * region.z + reach);
+  }
+  Mesh b = make_leaf_cards(100, region, card, 42);
+  ASSERT_EQ(a.positions.size(), b.positions.size());
+  for (size_t i = 0; i < a.positions.size(); ++i) EXPECT_EQ(a.positions[i], b.positions[i]);
+  Mesh c = make_leaf_cards(100, region, card, 43);
+  EXPECT_FALSE(a.positions[0] == c.positions[0]);
+}
+
+// ---------------------------------------------------------------- animation
+
+TEST(SceneAnimation, InstanceKeysInterpolateAndClamp) {
+  Scene s = minimal_scene();
+  s.instances[0].animation = {Keyframe{0.0f, {0, 0, 0}, {0, 0, 0}, {1, 1, 1}},
+                              Keyframe{2.0f, {4, 0, 0}, {0, 90, 0}, {3, 3, 3}}};
+  expect_near(s.instance_transform(0, 1.0f).transform_point({0, 0, 0}), {2, 0, 0});
+  // Halfway: 45 degrees about Y and scale 2.
+  Vec3 p = s.instance_transform(0, 1.0f).transform_vector({1, 0, 0});
+  expect_near(p, Vec3{std::sqrt(2.0f), 0, -std::sqrt(2.0f)}, 1e-5f);
+  expect_near(s.instance_transform(0, -5.0f).transform_point({0, 0, 0}), {0, 0, 0});
+  expect_near(s.instance_transform(0, 50.0f).transform_point({0, 0, 0}), {4, 0, 0});
+  expect_near(s.instance_transform(0, std::nanf("")).transform_point({0, 0, 0}), {0, 0, 0});
+  EXPECT_THROW(s.instance_transform(7, 0.0f), std::out_of_range);
+}
+
+TEST(SceneAnimation, CameraKeys) {
+  Scene s = minimal_scene();
+  s.camera.animation = {CameraKey{0.0f, {0, 0, 0}, {0, 0, -1}, 40.0f}, CameraKey{1.0f, {10, 0, 0}, {10, 0, -1}, 60.0f}};
+  Camera c = s.camera_at(0.25f);
+  expect_near(c.position, {2.5f, 0, 0});
+  expect_near(c.target, {2.5f, 0, -1});
+  EXPECT_NEAR(c.fov_y_deg, 45.0f, 1e-5f);
+  EXPECT_TRUE(c.animation.empty());
+  expect_near(s.camera_at(9.0f).position, {10, 0, 0});
+}
+
+// ---------------------------------------------------------------- flatten
+
+TEST(SceneFlatten, TransformsPositionsAndNormals) {
+  Scene s = minimal_scene();
+  s.instances[0].transform = Mat4::trs({10, 0, 0}, {0, 0, 30}, {4, 1, 1});
+  s.instances.push_back(Instance{});  // second copy, untransformed
+  FlatScene f = flatten(s, 0.0f);
+  ASSERT_EQ(f.vertices.size(), 48u);
+  ASSERT_EQ(f.triangles.size(), 24u);
+  ASSERT_EQ(f.instances.size(), 2u);
+  EXPECT_EQ(f.instances[1].first_triangle, 12u);
+  EXPECT_EQ(f.instances[1].triangle_count, 12u);
+  EXPECT_EQ(f.triangles[12].instance, 1u);
+  EXPECT_EQ(f.triangles[12].i0, 24u + s.meshes[0].indices[0]);
+  for (size_t i = 0; i < 24; ++i) {
+    Vec3 expected = s.instances[0].transform.transform_point(s.meshes[0].positions[i]);
+    expect_near({f.vertices[i].px, f.vertices[i].py, f.vertices[i].pz}, expected, 1e-5f);
+  }
+  // Under non-uniform scale the normal must stay perpendicular to the transformed faces.
+  for (const GpuTriangle& t : f.triangles) {
+    auto pos = [&](uint32_t i) { return Vec3{f.vertices[i].px, f.vertices[i].py, f.vertices[i].pz}; };
+    Vec3 n{f.vertices[t.i0].nx, f.vertices[t.i0].ny, f.vertices[t.i0].nz};
+    EXPECT_NEAR(length(n), 1.0f, 1e-5f);
+    Vec3 g = normalize(cross(pos(t.i1) - pos(t.i0), pos(t.i2) - pos(t.i0)));
+    EXPECT_NEAR(dot(g, n), 1.0f, 1e-4f);
+  }
+}
+
+TEST(SceneFlatten, MirroredInstanceNormalsPointOutward) {
+  Scene s = minimal_scene();
+  s.instances[0].transform = Mat4::trs({0, 0, 0}, {0, 0, 0}, {-2, 1, 1});
+  FlatScene f = flatten(s, 0.0f);
+  for (const GpuVertex& v : f.vertices) EXPECT_GT(v.px * v.nx + v.py * v.ny + v.pz * v.nz, 0.0f);
+}
+
+TEST(SceneFlatten, DegenerateInputStaysFinite) {
+  Scene s = minimal_scene();
+  Mesh bad;
+  bad.name = "degenerate";
+  bad.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}};
+  bad.normals = {{0, 0, 0}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}};  // a zero normal must stay zero
+  bad.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  bad.indices = {0, 1, 2, 0, 0, 0, 0, 1, 3};  // collinear, collapsed, then a real triangle
+  s.meshes.push_back(bad);
+  s.instances[0].mesh = 1;
+  s.instances[0].transform = Mat4::trs({1, 2, 3}, {10, 20, 30}, {1, 2, 3});
+  Instance flat;
+  flat.mesh = 0;
+  flat.transform = Mat4::scaling({1, 0, 1});  // collapsed to a plane
+  s.instances.push_back(flat);
+  FlatScene f = flatten(s, 0.0f);
+  EXPECT_EQ(f.instances[0].triangle_count, 3u);  // zero-area triangles survive
+  EXPECT_EQ(f.triangles.size(), 3u + 12u);
+  for (const GpuVertex& v : f.vertices) {
+    EXPECT_TRUE(finite({v.px, v.py, v.pz}));
+    Vec3 n{v.nx, v.ny, v.nz};
+    ASSERT_TRUE(finite(n));
+    float len = length(n);
+    EXPECT_TRUE(len == 0.0f || std::fabs(len - 1.0f) < 1e-5f) << len;
+  }
+  EXPECT_EQ(f.vertices[0].nx, 0.0f);
+  EXPECT_EQ(f.vertices[0].ny, 0.0f);
+  EXPECT_EQ(f.vertices[0].nz, 0.0f);
+}
+
+TEST(SceneFlatten, MaterialsAndLights) {
+  Scene s = minimal_scene();
+  s.materials[0].albedo = {0.1f, 0.2f, 0.3f};
+  s.materials[0].alpha = AlphaKind::opacity;
+  s.materials[0].opacity = 0.4f;
+  LocalLight l;
+  l.kind = LightKind::spot;
+  l.direction = {0, -2, 0};
+  l.inner_cone_deg = 60;
+  l.outer_cone_deg = 90;
+  s.lights.push_back(l);
+  FlatScene f = flatten(s, 0.0f);
+  ASSERT_EQ(f.materials.size(), 1u);
+  EXPECT_EQ(f.materials[0].albedo[2], 0.3f);
+  EXPECT_EQ(f.materials[0].alpha, static_cast<uint32_t>(AlphaKind::opacity));
+  EXPECT_EQ(f.materials[0].opacity, 0.4f);
+  ASSERT_EQ(f.lights.size(), 1u);
+  EXPECT_EQ(f.lights[0].kind, 1u);
+  EXPECT_NEAR(f.lights[0].cos_inner, 0.5f, 1e-6f);
+  EXPECT_NEAR(f.lights[0].cos_outer, 0.0f, 1e-6f);
+  EXPECT_NEAR(f.lights[0].direction[1], -1.0f, 1e-6f);
+  static_assert(sizeof(GpuVertex) == 32 && sizeof(GpuMaterial) == 80 && sizeof(GpuLight) == 64);
+}
+
+TEST(SceneFlatten, AnimatedInstanceUsesTime) {
+  Scene s = minimal_scene();
+  s.instances[0].animation = {Keyframe{0.0f, {0, 0, 0}}, Keyframe{1.0f, {0, 10, 0}}};
+  FlatScene a = flatten(s, 0.0f), b = flatten(s, 0.5f);
+  EXPECT_NEAR(b.vertices[0].py - a.vertices[0].py, 5.0f, 1e-5f);
+}
+
+// ---------------------------------------------------------------- loader
+
+json minimal_doc() {
+  return json::parse(R"({
+    "materials": {"white": {}},
+    "objects": [{"primitive": {"type": "box"}, "material": "white"}]
+  })");
+}
+
+std::string error_of(const json& doc) {
+  try {
+    parse_scene(doc, "bad_scene.json");
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "<no error>";
+}
+
+TEST(SceneLoader, MinimalSceneUsesDefaults) {
+  Scene s = parse_scene(minimal_doc(), "mini.json");
+  EXPECT_EQ(s.source, "mini.json");
+  ASSERT_EQ(s.materials.size(), 1u);
+  EXPECT_EQ(s.materials[0].name, "white");
+  ASSERT_EQ(s.instances.size(), 1u);
+  EXPECT_EQ(s.instances[0].name, "object0");
+  EXPECT_EQ(s.meshes[0].indices.size(), 36u);
+  EXPECT_FALSE(s.sun.enabled);
+  EXPECT_EQ(s.sky.kind, SkyKind::none);
+  EXPECT_NEAR(s.frame_time, 1.0f / 60.0f, 1e-7f);
+  EXPECT_TRUE(s.features().empty());
+}
+
+TEST(SceneLoader, IdenticalPrimitivesShareOneMesh) {
+  json doc = minimal_doc();
+  doc["objects"].push_back(json::parse(R"({"primitive": {"type": "box", "size": [1, 1, 1]}, "material": "white",
+                                           "transform": {"translate": [3, 0, 0]}})"));
+  doc["objects"].push_back(json::parse(R"({"primitive": {"type": "box", "size": [2, 1, 1]}, "material": "white"})"));
+  Scene s = parse_scene(doc, "share.json");
+  ASSERT_EQ(s.instances.size(), 3u);
+  EXPECT_EQ(s.meshes.size(), 2u);
+  EXPECT_EQ(s.instances[0].mesh, s.instances[1].mesh);
+  EXPECT_NE(s.instances[0].mesh, s.instances[2].mesh);
+}
+
+TEST(SceneLoader, AnimationChannelsDefaultToStaticTransform) {
+  json doc = minimal_doc();
+  doc["objects"][0]["transform"] = {{"translate", {1, 2, 3}}, {"scale", {2, 2, 2}}};
+  doc["objects"][0]["animation"] = json::parse(R"([{"time": 0}, {"time": 1, "translate": [5, 2, 3]}])");
+  Scene s = parse_scene(doc, "anim.json");
+  ASSERT_EQ(s.instances[0].animation.size(), 2u);
+  expect_near(s.instances[0].animation[0].translation, {1, 2, 3});
+  expect_near(s.instances[0].animation[1].scale, {2, 2, 2});
+  EXPECT_TRUE(s.features().has(Feature::motion));
+}
+
+struct BadCase {
+  const char* what;
+  void (*edit)(json&);
+  const char* pointer;   // exact JSON pointer expected in the message
+  const char* fragment;  // and a piece of the expected/got text
+};
+
+const BadCase kBadCases[] = {
+    {"root is not an object", [](json& d) { d = json::array({1, 2}); }, "/", "expected object, got array of 2 elements"},
+    {"objects missing", [](json& d) { d.erase("objects"); }, "/objects", "got missing key"},
+    {"objects empty", [](json& d) { d["objects"] = json::array(); }, "/objects", "got empty array"},
+    {"object is a number", [](json& d) { d["objects"][0] = 5; }, "/objects/0", "expected object, got 5"},
+    {"materials empty", [](json& d) { d["materials"] = json::object(); }, "/materials", "got empty object"},
+    {"unknown material", [](json& d) { d["objects"][0]["material"] = "whte"; }, "/objects/0/material",
+     "expected the name of a material (white), got \"whte\""},
+    {"material not a string", [](json& d) { d["objects"][0]["material"] = 3; }, "/objects/0/material",
+     "expected string, got 3"},
+    {"unknown primitive", [](json& d) { d["objects"][0]["primitive"]["type"] = "torus"; }, "/objects/0/primitive/type",
+     "got \"torus\""},
+    {"primitive type missing", [](json& d) { d["objects"][0]["primitive"].erase("type"); },
+     "/objects/0/primitive/type", "got missing key"},
+    {"negative size", [](json& d) { d["objects"][0]["primitive"]["size"] = {1, -1, 1}; },
+     "/objects/0/primitive/size/1", "expected number > 0, got -1"},
+    {"size of wrong length", [](json& d) { d["objects"][0]["primitive"]["size"] = {1, 1}; },
+     "/objects/0/primitive/size", "expected array of 3 numbers, got array of 2 elements"},
+    {"key of another primitive", [](json& d) { d["objects"][0]["primitive"]["radius"] = 1; },
+     "/objects/0/primitive/radius", "expected one of the keys type, size, got unknown key \"radius\""},
+    {"fractional segments", [](json& d) { d["objects"][0]["primitive"] = {{"type", "sphere"}, {"segments", 2.5}}; },
+     "/objects/0/primitive/segments", "expected integer in [3, 4096], got 2.5"},
+    {"NaN albedo", [](json& d) { d["materials"]["white"]["albedo"] = {std::nan(""), 0, 0}; },
+     "/materials/white/albedo/0", "got NaN"},
+    {"albedo above one", [](json& d) { d["materials"]["white"]["albedo"] = {0.5, 1.5, 0.5}; },
+     "/materials/white/albedo/1", "expected number in [0, 1], got 1.5"},
+    {"roughness is a string", [](json& d) { d["materials"]["white"]["roughness"] = "high"; },
+     "/materials/white/roughness", "expected number in [0, 1], got \"high\""},
+    {"typo in material key", [](json& d) { d["materials"]["white"]["albdo"] = {1, 1, 1}; },
+     "/materials/white/albdo", "expected one of the keys albedo, roughness"},
+    {"escaped material name", [](json& d) { d["materials"]["a/b~c"] = {{"x", 1}}; }, "/materials/a~1b~0c/x",
+     "unknown key \"x\""},
+    {"unknown alpha mode", [](json& d) { d["materials"]["white"]["alpha"] = "leafmask"; }, "/materials/white/alpha",
+     "expected one of \"none\", \"leaf_mask\", \"checker_mask\", \"opacity\", got \"leafmask\""},
+    {"float overflow", [](json& d) { d["objects"][0]["transform"] = {{"translate", {1e39, 0, 0}}}; },
+     "/objects/0/transform/translate/0", "expected finite number"},
+    {"empty animation", [](json& d) { d["objects"][0]["animation"] = json::array(); }, "/objects/0/animation",
+     "expected non-empty array, got empty array"},
+    {"keys out of order",
+     [](json& d) { d["objects"][0]["animation"] = json::parse(R"([{"time": 1}, {"time": 0.5}])"); },
+     "/objects/0/animation/1/time", "expected time > 1 (the previous key's), got 0.5"},
+    {"point light without intensity", [](json& d) { d["lights"] = json::parse(R"([{"type": "point", "position": [0, 1, 0]}])"); },
+     "/lights/0/intensity", "expected array of 3 numbers, got missing key"},
+    {"point light with a direction",
+     [](json& d) {
+       d["lights"] = json::parse(R"([{"type": "point", "position": [0, 1, 0], "intensity": [1, 1, 1], "direction": [0, -1, 0]}])");
+     },
+     "/lights/0/direction", "expected one of the keys type, position, intensity, range"},
+    {"spot cone inverted",
+     [](json& d) {
+       d["lights"] = json::parse(R"([{"type": "spot", "position": [0, 1, 0], "direction": [0, -1, 0],
+                                      "intensity": [1, 1, 1], "inner_cone_deg": 40, "outer_cone_deg": 30}])");
+     },
+     "/lights/0/inner_cone_deg", "expected number <= outer_cone_deg (30), got 40"},
+    {"lights not an array", [](json& d) { d["lights"] = json::object(); }, "/lights", "expected array, got empty object"},
+    {"sun direction zero", [](json& d) { d["sun"] = json::parse(R"({"direction": [0, 0, 0], "irradiance": [1, 1, 1]})"); },
+     "/sun/direction", "expected non-zero direction vector, got [0, 0, 0]"},
+    {"gradient sky without horizon", [](json& d) { d["sky"] = json::parse(R"({"type": "gradient", "radiance": [1, 1, 1]})"); },
+     "/sky/horizon", "got missing key"},
+    {"camera far before near", [](json& d) { d["camera"] = json::parse(R"({"near": 1, "far": 0.5})"); }, "/camera/far",
+     "expected number > 1, got 0.5"},
+    {"camera target at eye", [](json& d) { d["camera"] = json::parse(R"({"position": [1, 2, 3], "target": [1, 2, 3]})"); },
+     "/camera/target", "expected target different from position"},
+    {"frame time zero", [](json& d) { d["frame_time"] = 0; }, "/frame_time", "expected number > 0, got 0"},
+    {"unknown top-level key", [](json& d) { d["lihgts"] = json::array(); }, "/lihgts",
+     "expected one of the keys materials, objects, lights, sun, sky, camera, frame_time"},
+};
+
+TEST(SceneLoader, MalformedInputsNameFileAndPointer) {
+  for (const BadCase& c : kBadCases) {
+    json doc = minimal_doc();
+    c.edit(doc);
+    std::string msg = error_of(doc);
+    std::string prefix = "bad_scene.json: " + std::string(c.pointer) + ": expected ";
+    EXPECT_EQ(msg.rfind(prefix, 0), 0u) << c.what << "\n  message: " << msg << "\n  wanted prefix: " << prefix;
+    EXPECT_NE(msg.find(c.fragment), std::string::npos) << c.what << "\n  message: " << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << c.what;
+    if (std::getenv("GIB_PRINT_SCENE_ERRORS")) std::printf("%s\n", msg.c_str());
+  }
+}
+
+// Every value of a full scene replaced by every kind of wrong value, and every key removed:
+// the loader either accepts the document or throws a well-formed SceneError, nothing else.
+TEST(SceneLoader, MutatedScenesNeverEscapeAsOtherErrors) {
+  std::ifstream in(scene_path("features_zoo.json"));
+  json original = json::parse(in);
+  // Coarse meshes keep the thousands of parses below fast; the structure is what matters.
+  for (json& object : original["objects"]) {
+    json& prim = object["primitive"];
+    if (prim.contains("segments")) prim["segments"] = 3;
+    if (prim.contains("count")) prim["count"] = 2;
+  }
+  json flat = original.flatten();
+  std::set<std::string> seen;
+  std::vector<json::json_pointer> pointers;
+  for (auto it = flat.begin(); it != flat.end(); ++it) {
+    json::json_pointer p(it.key());
+    while (!p.empty()) {  // every ancestor too, so whole objects and arrays get replaced
+      if (seen.insert(p.to_string()).second) pointers.push_back(p);
+      p = p.parent_pointer();
+    }
+  }
+  const json replacements[] = {nullptr, true, -1, 0, 2.5, 1e39, std::nan(""), "x", json::array(),
+                               json::object(), json::array({1, 2, 3}), json::array({"a", "b", "c"})};
+  size_t accepted = 0, rejected = 0;
+  auto check = [&](const json& doc, const std::string& what) {
+    try {
+      parse_scene(doc, "zoo");
+      ++accepted;
+    } catch (const SceneError& e) {
+      ++rejected;
+      std::string msg = e.what();
+      EXPECT_EQ(msg.rfind("zoo: /", 0), 0u) << what << ": " << msg;
+      EXPECT_NE(msg.find(": expected "), std::string::npos) << what << ": " << msg;
+      EXPECT_NE(msg.find(", got "), std::string::npos) << what << ": " << msg;
+      EXPECT_EQ(msg.find('\n'), std::string::npos) << what;
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << what << ": escaped as " << e.what();
+    }
+  };
+  for (const json::json_pointer& p : pointers) {
+    for (const json& r : replacements) {
+      json doc = original;
+      doc[p] = r;
+      check(doc, p.to_string() + " = " + r.dump());
+    }
+    json doc = original;
+    json& parent = doc[p.parent_pointer()];
+    if (parent.is_object())
+      parent.erase(p.back());
+    else
+      parent.erase(static_cast<size_t>(std::stoul(p.back())));
+    check(doc, "remove " + p.to_string());
+  }
+  EXPECT_GT(accepted, 0u);
+  EXPECT_GT(rejected, 1000u);
+}
+
+class TempFile {
+ public:
+  TempFile(const std::string& name, const std::string& text)
+      : path_(std::filesystem::temp_directory_path() / ("gib_test_scene_" + name)) {
+    std::ofstream(path_) << text;
+  }
+  ~TempFile() { std::filesystem::remove(path_); }
+  std::string path() const { return path_.string(); }
+
+ private:
+  std::filesystem::path path_;
+};
+
+std::string load_error(const std::string& path) {
+  try {
+    load_scene(path);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "<no error>";
+}
+
+TEST(SceneLoader, FileErrors) {
+  std::string missing = load_error("/nonexistent/dir/gone.json");
+  EXPECT_EQ(missing.rfind("/nonexistent/dir/gone.json: expected a readable file, got ", 0), 0u) << missing;
+
+  std::string dir = load_error(std::filesystem::temp_directory_path().string());
+  EXPECT_NE(dir.find("expected a scene file, got a directory"), std::string::npos) << dir;
+
+  TempFile broken("broken.json", "{\n  \"materials\": {\"white\": {}},\n  \"objects\": [,]\n}\n");
+  std::string syntax = load_error(broken.path());
+  EXPECT_EQ(syntax.rfind(broken.path() + ": line 3, column 15: expected valid JSON, got ", 0), 0u) << syntax;
+  EXPECT_EQ(syntax.find('\n'), std::string::npos);
+
+  TempFile overflow("overflow.json", R"({"frame_time": 1e999})");
+  std::string big = load_error(overflow.path());
+  EXPECT_EQ(big.rfind(overflow.path() + ": expected valid JSON, got ", 0), 0u) << big;
+
+  TempFile bad_utf8("utf8.json", "{\"materials\": {\"w\xff\": {}}}");
+  std::string utf8 = load_error(bad_utf8.path());
+  EXPECT_NE(utf8.find("expected valid JSON"), std::string::npos) << utf8;
+  for (char ch : utf8) EXPECT_LT(static_cast<unsigned char>(ch), 0x80) << utf8;
+
+  TempFile empty("empty.json", "");
+  EXPECT_NE(load_error(empty.path()).find("expected valid JSON"), std::string::npos);
+
+  TempFile wrong("wrong.json", R"({"materials": {"white": {}}, "objects": [{"primitive": {"type": "box"}, "material": "red"}]})");
+  std::string ref = load_error(wrong.path());
+  EXPECT_EQ(ref.rfind(wrong.path() + ": /objects/0/material: expected", 0), 0u) << ref;
+}
+
+// ---------------------------------------------------------------- sample scenes
+
+Vec3 world_extent_lo(const FlatScene& f, uint32_t instance, bool hi) {
+  Vec3 lo{1e30f, 1e30f, 1e30f}, up{-1e30f, -1e30f, -1e30f};
+  const GpuInstance& in = f.instances[instance];
+  for (uint32_t t = in.first_triangle; t < in.first_triangle + in.triangle_count; ++t)
+    for (uint32_t i : {f.triangles[t].i0, f.triangles[t].i1, f.triangles[t].i2}) {
+      Vec3 p{f.vertices[i].px, f.vertices[i].py, f.vertices[i].pz};
+      lo = vmin(lo, p);
+      up = vmax(up, p);
+    }
+  return hi ? up : lo;
+}
+
+TEST(SceneSamples, AllLoadAndFlatten) {
+  for (const char* name : {"cornell.json", "furnace.json", "sky_plane.json", "features_zoo.json"}) {
+    Scene s = load_scene(scene_path(name));
+    FlatScene f = flatten(s, 0.0f);
+    EXPECT_FALSE(f.triangles.empty()) << name;
+    for (const GpuVertex& v : f.vertices) {
+      ASSERT_TRUE(finite({v.px, v.py, v.pz})) << name;
+      ASSERT_NEAR(length({v.nx, v.ny, v.nz}), 1.0f, 1e-4f) << name;
+    }
+  }
+}
+
+TEST(SceneSamples, FeaturesMatchIntent) {
+  SceneFeatures cornell = load_scene(scene_path("cornell.json")).features();
+  EXPECT_EQ(cornell, SceneFeatures(Feature::local_lights) | Feature::emissive) << to_string(cornell);
+  EXPECT_EQ(load_scene(scene_path("furnace.json")).features(), SceneFeatures(Feature::sky));
+  EXPECT_EQ(load_scene(scene_path("sky_plane.json")).features(), SceneFeatures(Feature::sky));
+  SceneFeatures zoo = load_scene(scene_path("features_zoo.json")).features();
+  for (uint32_t i = 0; i < kFeatureCount; ++i) {
+    Feature f = static_cast<Feature>(1u << i);
+    EXPECT_TRUE(zoo.has(f)) << feature_name(f);
+  }
+}
+
+TEST(SceneSamples, FurnaceIsWhiteOpenAndApart) {
+  Scene s = load_scene(scene_path("furnace.json"));
+  for (const Material& m : s.materials) EXPECT_EQ(m.albedo, (Vec3{1, 1, 1}));
+  EXPECT_EQ(s.sky.kind, SkyKind::constant);
+  EXPECT_EQ(s.sky.radiance, (Vec3{1, 1, 1}));
+  EXPECT_TRUE(s.lights.empty());
+  FlatScene f = flatten(s, 0.0f);
+  ASSERT_EQ(f.instances.size(), 2u);
+  Vec3 lo0 = world_extent_lo(f, 0, false), hi0 = world_extent_lo(f, 0, true);
+  Vec3 lo1 = world_extent_lo(f, 1, false), hi1 = world_extent_lo(f, 1, true);
+  Vec3 gap = vmax(lo1 - hi0, lo0 - hi1);
+  EXPECT_GT(std::fmax(gap.x, std::fmax(gap.y, gap.z)), 4.0f);
+  // Both objects are in front of the camera.
+  Mat4 view = Mat4::look_at(s.camera.position, s.camera.target, s.camera.up);
+  EXPECT_LT(view.transform_point((lo0 + hi0) * 0.5f).z, 0.0f);
+  EXPECT_LT(view.transform_point((lo1 + hi1) * 0.5f).z, 0.0f);
+}
+
+TEST(SceneSamples, SkyPlaneFillsTheView) {
+  Scene s = load_scene(scene_path("sky_plane.json"));
+  Mat4 inv = (Mat4::perspective(s.camera.fov_y_deg * kPi / 180.0f, 16.0f / 9.0f, s.camera.near_plane,
+                                s.camera.far_plane) *
+              Mat4::look_at(s.camera.position, s.camera.target, s.camera.up))
+                 .inverse();
+  for (float x : {-1.0f, 1.0f})
+    for (float y : {-1.0f, 1.0f}) {
+      Vec4 w = inv.transform({x, y, 1.0f, 1.0f});
+      Vec3 dir = normalize(Vec3{w.x / w.w, w.y / w.w, w.z / w.w} - s.camera.position);
+      ASSERT_LT(dir.y, 0.0f);
+      float t = -s.camera.position.y / dir.y;
+      Vec3 hit = s.camera.position + dir * t;
+      EXPECT_LT(std::fabs(hit.x), 500.0f);
+      EXPECT_LT(std::fabs(hit.z), 500.0f);
+    }
+}
+
+}  // namespace
+}  // namespace gib
