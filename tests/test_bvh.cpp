@@ -21,10 +21,19 @@
 #include "renderer/scene/material_eval.h"
 #include "tests/bvh_test_shared.h"
 
+#ifndef GIB_BVH_TEST_NO_GPU
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "renderer/vk/gpu.h"
+#endif
+
 namespace gib {
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr uint32_t kSceneBufferCount = 7;  // GIB_SCENE_BINDING_COUNT in scene.glsl
 
 // Small deterministic generator (no dependence on the standard library's distributions).
 struct Rng {
@@ -586,6 +595,205 @@ TEST(Bvh, MaterialMirror) {
   EXPECT_EQ(material_hash(0u), 0u);
   EXPECT_NE(material_hash(1u), material_hash(2u));
 }
+
+
+#ifndef GIB_BVH_TEST_NO_GPU
+// ---- GPU traversal (bvh_test.comp on lavapipe or a real GPU) against the CPU brute force.
+
+struct GpuRun {
+  std::vector<bvh_test::BvhTestHit> hits;
+  std::vector<std::string> validation;
+};
+
+GpuRun run_gpu(Gpu& gpu, const FlatScene& scene, const Bvh& bvh,
+               const std::vector<TestRay>& rays, uint32_t flags) {
+  using namespace bvh_test;
+  std::vector<std::shared_ptr<Buffer>> keep;
+  auto buffer = [&](const void* data, uint64_t bytes, const char* name) {
+    // Vulkan has no empty buffers: an empty array still gets one zeroed element's worth.
+    auto b = gpu.create_buffer(std::max<uint64_t>(bytes, 64), BufferUsage::storage, name);
+    std::vector<uint8_t> zero(64, 0);
+    gpu.upload(*b, bytes ? data : zero.data(), bytes ? bytes : 64);
+    keep.push_back(b);
+    return b;
+  };
+  auto bytes_of = [](const auto& v) { return uint64_t(v.size() * sizeof(v[0])); };
+  std::vector<BvhTestRay> gpu_rays(rays.size());
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const TestRay& r = rays[i];
+    gpu_rays[i] = BvhTestRay{r.ray.origin.x, r.ray.origin.y, r.ray.origin.z, r.tmin,
+                             r.ray.dir.x, r.ray.dir.y, r.ray.dir.z, r.tmax};
+  }
+  const Buffer* scene_buffers[kSceneBufferCount] = {
+      buffer(scene.vertices.data(), bytes_of(scene.vertices), "bvh_test.vertices").get(),
+      buffer(scene.triangles.data(), bytes_of(scene.triangles), "bvh_test.triangles").get(),
+      buffer(scene.instances.data(), bytes_of(scene.instances), "bvh_test.instances").get(),
+      buffer(scene.materials.data(), bytes_of(scene.materials), "bvh_test.materials").get(),
+      buffer(bvh.nodes.data(), bytes_of(bvh.nodes), "bvh_test.bvh_nodes").get(),
+      buffer(bvh.tri_index.data(), bytes_of(bvh.tri_index), "bvh_test.bvh_tri_index").get(),
+      buffer(scene.lights.data(), bytes_of(scene.lights), "bvh_test.lights").get(),
+  };
+  const auto ray_buf = buffer(gpu_rays.data(), bytes_of(gpu_rays), "bvh_test.rays");
+  const auto hit_buf = gpu.create_buffer(rays.size() * sizeof(BvhTestHit), BufferUsage::storage,
+                                         "bvh_test.hits");
+  ComputePipelineDesc desc;
+  desc.shader = "bvh_test.comp";
+  desc.push_constant_bytes = sizeof(BvhTestPush);
+  std::vector<Bind> binds;
+  for (uint32_t i = 0; i < kSceneBufferCount; ++i) {
+    desc.bindings.push_back({BVH_TEST_BINDING_SCENE + i, DescriptorKind::storage_buffer});
+    binds.push_back({BVH_TEST_BINDING_SCENE + i, scene_buffers[i]});
+  }
+  desc.bindings.push_back({BVH_TEST_BINDING_RAYS, DescriptorKind::storage_buffer});
+  desc.bindings.push_back({BVH_TEST_BINDING_HITS, DescriptorKind::storage_buffer});
+  binds.push_back({BVH_TEST_BINDING_RAYS, ray_buf.get()});
+  binds.push_back({BVH_TEST_BINDING_HITS, hit_buf.get()});
+  const auto pipeline = gpu.compute_pipeline(desc);
+  const BvhTestPush push{uint32_t(rays.size()), flags};
+  auto cmd = gpu.begin();
+  cmd->bind(*pipeline, binds, &push, sizeof(push));
+  cmd->dispatch((uint32_t(rays.size()) + BVH_TEST_WORKGROUP_SIZE - 1) / BVH_TEST_WORKGROUP_SIZE);
+  gpu.submit(std::move(cmd));
+  GpuRun run;
+  run.hits.resize(rays.size());
+  gpu.download(*hit_buf, run.hits.data(), bytes_of(run.hits));
+  run.validation = gpu.validation_messages();
+  return run;
+}
+
+struct GpuComparison {
+  size_t rays = 0, hits = 0, bitwise = 0, same_triangle = 0, near_ties = 0, edge_grazes = 0,
+         hard = 0, any_mismatch = 0;
+  float max_t_rel = 0, max_uv = 0;
+};
+
+// Tolerances (see the top of the file): t 1e-5 relative, barycentrics 1e-4 on the same
+// triangle; a different triangle at t within 1e-5; a hit only one side sees within 1e-5 (in
+// barycentrics) of the hit triangle's edge, or within 1e-5 of tmin / tmax.
+GpuComparison compare_gpu(const FlatScene& scene, const std::vector<TestRay>& rays,
+                          const GpuRun& run, AlphaTest alpha,
+                          const std::function<void(uint32_t)>& set_seed) {
+  GpuComparison c;
+  auto rel = [](float a, float b) { return std::fabs(a - b) / std::max(1.0f, std::fabs(b)); };
+  auto grazes = [&](const Hit& h, const TestRay& r) {
+    const float w = 1.0f - h.u - h.v;
+    return std::min({h.u, h.v, w}) <= 1e-5f || rel(h.t, r.tmin) <= 1e-5f ||
+           (std::isfinite(r.tmax) && rel(h.t, r.tmax) <= 1e-5f);
+  };
+  for (uint32_t i = 0; i < rays.size(); ++i) {
+    set_seed(i);
+    const TestRay& r = rays[i];
+    const Hit cpu = intersect_brute_force(scene, r.ray, r.tmin, r.tmax, alpha);
+    const bvh_test::BvhTestHit& g = run.hits[i];
+    const Hit gpu{g.t, g.triangle, g.u, g.v, g.hit != 0};
+    c.rays++;
+    c.hits += cpu.hit;
+    c.any_mismatch += (g.any_hit != 0) != gpu.hit;
+    if (cpu.hit && gpu.hit && cpu.triangle == gpu.triangle) {
+      c.same_triangle++;
+      c.bitwise += same_hit(cpu, gpu);
+      const float dt = rel(gpu.t, cpu.t);
+      const float duv = std::max(std::fabs(gpu.u - cpu.u), std::fabs(gpu.v - cpu.v));
+      c.max_t_rel = std::max(c.max_t_rel, dt);
+      c.max_uv = std::max(c.max_uv, duv);
+      if (dt > 1e-5f || duv > 1e-4f) c.hard++;
+    } else if (!cpu.hit && !gpu.hit) {
+      c.bitwise++;
+    } else if (cpu.hit && gpu.hit) {
+      // Another triangle: fine if the CPU agrees that it is hit, about as near.
+      const Hit check = intersect_triangle(scene, gpu.triangle, r.ray);
+      if (check.hit && rel(check.t, cpu.t) <= 1e-5f && rel(gpu.t, cpu.t) <= 1e-5f) c.near_ties++;
+      else if (grazes(cpu, r) && check.hit && grazes(check, r)) c.edge_grazes++;
+      else c.hard++;
+    } else {
+      const Hit& seen = cpu.hit ? cpu : gpu;
+      if (grazes(seen, r)) c.edge_grazes++;
+      else c.hard++;
+    }
+  }
+  return c;
+}
+
+void print(const char* what, const GpuComparison& c) {
+  std::printf("[bvh gpu] %s: %zu rays, %zu hits, %zu bitwise equal, %zu same triangle "
+              "(max t rel diff %.3g, max uv diff %.3g), %zu near-ties, %zu edge grazes, %zu hard, "
+              "%zu any-hit mismatches\n",
+              what, c.rays, c.hits, c.bitwise, c.same_triangle, c.max_t_rel, c.max_uv, c.near_ties,
+              c.edge_grazes, c.hard, c.any_mismatch);
+}
+
+void expect_gpu_agrees(const GpuComparison& c, const GpuRun& run) {
+  EXPECT_TRUE(run.validation.empty()) << run.validation.front();
+  EXPECT_EQ(c.hard, 0u);
+  EXPECT_EQ(c.any_mismatch, 0u);
+  // Ties and grazes are rare: rounding only decides rays aimed at edges and vertices.
+  EXPECT_LE(c.near_ties + c.edge_grazes, c.rays / 100);
+}
+
+TEST(BvhGpu, TraversalMatchesCpuBruteForce) {
+  auto gpu = Gpu::create(GpuOptions{});
+  std::printf("[bvh gpu] device: %s (%s)\n", gpu->info().name.c_str(),
+              gpu->info().driver_info.c_str());
+  const auto no_seed = [](uint32_t) {};
+  {
+    const Soup soup = make_soup(11);
+    const Bvh bvh = build_bvh(soup.scene);
+    const std::vector<TestRay> rays = make_rays(soup, 12, 12000);
+    const GpuRun run = run_gpu(*gpu, soup.scene, bvh, rays, 0);
+    const GpuComparison c = compare_gpu(soup.scene, rays, run, {}, no_seed);
+    print("centred", c);
+    expect_gpu_agrees(c, run);
+    EXPECT_GT(c.hits, c.rays / 2);
+  }
+  {
+    const Soup soup = make_soup(13);
+    const Vec3 offset{10000.0f, 2000.0f, -3000.0f};
+    const FlatScene far = translated(soup.scene, offset);
+    std::vector<TestRay> rays = make_rays(soup, 14, 12000);
+    for (TestRay& r : rays) r.ray.origin = r.ray.origin + offset;
+    const Bvh bvh = build_bvh(far);
+    const GpuRun run = run_gpu(*gpu, far, bvh, rays, 0);
+    const GpuComparison c = compare_gpu(far, rays, run, {}, no_seed);
+    print("10 km", c);
+    expect_gpu_agrees(c, run);
+  }
+}
+
+TEST(BvhGpu, AlphaTestedTraversalMatchesCpu) {
+  auto gpu = Gpu::create(GpuOptions{});
+  Soup soup = make_soup(15);
+  FlatScene& s = soup.scene;
+  s.materials.resize(4, s.materials[0]);
+  s.materials[1].alpha = uint32_t(AlphaKind::leaf_mask);
+  s.materials[2].alpha = uint32_t(AlphaKind::checker_mask);
+  s.materials[2].texture_scale = 4.0f;
+  s.materials[3].alpha = uint32_t(AlphaKind::opacity);
+  s.materials[3].opacity = 0.4f;
+  s.instances.assign(4, GpuInstance{});
+  for (uint32_t i = 0; i < 4; ++i) s.instances[i].material = i;
+  for (uint32_t i = 0; i < s.triangles.size(); ++i) s.triangles[i].instance = i % 4;
+  const Bvh bvh = build_bvh(s);
+  const std::vector<TestRay> rays = make_rays(soup, 16, 10000);
+  struct Ctx { const FlatScene* s; uint32_t seed; } ctx{&s, 0};
+  const AlphaTest alpha{[](const void* u, uint32_t tri, float bu, float bv) {
+                          const Ctx* c = static_cast<const Ctx*>(u);
+                          return alpha_accept_default(*c->s, tri, bu, bv, c->seed);
+                        },
+                        &ctx};
+  const GpuRun run = run_gpu(*gpu, s, bvh, rays, BVH_TEST_FLAG_ALPHA);
+  const GpuComparison c = compare_gpu(s, rays, run, alpha, [&](uint32_t i) { ctx.seed = i; });
+  print("alpha", c);
+  expect_gpu_agrees(c, run);
+  // The alpha path really ran: without it the GPU would report more hits than the CPU.
+  const GpuRun opaque = run_gpu(*gpu, s, bvh, rays, 0);
+  size_t alpha_hits = 0, opaque_hits = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    alpha_hits += run.hits[i].hit;
+    opaque_hits += opaque.hits[i].hit;
+  }
+  EXPECT_LT(alpha_hits, opaque_hits);
+}
+#endif  // GIB_BVH_TEST_NO_GPU
 
 }  // namespace
 }  // namespace gib

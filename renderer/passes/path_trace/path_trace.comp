@@ -91,7 +91,10 @@ void main() {
       vec3 side = transmit ? -n : n;
       vec3 side_g = transmit ? -ng : ng;
       d = gib_cosine_hemisphere(side, gib_next2(rng));
-      if (dot(d, side_g) <= 0.0) break;  // shading normal sent the ray below the surface
+      // An interpolated normal can send the ray below the real surface: mirror it back across
+      // the face plane rather than kill the path, so albedo-1 scenes keep all their energy.
+      float below = dot(d, side_g);
+      if (below <= 0.0) d = normalize(d - 2.0 * below * side_g);
       o = gib_offset_ray(surf.position, side_g);
       throughput *= albedo;
       if (depth >= 3u) {
