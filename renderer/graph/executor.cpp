@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstring>
 
@@ -151,6 +152,36 @@ void Executor::upload_frame_constants(float time) {
   gpu_.upload(*scene_gpu_.frame, &f, sizeof(f));
 }
 
+std::map<std::string, ResolvedSlot> Executor::bind_slots(const PassDecl& decl) {
+  std::map<std::string, ResolvedSlot> slots;
+  for (auto& s : decl.slots) {
+    ResolvedSlot rs;
+    rs.resource = plan_.find(s.name);
+    rs.access = s.access;
+    auto& a = allocations_.at(s.name);
+    int cur = a.ping_pong ? int(frame_ & 1) : 0;
+    rs.image = a.image[cur];
+    rs.buffer = a.buffer[cur];
+    if (a.ping_pong) {
+      rs.prev_image = a.image[cur ^ 1];
+      rs.prev_buffer = a.buffer[cur ^ 1];
+    }
+    if (s.access == Access::read_prev) {
+      auto it = slots.find(s.name);
+      if (it != slots.end()) {  // also accessed this frame: add last frame's copy to that slot
+        it->second.prev_image = rs.prev_image;
+        it->second.prev_buffer = rs.prev_buffer;
+        continue;
+      }
+      // Only last frame's copy is read: it is what the plain name refers to.
+      rs.image = rs.prev_image;
+      rs.buffer = rs.prev_buffer;
+    }
+    slots[s.name] = rs;
+  }
+  return slots;
+}
+
 FrameResult Executor::run_frame() {
   float time = float(frame_) * scene_.frame_time;
   if (!scene_uploaded_ || scene_.features().has(Feature::motion)) {
@@ -159,55 +190,45 @@ FrameResult Executor::run_frame() {
   }
   upload_frame_constants(time);
   auto running = plan_.running();
-  auto cmd = gpu_.begin(static_cast<uint32_t>(running.size() * 2));
+  // On a CPU device (lavapipe) timestamps inside one submission misattribute work: llvmpipe
+  // runs dispatches and draws lazily, so a pass's cost shows up in a later pass or between
+  // passes. There every pass is submitted alone and timed by the host clock around its
+  // submit-and-wait, which on a CPU device is the time the device spent on it. A GPU records
+  // the whole frame in one submission with a timestamp pair around every pass.
+  const bool per_pass_submit = gpu_.info().is_software();
+  FrameResult fr;
+  fr.frame = frame_;
+  std::unique_ptr<Cmd> cmd;
   uint32_t q = 0;
+  std::vector<double> ns;
+  auto t_frame = std::chrono::steady_clock::now();
   for (auto* pp : running) {
+    if (!cmd) cmd = gpu_.begin(per_pass_submit ? 2u : static_cast<uint32_t>(running.size() * 2));
     const PassDecl& decl = decls_[pp->decl_index];
     if (!pp->barrier_before.resources.empty())
       cmd->barrier(pp->barrier_before.src_kinds, pp->barrier_before.dst_kind);
-    std::map<std::string, ResolvedSlot> slots;
-    for (auto& s : decl.slots) {
-      ResolvedSlot rs;
-      rs.resource = plan_.find(s.name);
-      rs.access = s.access;
-      auto& a = allocations_.at(s.name);
-      int cur = a.ping_pong ? int(frame_ & 1) : 0;
-      rs.image = a.image[cur];
-      rs.buffer = a.buffer[cur];
-      if (a.ping_pong) {
-        rs.prev_image = a.image[cur ^ 1];
-        rs.prev_buffer = a.buffer[cur ^ 1];
-      }
-      // A pass that only reads last frame's copy sees it under the plain name too.
-      if (s.access == Access::read_prev && !slots.count(s.name)) {
-        rs.image = rs.prev_image;
-        rs.buffer = rs.prev_buffer;
-      }
-      if (slots.count(s.name) && s.access == Access::read_prev) {
-        slots[s.name].prev_image = rs.prev_image;
-        slots[s.name].prev_buffer = rs.prev_buffer;
-        continue;
-      }
-      slots[s.name] = rs;
-    }
     cmd->begin_label(decl.name);
     cmd->timestamp(q++);
-    RecordContext ctx(gpu_, *cmd, scene_, scene_gpu_, settings_, frame_, decl.name, std::move(slots));
+    RecordContext ctx(gpu_, *cmd, scene_, scene_gpu_, settings_, frame_, decl.name, bind_slots(decl));
     passes_[pp->decl_index]->record(ctx);
-    // llvmpipe defers draws and dispatches until something forces a flush; a barrier before
-    // the closing timestamp makes the pass's own work land between its two timestamps.
-    // GPUs need no such help (an ALL_COMMANDS timestamp waits for prior work).
-    if (gpu_.info().is_software()) cmd->barrier(kStageCompute | kStageGraphics | kStageTransfer,
-                                                kStageCompute | kStageGraphics | kStageTransfer);
     cmd->timestamp(q++);
     cmd->end_label();
+    if (per_pass_submit) {
+      auto t0 = std::chrono::steady_clock::now();
+      gpu_.submit(std::move(cmd));
+      double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      fr.passes.push_back({decl.name, ms});
+      q = 0;
+    }
   }
-  auto ns = gpu_.submit(std::move(cmd));
-  FrameResult fr;
-  fr.frame = frame_;
-  for (size_t i = 0; i < running.size(); ++i)
-    fr.passes.push_back({running[i]->name, (ns[2 * i + 1] - ns[2 * i]) * 1e-6});
-  if (!ns.empty()) fr.total_ms = (ns.back() - ns.front()) * 1e-6;
+  if (per_pass_submit) {
+    fr.total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_frame).count();
+  } else if (cmd) {
+    ns = gpu_.submit(std::move(cmd));
+    for (size_t i = 0; i < running.size(); ++i)
+      fr.passes.push_back({running[i]->name, (ns[2 * i + 1] - ns[2 * i]) * 1e-6});
+    if (!ns.empty()) fr.total_ms = (ns.back() - ns.front()) * 1e-6;
+  }
   ++frame_;
   return fr;
 }

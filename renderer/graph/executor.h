@@ -41,6 +41,7 @@ class Executor {
   std::vector<std::string> image_names() const;
 
  private:
+  std::map<std::string, ResolvedSlot> bind_slots(const PassDecl& decl);
   void upload_scene(float time);
   void upload_frame_constants(float time);
   Gpu& gpu_;
