@@ -21,7 +21,7 @@
 // Ray/triangle test: watertight (Woop, Benthin, Wald 2013): the ray is permuted so that its
 // largest direction component is z, the vertices are sheared into ray space and the three 2D
 // edge functions decide coverage; an edge function that rounds to exactly 0 is recomputed
-// exactly (double on the CPU, two-product FMA on the GPU, which give the same float) so a ray
+// exactly (double on the CPU, Dekker's exact product on the GPU: the same float) so a ray
 // through a shared edge or vertex hits at least one of the triangles sharing it.
 // Accepted hits have tmin <= t <= tmax; among hits with equal t the lower original triangle id
 // wins (on the CPU and the GPU), so results do not depend on the traversal order.

@@ -15,9 +15,7 @@
 // of the triangle's second and third vertex; triangle is the original GpuTriangle index.
 // With GIB_ALPHA_TEST, a candidate hit is kept only if gib_alpha_accept returns true (shadow
 // rays included). The GPU result can differ from the CPU's by float ulps where the driver's
-// division is not correctly rounded (Vulkan allows 2.5 ulp), and, where fma is not fused, an
-// edge function that rounds to 0 stays 0 (the ray then hits both triangles sharing the edge,
-// so it still cannot leak).
+// division is not correctly rounded (Vulkan allows 2.5 ulp) or flushes denormals.
 #ifndef GIB_BVH_GLSL
 #define GIB_BVH_GLSL
 
@@ -76,14 +74,26 @@ GibRayPre gib_prepare_ray(vec3 o, vec3 d) {
   return r;
 }
 
-// a*b - c*d computed exactly (then rounded once), for an edge function that rounded to 0:
-// then a*b and c*d round to the same float, and the difference is that of the fma residues.
+// Rounding error of p = a * b (a * b == p + err exactly), by Dekker's product: only
+// correctly rounded multiplies and adds (Vulkan requires them to be), so it does not depend on
+// fma being fused, which Vulkan does not require.
+float gib_bvh_product_error(float a, float b, float p) {
+  precise float ca = 4097.0 * a;
+  precise float ah = ca - (ca - a);
+  precise float al = a - ah;
+  precise float cb = 4097.0 * b;
+  precise float bh = cb - (cb - b);
+  precise float bl = b - bh;
+  precise float err = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+  return err;
+}
+
+// a*b - c*d for an edge function that rounded to 0: then a*b and c*d round to the same float
+// and the exact difference is that of the rounding errors, rounded once, as the CPU's double.
 float gib_bvh_exact_edge(float a, float b, float c, float d) {
   precise float p = a * b;
   precise float q = c * d;
-  precise float ep = fma(a, b, -p);
-  precise float eq = fma(c, d, -q);
-  precise float r = (p - q) + (ep - eq);
+  precise float r = (p - q) + (gib_bvh_product_error(a, b, p) - gib_bvh_product_error(c, d, q));
   return r;
 }
 
