@@ -4,6 +4,7 @@
 #include <set>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "renderer/graph/graph.h"
 
@@ -103,10 +104,10 @@ namespace {
 std::string mib(uint64_t bytes) { return fmt::format("{:.2f} MiB", double(bytes) / (1024.0 * 1024.0)); }
 
 std::string kinds_text(uint32_t mask) {
-  std::string s;
+  std::vector<std::string> names;
   for (uint32_t k = 0; k < 3; ++k)
-    if (mask & (1u << k)) s += (s.empty() ? "" : "|") + std::string(pass_kind_name(PassKind(k)));
-  return s;
+    if (mask & (1u << k)) names.emplace_back(pass_kind_name(PassKind(k)));
+  return fmt::format("{}", fmt::join(names, "|"));
 }
 
 std::string extent_text(const ResolvedResource& r) {
