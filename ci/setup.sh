@@ -10,6 +10,7 @@ PKGS=(
   libopenimageio-dev openimageio-tools
   nlohmann-json3-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  chromium
 )
 missing=()
 for p in "${PKGS[@]}"; do

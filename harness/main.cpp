@@ -4,7 +4,23 @@
 
 #include <exception>
 
+#include "harness/compare.h"
 #include "harness/render.h"
+#include "harness/runner.h"
+#include "harness/sweep.h"
+
+namespace {
+
+void add_suite_options(CLI::App* app, gib::SuiteOptions& o) {
+  app->add_option("--case", o.case_globs, "case name or glob (repeatable; default: all)");
+  app->add_option("--cases-dir", o.cases_dir, "folder of case JSON files");
+  app->add_option("--goldens", o.goldens_dir, "goldens folder");
+  app->add_option("--out", o.out, "output folder");
+  app->add_option("--device", o.device, "device index or name substring");
+  app->add_flag("--validate", o.validate, "Vulkan validation on; any message fails the run");
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"gibench: rendering test and benchmark harness for real-time GI"};
@@ -30,6 +46,38 @@ int main(int argc, char** argv) {
   render->add_option("--out", ro.out, "output EXR (a PNG preview is written beside it)");
   render->add_option("--json", ro.json, "write device, plan and timings as JSON");
 
+  gib::SuiteOptions run_opts;
+  auto* run = app.add_subcommand("run", "run the scenario suite: cases vs references and goldens, report");
+  add_suite_options(run, run_opts);
+  run->add_flag("--noise-floor", run_opts.noise_floor,
+                "render each reference twice (two seeds), record the FLIP between them in golden.json");
+
+  gib::UpdateOptions up;
+  auto* update = app.add_subcommand("update-goldens", "re-render and replace goldens (atomically, with history)");
+  add_suite_options(update, up.suite);
+  update->add_option("--technique", up.techniques, "only this technique's goldens (repeatable)");
+  update->add_flag("--reference", up.reference, "re-render the path-traced reference (and its noise floor)");
+  update->add_option("--reason", up.reason, "why: recorded in golden.json")->required();
+
+  gib::SuiteOptions sweep_opts;
+  sweep_opts.out = "out/sweep";
+  auto* sweep = app.add_subcommand("sweep", "error against GPU time for every technique x preset of a case");
+  add_suite_options(sweep, sweep_opts);
+
+  gib::CompareOptions co;
+  auto* compare = app.add_subcommand("compare", "FLIP, PSNR and relMSE of two images");
+  compare->add_option("reference", co.reference, "reference image (EXR or PNG)")->required();
+  compare->add_option("test", co.test, "test image")->required();
+  bool force_hdr = false, force_ldr = false;
+  compare->add_flag("--hdr", force_hdr, "HDR-FLIP (default for .exr references)");
+  compare->add_flag("--ldr", force_ldr, "LDR-FLIP (default otherwise)");
+  compare->add_option("--ppd", co.ppd, "pixels per degree");
+  compare->add_option("--tonemapper", co.tonemapper, "aces | reinhard | hable");
+  std::vector<double> exposure;
+  compare->add_option("--exposure", exposure, "START STOP N: HDR exposure range")->expected(3);
+  compare->add_option("--error-map", co.error_map, "write the magma error map PNG");
+  compare->add_flag("--json", co.json, "print one JSON object");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -37,6 +85,21 @@ int main(int argc, char** argv) {
   }
   try {
     if (app.got_subcommand("devices")) return gib::cmd_devices();
+    if (app.got_subcommand("run")) return gib::cmd_run(run_opts);
+    if (app.got_subcommand("update-goldens")) return gib::cmd_update_goldens(up);
+    if (app.got_subcommand("sweep")) return gib::cmd_sweep(sweep_opts);
+    if (app.got_subcommand("compare")) {
+      if (force_hdr && force_ldr) throw std::invalid_argument("compare: expected at most one of --hdr and --ldr");
+      if (force_hdr || force_ldr) co.hdr = force_hdr;
+      if (!exposure.empty()) {
+        if (exposure[2] < 1 || exposure[2] != double(int(exposure[2])))
+          throw std::invalid_argument(fmt::format("--exposure: expected N as a positive integer, got {}", exposure[2]));
+        co.start_exposure = exposure[0];
+        co.stop_exposure = exposure[1];
+        co.num_exposures = int(exposure[2]);
+      }
+      return gib::cmd_compare(co);
+    }
     if (app.got_subcommand("render")) {
       unsigned w = 0, h = 0;
       char x = 0;

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "renderer/graph/float_image.h"
 #include "renderer/graph/pass.h"
 
 namespace gib {
@@ -19,12 +20,6 @@ struct FrameResult {
   uint32_t frame = 0;
   std::vector<PassTiming> passes;  // running passes, execution order
   double total_ms = 0;             // first timestamp to last
-};
-
-struct FloatImage {
-  uint32_t width = 0, height = 0, channels = 4;
-  std::vector<float> pixels;  // row-major, `channels` floats per pixel
-  float at(uint32_t x, uint32_t y, uint32_t c) const { return pixels[(size_t(y) * width + x) * channels + c]; }
 };
 
 class Executor {

@@ -1,0 +1,509 @@
+#include "harness/case.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <iterator>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <utility>
+
+#include "renderer/scene/scene_loader.h"
+#include "renderer/techniques/technique.h"
+
+namespace gib {
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+// ---------------------------------------------------------------- message helpers
+
+// RFC 6901: '~' and '/' inside a key are escaped so the pointer stays unambiguous.
+std::string pointer_token(std::string_view key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '~') out += "~0";
+    else if (c == '/') out += "~1";
+    else out += c;
+  }
+  return out;
+}
+
+// Messages end up in JSON reports and JUnit XML: keep them one line of printable ASCII.
+std::string ascii_line(std::string s) {
+  for (char& c : s)
+    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f) c = '?';
+  return s;
+}
+
+std::string dump_safe(const json& v) { return v.dump(-1, ' ', false, json::error_handler_t::replace); }
+
+std::string json_quoted(std::string_view s) { return dump_safe(json(std::string(s))); }
+
+// A short, single-line description of a JSON value for the "got ..." half of a message.
+std::string describe(const json& v) {
+  switch (v.type()) {
+    case json::value_t::null: return "null";
+    case json::value_t::boolean: return v.get<bool>() ? "true" : "false";
+    case json::value_t::number_integer:
+    case json::value_t::number_unsigned:
+    case json::value_t::number_float: return dump_safe(v);
+    case json::value_t::string: {
+      std::string s = dump_safe(v);
+      return s.size() > 48 ? s.substr(0, 44) + "...\"" : s;
+    }
+    case json::value_t::array:
+      return v.empty() ? "empty array" : fmt::format("array of {} element{}", v.size(), v.size() == 1 ? "" : "s");
+    case json::value_t::object: return v.empty() ? "empty object" : "object";
+    default: return "non-JSON value";
+  }
+}
+
+std::string join(const std::vector<std::string>& names, std::string_view sep = ", ") {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : std::string(sep)) + n;
+  return out;
+}
+
+std::string number_text(double d) { return fmt::format("{}", d); }
+
+// A value in the case document with its JSON pointer; every check reports through fail().
+struct Node {
+  const json* v = nullptr;  // nullptr: the key is missing
+  std::string path;         // "" is the document root
+  const std::string* file = nullptr;
+
+  bool present() const { return v != nullptr; }
+  std::string pointer() const { return path.empty() ? "/" : path; }
+
+  [[noreturn]] void fail(std::string_view expected, std::string_view got) const {
+    throw CaseError(ascii_line(fmt::format("{}: {}: expected {}, got {}", *file, pointer(), expected, got)));
+  }
+  [[noreturn]] void fail(std::string_view expected) const { fail(expected, present() ? describe(*v) : "missing key"); }
+
+  Node operator[](const std::string& key) const {
+    auto it = v->find(key);
+    return {it == v->end() ? nullptr : &*it, path + "/" + pointer_token(key), file};
+  }
+  Node operator[](size_t i) const { return {&(*v)[i], path + "/" + std::to_string(i), file}; }
+};
+
+void require_object(const Node& n, const std::vector<std::string>& allowed) {
+  if (!n.present() || !n.v->is_object()) n.fail("object");
+  for (auto it = n.v->begin(); it != n.v->end(); ++it)
+    if (std::find(allowed.begin(), allowed.end(), it.key()) == allowed.end())
+      n[it.key()].fail("one of the keys " + join(allowed), "unknown key " + json_quoted(it.key()));
+}
+
+void require_array(const Node& n, bool non_empty) {
+  if (!n.present() || !n.v->is_array()) n.fail(non_empty ? "non-empty array" : "array");
+  if (non_empty && n.v->empty()) n.fail("non-empty array");
+}
+
+std::string read_string(const Node& n, std::string_view what = "string") {
+  if (!n.present() || !n.v->is_string()) n.fail(what);
+  return n.v->get<std::string>();
+}
+
+std::string read_nonempty_string(const Node& n) {
+  std::string s = read_string(n, "non-empty string");
+  if (s.empty()) n.fail("non-empty string");
+  return s;
+}
+
+// `choices` are printed as given; the value must equal one of them.
+std::string read_choice(const Node& n, const std::vector<std::string>& choices, std::string_view what = "one of") {
+  std::string expected = fmt::format("{} {}", what, join(choices));
+  std::string s = read_string(n, expected);
+  if (std::find(choices.begin(), choices.end(), s) == choices.end()) n.fail(expected);
+  return s;
+}
+
+double read_number(const Node& n, std::string_view what, double lo, double hi, bool lo_open = false) {
+  if (!n.present() || !n.v->is_number()) n.fail(what);
+  double d = n.v->get<double>();
+  if (!std::isfinite(d) || (lo_open ? !(d > lo) : !(d >= lo)) || !(d <= hi)) n.fail(what);
+  return d;
+}
+
+double read_finite(const Node& n) { return read_number(n, "finite number", -std::numeric_limits<double>::max(), std::numeric_limits<double>::max()); }
+
+uint32_t read_uint(const Node& n, double lo, double hi) {
+  std::string what = fmt::format("integer in [{}, {}]", number_text(lo), number_text(hi));
+  double d = read_number(n, what, lo, hi);
+  if (d != std::floor(d)) n.fail(what);
+  return static_cast<uint32_t>(d);
+}
+
+bool is_name(const std::string& s, bool underscore) {
+  if (s.empty()) return false;
+  for (char c : s)
+    if (!((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' || (underscore && c == '_'))) return false;
+  return true;
+}
+
+std::string read_name(const Node& n) {
+  static constexpr std::string_view what = "name of a-z, 0-9, '_' and '-'";
+  std::string s = read_string(n, what);
+  if (!is_name(s, true)) n.fail(what);
+  return s;
+}
+
+// ---------------------------------------------------------------- reading the file
+
+// Parses JSON, rejecting duplicate keys (nlohmann would keep the last one silently, so a
+// pasted-twice "max" would quietly change a threshold).
+json parse_json(const std::string& text, const std::string& file) {
+  struct Frame {
+    bool object = false;
+    std::set<std::string> keys;
+    std::string key;   // object: the key of the member being parsed
+    size_t index = 0;  // array: index of the element being parsed
+  };
+  std::vector<Frame> stack;
+  auto element_done = [&] {
+    if (!stack.empty() && !stack.back().object) ++stack.back().index;
+  };
+  auto cb = [&](int, json::parse_event_t event, json& parsed) -> bool {
+    switch (event) {
+      case json::parse_event_t::object_start: stack.push_back({true}); break;
+      case json::parse_event_t::array_start: stack.push_back({false}); break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        stack.pop_back();
+        element_done();
+        break;
+      case json::parse_event_t::key: {
+        Frame& top = stack.back();
+        top.key = parsed.get<std::string>();
+        if (!top.keys.insert(top.key).second) {
+          std::string ptr;
+          for (const Frame& f : stack) {
+            ptr += '/';
+            ptr += f.object ? pointer_token(f.key) : std::to_string(f.index);
+          }
+          throw CaseError(ascii_line(fmt::format("{}: {}: expected each key once per object, got {} again", file, ptr,
+                                                 json_quoted(top.key))));
+        }
+        break;
+      }
+      case json::parse_event_t::value: element_done(); break;
+    }
+    return true;
+  };
+  try {
+    return json::parse(text, cb);
+  } catch (const json::parse_error& e) {
+    size_t end = std::min<size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
+    size_t line = 1, column = 1;
+    for (size_t i = 0; i < end; ++i) {
+      if (text[i] == '\n') {
+        ++line;
+        column = 1;
+      } else {
+        ++column;
+      }
+    }
+    std::string why = e.what();
+    if (auto colon = why.find(": "); colon != std::string::npos) why = why.substr(colon + 2);
+    throw CaseError(ascii_line(fmt::format("{}: line {}, column {}: expected valid JSON, got {}", file, line, column, why)));
+  } catch (const json::exception& e) {
+    // e.g. a number literal that overflows a double ("1e999"): the parser gives no position.
+    std::string why = e.what();
+    if (auto bracket = why.find("] "); bracket != std::string::npos) why = why.substr(bracket + 2);
+    throw CaseError(ascii_line(fmt::format("{}: expected valid JSON, got {}", file, why)));
+  }
+}
+
+// ---------------------------------------------------------------- case parts
+
+// Inline scenes are parsed with the case file as their source, so the scene loader's message
+// is "<file>: <pointer inside the scene>: ..."; re-root the pointer under /scene.
+[[noreturn]] void rethrow_inline_scene_error(const SceneError& e, const std::string& file) {
+  std::string msg = e.what();
+  std::string prefix = file + ": ";
+  std::string rest = msg.rfind(prefix, 0) == 0 ? msg.substr(prefix.size()) : msg;
+  if (rest.rfind("/: ", 0) == 0) rest = "/scene: " + rest.substr(3);
+  else if (!rest.empty() && rest[0] == '/') rest = "/scene" + rest;
+  else rest = "/scene: " + rest;
+  throw CaseError(ascii_line(file + ": " + rest));
+}
+
+void read_scene(const Node& n, Case& c) {
+  static constexpr std::string_view what = "a scene object or the path of a scene file relative to the case file";
+  if (!n.present() || !(n.v->is_object() || n.v->is_string())) n.fail(what);
+  if (n.v->is_object()) {
+    try {
+      c.scene = parse_scene(*n.v, c.file);
+    } catch (const SceneError& e) {
+      rethrow_inline_scene_error(e, c.file);
+    }
+    return;
+  }
+  std::string rel = n.v->get<std::string>();
+  if (rel.empty()) n.fail(what);
+  fs::path p = fs::path(rel);
+  if (p.is_relative()) p = fs::path(c.file).parent_path() / p;
+  std::string resolved = p.lexically_normal().string();
+  std::error_code ec;
+  if (!fs::is_regular_file(resolved, ec))
+    n.fail("the path of a scene file relative to the case file",
+           fmt::format("{} ({} is not a file)", json_quoted(rel), resolved));
+  try {
+    c.scene = load_scene(resolved);
+  } catch (const SceneError& e) {
+    n.fail("a valid scene file", e.what());
+  }
+  c.scene_file = resolved;
+}
+
+std::vector<Roi> read_rois(const Node& n) {
+  std::vector<Roi> rois;
+  if (!n.present()) return rois;
+  require_array(n, false);
+  for (size_t i = 0; i < n.v->size(); ++i) {
+    Node r = n[i];
+    require_object(r, {"name", "box"});
+    Roi roi;
+    Node name = r["name"];
+    roi.name = read_name(name);
+    for (const Roi& other : rois)
+      if (other.name == roi.name) name.fail("a ROI name not used before", json_quoted(roi.name) + " again");
+    Node box = r["box"];
+    static constexpr std::string_view box_what = "[x0, y0, x1, y1] in [0, 1] with x0 < x1 and y0 < y1";
+    if (!box.present() || !box.v->is_array() || box.v->size() != 4) box.fail(box_what);
+    float v[4];
+    for (size_t k = 0; k < 4; ++k) v[k] = static_cast<float>(read_number(box[k], "number in [0, 1]", 0.0, 1.0));
+    if (!(v[0] < v[2]) || !(v[1] < v[3]))
+      box.fail(box_what, fmt::format("[{}, {}, {}, {}]", v[0], v[1], v[2], v[3]));
+    roi.x0 = v[0];
+    roi.y0 = v[1];
+    roi.x1 = v[2];
+    roi.y1 = v[3];
+    rois.push_back(roi);
+  }
+  return rois;
+}
+
+std::vector<std::string> reference_outputs() {
+  const Technique& ref = find_technique("reference");
+  std::vector<std::string> out = {ref.output};
+  out.insert(out.end(), ref.aovs.begin(), ref.aovs.end());
+  return out;
+}
+
+Threshold read_threshold(const Node& n, const Case& c) {
+  require_object(n, {"metric", "against", "roi", "max", "min"});
+  Threshold t;
+  t.metric = read_choice(n["metric"], case_metrics());
+  Node against = n["against"];
+  if (!metric_uses_against(t.metric)) {
+    if (against.present())
+      against.fail(fmt::format("no \"against\" for metric {} (it measures the output alone)", t.metric));
+    t.against = "";
+  } else if (against.present()) {
+    t.against = read_choice(against, {"reference", "golden", "analytic"});
+    if (t.against == "analytic" && !c.analytic_value)
+      against.fail("\"analytic\" only in a case with a top-level analytic_value", json_quoted(t.against));
+  }
+  if (Node roi = n["roi"]; roi.present()) {
+    std::vector<std::string> names;
+    for (const Roi& r : c.rois) names.push_back(r.name);
+    std::string what = names.empty() ? std::string("the name of a ROI in /rois (none defined)")
+                                     : fmt::format("the name of a ROI in /rois ({})", join(names));
+    t.roi = read_string(roi, what);
+    if (std::find(names.begin(), names.end(), t.roi) == names.end()) roi.fail(what);
+  }
+  if (Node mx = n["max"]; mx.present()) t.max = read_finite(mx);
+  if (Node mn = n["min"]; mn.present()) t.min = read_finite(mn);
+  if (!t.max && !t.min) n.fail("\"max\" or \"min\" (or both)", "neither");
+  if (t.max && t.min && *t.min > *t.max) n["min"].fail(fmt::format("number <= max ({})", number_text(*t.max)));
+  return t;
+}
+
+// Fields shared by technique entries and negative controls.
+const std::vector<std::string> kRunKeys = {"technique", "presets", "options", "compare_aov", "thresholds"};
+
+TechniqueRun read_run(const Node& n, const Case& c, bool negative) {
+  TechniqueRun run;
+  std::vector<std::string> names;
+  for (const Technique& t : techniques()) names.push_back(t.name);
+  run.technique = read_choice(n["technique"], names, "one of the techniques");
+  const Technique& tech = find_technique(run.technique);
+
+  if (Node presets = n["presets"]; presets.present()) {
+    require_array(presets, true);
+    if (negative && presets.v->size() != 1) presets.fail("an array of exactly one preset");
+    run.presets.clear();
+    for (size_t i = 0; i < presets.v->size(); ++i) {
+      Node p = presets[i];
+      std::string name = read_choice(p, tech.presets, fmt::format("one of the presets of {}", tech.name));
+      if (std::find(run.presets.begin(), run.presets.end(), name) != run.presets.end())
+        p.fail("each preset once", json_quoted(name) + " again");
+      run.presets.push_back(name);
+    }
+  } else {
+    run.presets = {"medium"};
+  }
+
+  if (Node options = n["options"]; options.present()) {
+    if (!options.v->is_object()) options.fail("object of option name -> number");
+    const auto& known = technique_options(tech);
+    for (auto it = options.v->begin(); it != options.v->end(); ++it) {
+      Node o = options[it.key()];
+      auto k = std::find_if(known.begin(), known.end(), [&](const TechniqueOption& t) { return t.name == it.key(); });
+      std::string err;
+      if (k == known.end()) {
+        err = check_option(tech, it.key(), 0);
+      } else if (!it.value().is_number()) {
+        err = fmt::format("expected an integer in [{}, {}], got {}", number_text(k->min), number_text(k->max),
+                          describe(it.value()));
+      } else {
+        err = check_option(tech, it.key(), it.value().get<double>());
+      }
+      if (!err.empty()) throw CaseError(ascii_line(fmt::format("{}: {}: {}", *n.file, o.pointer(), err)));
+      run.options[it.key()] = it.value().get<double>();
+    }
+  }
+
+  if (Node aov = n["compare_aov"]; aov.present())
+    run.compare_aov = read_choice(aov, reference_outputs(), "one of the reference outputs");
+
+  Node thresholds = n["thresholds"];
+  if (negative || thresholds.present()) {
+    require_array(thresholds, negative);
+    for (size_t i = 0; i < thresholds.v->size(); ++i) run.thresholds.push_back(read_threshold(thresholds[i], c));
+  }
+  return run;
+}
+
+const std::vector<std::string> kTopKeys = {
+    "$schema",         "description",  "scene",          "width", "height",          "frames",
+    "output",          "reference_spp", "reference_seed", "analytic_value", "flip_mode", "ppd",
+    "golden_flip_max", "rois",          "techniques",     "negative_controls"};
+
+Case parse_case(const json& doc, const std::string& file) {
+  Case c;
+  c.file = file;
+  c.name = fs::path(file).stem().string();
+  if (!is_name(c.name, false))
+    throw CaseError(ascii_line(fmt::format("{}: expected a file name (the case name) of a-z, 0-9 and '-', got {}", file,
+                                           json_quoted(c.name))));
+
+  Node root{&doc, "", &file};
+  require_object(root, kTopKeys);
+  if (Node s = root["$schema"]; s.present()) read_string(s);
+  c.description = read_nonempty_string(root["description"]);
+  read_scene(root["scene"], c);
+  if (Node n = root["width"]; n.present()) c.width = read_uint(n, 1, 8192);
+  if (Node n = root["height"]; n.present()) c.height = read_uint(n, 1, 8192);
+  if (Node n = root["frames"]; n.present()) c.frames = read_uint(n, 1, 100000);
+  if (Node n = root["output"]; n.present()) c.output = read_choice(n, reference_outputs(), "one of the reference outputs");
+  if (Node n = root["reference_spp"]; n.present()) c.reference_spp = read_uint(n, 1, 1048576);
+  if (Node n = root["reference_seed"]; n.present()) c.reference_seed = read_uint(n, 0, 4294967295.0);
+  if (Node n = root["analytic_value"]; n.present()) c.analytic_value = read_finite(n);
+  if (Node n = root["flip_mode"]; n.present()) c.flip_mode = read_choice(n, {"hdr", "ldr"});
+  if (Node n = root["ppd"]; n.present())
+    c.ppd = read_number(n, "number > 0", 0.0, std::numeric_limits<double>::max(), true);
+  if (Node n = root["golden_flip_max"]; n.present()) c.golden_flip_max = read_number(n, "number in [0, 1]", 0.0, 1.0);
+  c.rois = read_rois(root["rois"]);
+
+  Node techs = root["techniques"];
+  require_array(techs, true);
+  for (size_t i = 0; i < techs.v->size(); ++i) {
+    Node t = techs[i];
+    require_object(t, kRunKeys);
+    TechniqueRun run = read_run(t, c, false);
+    // One result row (and one golden file) per technique and preset.
+    for (size_t j = 0; j < run.presets.size(); ++j)
+      for (size_t k = 0; k < c.techniques.size(); ++k) {
+        const TechniqueRun& o = c.techniques[k];
+        if (o.technique == run.technique &&
+            std::find(o.presets.begin(), o.presets.end(), run.presets[j]) != o.presets.end()) {
+          Node where = t["presets"].present() ? t["presets"][j] : t;
+          where.fail(fmt::format("a technique and preset not listed before (/techniques/{} has {} {})", k,
+                                 run.technique, run.presets[j]),
+                     json_quoted(run.presets[j]) + " again");
+        }
+      }
+    c.techniques.push_back(std::move(run));
+  }
+
+  if (Node ncs = root["negative_controls"]; ncs.present()) {
+    require_array(ncs, false);
+    std::vector<std::string> keys = {"name", "why"};
+    keys.insert(keys.end(), kRunKeys.begin(), kRunKeys.end());
+    for (size_t i = 0; i < ncs.v->size(); ++i) {
+      Node n = ncs[i];
+      require_object(n, keys);
+      NegativeControl nc;
+      Node name = n["name"];
+      nc.name = read_name(name);
+      for (const NegativeControl& o : c.negative_controls)
+        if (o.name == nc.name) name.fail("a negative control name not used before", json_quoted(nc.name) + " again");
+      nc.why = read_nonempty_string(n["why"]);
+      nc.run = read_run(n, c, true);
+      c.negative_controls.push_back(std::move(nc));
+    }
+  }
+  return c;
+}
+
+}  // namespace
+
+const std::vector<std::string>& case_metrics() {
+  static const std::vector<std::string> m = {"flip",          "psnr",      "relmse",   "roi_mean", "roi_ratio",
+                                             "max_abs_error", "nan_count", "inf_count"};
+  return m;
+}
+
+bool metric_uses_against(const std::string& metric) {
+  return metric != "roi_mean" && metric != "nan_count" && metric != "inf_count";
+}
+
+Case load_case(const std::string& path) {
+  try {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw CaseError(fmt::format("{}: expected a case file, got a directory", path));
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw CaseError(fmt::format("{}: expected a readable file, got {}", path, std::strerror(errno)));
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw CaseError(fmt::format("{}: expected a readable file, got a read error", path));
+    return parse_case(parse_json(text, path), path);
+  } catch (const CaseError&) {
+    throw;
+  } catch (const std::exception& e) {
+    // Every access is checked first; this only keeps a missed check from escaping as a
+    // library exception without the file name.
+    throw CaseError(ascii_line(fmt::format("{}: expected a valid case, got {}", path, e.what())));
+  }
+}
+
+std::vector<Case> load_cases(const std::string& dir) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw CaseError(fmt::format("{}: expected a directory of case files, got {}", dir,
+                                                              fs::exists(dir, ec) ? "a file" : "nothing there"));
+  std::vector<std::string> names;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    std::string name = it->path().filename().string();
+    bool json_file = name.size() > 5 && name.ends_with(".json") && !name.ends_with(".schema.json");
+    if (json_file && it->is_regular_file(ec)) names.push_back(name);
+  }
+  if (ec) throw CaseError(fmt::format("{}: expected a readable directory, got {}", dir, ec.message()));
+  if (names.empty()) throw CaseError(fmt::format("{}: expected at least one *.json case file, got none", dir));
+  std::sort(names.begin(), names.end());
+  std::vector<Case> cases;
+  for (const auto& n : names) cases.push_back(load_case((fs::path(dir) / n).string()));
+  return cases;
+}
+
+}  // namespace gib

@@ -1,0 +1,201 @@
+#include "harness/report.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "harness/image_io.h"
+#include "harness/metrics/colormap.h"
+#include "harness/metrics/image_metrics.h"
+#include "harness/report_assets.h"
+
+namespace fs = std::filesystem;
+
+namespace gib {
+
+std::string base64(const void* data, size_t bytes) {
+  static const char* kTable = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  const auto* p = static_cast<const uint8_t*>(data);
+  std::string out;
+  out.reserve((bytes + 2) / 3 * 4);
+  for (size_t i = 0; i < bytes; i += 3) {
+    uint32_t v = uint32_t(p[i]) << 16;
+    if (i + 1 < bytes) v |= uint32_t(p[i + 1]) << 8;
+    if (i + 2 < bytes) v |= p[i + 2];
+    out += kTable[(v >> 18) & 63];
+    out += kTable[(v >> 12) & 63];
+    out += i + 1 < bytes ? kTable[(v >> 6) & 63] : '=';
+    out += i + 2 < bytes ? kTable[v & 63] : '=';
+  }
+  return out;
+}
+
+namespace {
+
+void write_text(const fs::path& path, const std::string& text) {
+  fs::create_directories(path.parent_path());
+  fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".tmp");
+  {
+    std::ofstream out(tmp);
+    out << text;
+    if (!out) throw std::runtime_error(fmt::format("{}: write failed", path.string()));
+  }
+  fs::rename(tmp, path);
+}
+
+std::string xml_escape(const std::string& s) {
+  std::string o;
+  for (char c : s) {
+    switch (c) {
+      case '&': o += "&amp;"; break;
+      case '<': o += "&lt;"; break;
+      case '>': o += "&gt;"; break;
+      case '"': o += "&quot;"; break;
+      default: o += c;
+    }
+  }
+  return o;
+}
+
+nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+}  // namespace
+
+void write_report_image(const std::string& stem, const FloatImage& img) {
+  write_png_preview(stem + ".png", img);
+  std::vector<float> rgb(img.pixel_count() * 3);
+  for (size_t i = 0; i < img.pixel_count(); ++i)
+    for (uint32_t c = 0; c < 3; ++c) rgb[i * 3 + c] = img.pixels[i * img.channels + std::min(c, img.channels - 1)];
+  std::string id = fs::path(stem).filename().string();
+  write_text(stem + ".js", fmt::format("(window.GIB_IMG=window.GIB_IMG||{{}})[\"{}\"]={{w:{},h:{},data:\"{}\"}};\n", id,
+                                       img.width, img.height, base64(rgb.data(), rgb.size() * 4)));
+}
+
+void write_report_error_map(const std::string& stem, const FloatImage& error_map) {
+  // Linear magma, so the preview writer's sRGB encode gives the colour map's display values.
+  write_png_preview(stem + ".png", magma_error_map(error_map, true));
+}
+
+nlohmann::json suite_to_json(const SuiteResult& suite) {
+  nlohmann::json j;
+  j["device"] = {{"name", suite.device.name}, {"type", suite.device.type}, {"driver", suite.device.driver_name},
+                 {"driver_info", suite.device.driver_info}, {"class", suite.device_class}};
+  j["psnr_definition"] = metrics::psnr_description();
+  j["case_errors"] = suite.case_errors;
+  auto& rows = j["results"] = nlohmann::json::array();
+  for (auto& r : suite.rows) {
+    nlohmann::json m = nlohmann::json::object();
+    for (auto& [k, v] : r.metrics) m[k] = finite_or_null(v);
+    nlohmann::json passes = nlohmann::json::array();
+    for (auto& p : r.plan.passes) {
+      nlohmann::json pj{{"name", p.name}, {"status", p.runs ? "ran" : "culled"}, {"reason", p.reason}};
+      for (auto& s : r.passes)
+        if (s.name == p.name) pj.update({{"ms", s.median_ms}, {"min_ms", s.min_ms}, {"max_ms", s.max_ms}});
+      passes.push_back(pj);
+    }
+    nlohmann::json checks = nlohmann::json::array();
+    for (auto& c : r.checks) {
+      nlohmann::json cj{{"metric", c.metric}, {"against", c.against}, {"roi", c.roi}, {"value", finite_or_null(c.value)},
+                        {"pass", c.pass}, {"message", c.message}};
+      if (c.max) cj["max"] = *c.max;
+      if (c.min) cj["min"] = *c.min;
+      checks.push_back(cj);
+    }
+    rows.push_back({{"case", r.case_name}, {"technique", r.technique}, {"preset", r.preset}, {"kind", r.kind},
+                    {"negative_control", r.control_name}, {"why", r.control_why}, {"options", r.options},
+                    {"status", r.status}, {"messages", r.messages}, {"metrics", m}, {"checks", checks},
+                    {"gpu_ms", r.gpu_ms}, {"passes", passes}, {"device", r.device}, {"image", r.image_id}, {"reference_image", r.reference_id},
+                    {"resource_bytes", r.plan.total_bytes()}});
+  }
+  return j;
+}
+
+void write_suite_outputs(const std::string& out_dir, const SuiteResult& suite, const std::vector<Case>& cases) {
+  fs::path out(out_dir);
+  nlohmann::json j = suite_to_json(suite);
+  nlohmann::json case_info = nlohmann::json::array();
+  for (auto& c : cases) {
+    nlohmann::json rois = nlohmann::json::array();
+    for (auto& r : c.rois) rois.push_back({{"name", r.name}, {"x0", r.x0}, {"y0", r.y0}, {"x1", r.x1}, {"y1", r.y1}});
+    case_info.push_back({{"name", c.name}, {"description", c.description}, {"width", c.width}, {"height", c.height},
+                         {"output", c.output}, {"rois", rois}});
+  }
+  j["cases"] = case_info;
+  write_text(out / "results.json", j.dump(2) + "\n");
+  write_text(out / "results.js", "window.GIB_RESULTS=" + j.dump() + ";\n");
+
+  std::string xml = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites>\n";
+  for (auto& c : cases) {
+    std::string body;
+    int tests = 0, fails = 0;
+    for (auto& r : suite.rows) {
+      if (r.case_name != c.name) continue;
+      ++tests;
+      std::string name = r.kind == "negative_control" ? "negative:" + r.control_name : r.technique + "." + r.preset;
+      body += fmt::format("    <testcase classname=\"{}\" name=\"{}\" time=\"{:.3f}\">", xml_escape(c.name),
+                          xml_escape(name), r.gpu_ms / 1000.0);
+      if (r.status != "pass") {
+        ++fails;
+        std::string msg;
+        for (auto& m : r.messages) msg += m + "\n";
+        body += fmt::format("<failure message=\"{}\">{}</failure>", xml_escape(r.messages.empty() ? "failed" : r.messages[0]),
+                            xml_escape(msg));
+      }
+      body += "</testcase>\n";
+    }
+    for (auto& e : suite.case_errors)
+      if (e.rfind(c.name + ":", 0) == 0) {
+        ++tests;
+        ++fails;
+        body += fmt::format("    <testcase classname=\"{}\" name=\"case\"><error message=\"{}\"/></testcase>\n",
+                            xml_escape(c.name), xml_escape(e));
+      }
+    xml += fmt::format("  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\">\n{}  </testsuite>\n", xml_escape(c.name),
+                       tests, fails, body);
+  }
+  xml += "</testsuites>\n";
+  write_text(out / "junit.xml", xml);
+
+  // The report: static assets compiled into the binary; data from results.js and img/*.js.
+  std::string img_scripts;
+  std::set<std::string> ids;
+  for (auto& r : suite.rows) {
+    ids.insert(r.image_id);
+    ids.insert(r.reference_id);
+  }
+  for (auto& id : ids)
+    if (fs::exists(out / "img" / (id + ".js"))) img_scripts += fmt::format("<script src=\"img/{}.js\"></script>\n", id);
+  std::string html = kReportHtml;
+  auto pos = html.find("<!--GIB_IMAGE_SCRIPTS-->");
+  if (pos != std::string::npos) html.replace(pos, std::string("<!--GIB_IMAGE_SCRIPTS-->").size(), img_scripts);
+  write_text(out / "index.html", html);
+  write_text(out / "report.js", kReportJs);
+  write_text(out / "report.css", kReportCss);
+}
+
+void print_suite_table(const SuiteResult& suite) {
+  auto num = [](const std::map<std::string, double>& m, const char* k, const char* f) {
+    auto it = m.find(k);
+    if (it == m.end()) return std::string("-");
+    if (std::isinf(it->second)) return std::string("inf");
+    return fmt::format(fmt::runtime(f), it->second);
+  };
+  fmt::print("{:<20} {:<22} {:<8} {:>9} {:>9} {:>9} {:>10}  {}\n", "case", "technique", "preset", "FLIP ref", "PSNR ref",
+             "FLIP gold", "GPU ms", "status");
+  for (auto& r : suite.rows) {
+    std::string tech = r.kind == "negative_control" ? "!" + r.technique + " (" + r.control_name + ")" : r.technique;
+    fmt::print("{:<20} {:<22} {:<8} {:>9} {:>9} {:>9} {:>10.2f}  {}\n", r.case_name, tech, r.preset,
+               num(r.metrics, "flip_vs_reference", "{:.4f}"), num(r.metrics, "psnr_vs_reference", "{:.2f}"),
+               num(r.metrics, "flip_vs_golden", "{:.4f}"), r.gpu_ms, r.status);
+    if (r.status != "pass")
+      for (auto& m : r.messages) fmt::print("    {}\n", m);
+    else if (r.kind == "negative_control")
+      for (auto& m : r.messages) fmt::print("    {}\n", m);
+  }
+  for (auto& e : suite.case_errors) fmt::print("error: {}\n", e);
+}
+
+}  // namespace gib

@@ -1,0 +1,20 @@
+// Suite outputs: results.json (machines), results.js (the same, loadable from file://),
+// junit.xml (CI), index.html + report.js + report.css (people), and per-image files under img/.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "harness/runner.h"
+
+namespace gib {
+
+nlohmann::json suite_to_json(const SuiteResult& suite);
+void write_suite_outputs(const std::string& out_dir, const SuiteResult& suite, const std::vector<Case>& cases);
+void print_suite_table(const SuiteResult& suite);
+// <stem>.png (sRGB preview, exposure 0) and <stem>.js (float data for the report's exposure
+// control: window.GIB_IMG[id] = {w, h, data: base64 float32 RGB}).
+void write_report_image(const std::string& stem, const FloatImage& img);
+void write_report_error_map(const std::string& stem, const FloatImage& error_map);  // <stem>.png, magma
+std::string base64(const void* data, size_t bytes);
+
+}  // namespace gib

@@ -1,0 +1,571 @@
+// gibench report: renders window.GIB_RESULTS (results.js) and window.GIB_IMG (img/*.js, float
+// RGB for the exposure control) into #app. Plain JS, no network: opens from disk.
+// Test hook: document.body.dataset.gibStatus = "ok" once everything rendered and every <img>
+// loaded; "error: <what>" on the first image or script error (also logged with console.error).
+(function () {
+  'use strict';
+
+  // ---------------------------------------------------------------- status (the test hook)
+  var failedWith = null;
+  var reported = {};
+  function fail(what) {
+    what = String(what);
+    if (!reported[what]) {
+      reported[what] = true;
+      console.error('gibench report error: ' + what);
+    }
+    if (failedWith === null) {
+      failedWith = what;
+      document.body.dataset.gibStatus = 'error: ' + what;
+      showErrorBanner(what);
+    }
+  }
+  window.GIB_REPORT_FAIL = fail;
+
+  function showErrorBanner(what) {
+    var bar = document.getElementById('gib-load-errors');
+    if (!bar) {
+      bar = h('div', { id: 'gib-load-errors', class: 'load-errors' }, [h('strong', null, 'Report problem: ')]);
+      document.body.insertBefore(bar, document.body.firstChild);
+    }
+    bar.appendChild(h('span', { class: 'load-error' }, what));
+  }
+
+  // ---------------------------------------------------------------- DOM helpers
+  function h(tag, attrs, children) {
+    var el = document.createElement(tag);
+    if (attrs) {
+      for (var k in attrs) {
+        if (!Object.prototype.hasOwnProperty.call(attrs, k)) continue;
+        var v = attrs[k];
+        if (v === null || v === undefined || v === false) continue;
+        if (k === 'class') el.className = v;
+        else if (k === 'text') el.textContent = v;
+        else if (k.slice(0, 2) === 'on') el.addEventListener(k.slice(2), v);
+        else if (k === 'style' && typeof v === 'object') for (var s in v) el.style[s] = v[s];
+        else el.setAttribute(k, v === true ? '' : v);
+      }
+    }
+    append(el, children);
+    return el;
+  }
+  function append(el, children) {
+    if (children === null || children === undefined) return;
+    if (Array.isArray(children)) { children.forEach(function (c) { append(el, c); }); return; }
+    if (typeof children === 'string' || typeof children === 'number') el.appendChild(document.createTextNode(String(children)));
+    else el.appendChild(children);
+  }
+  function slug(s) { return String(s).replace(/[^A-Za-z0-9_-]+/g, '-'); }
+
+  // ---------------------------------------------------------------- number formatting
+  function fmtNum(v, digits) {
+    if (v === null || v === undefined || typeof v !== 'number') return '\u2014';
+    if (!isFinite(v)) return v > 0 ? '\u221e' : (v < 0 ? '-\u221e' : 'NaN');
+    if (digits !== undefined) return v.toFixed(digits);
+    var a = Math.abs(v);
+    if (a === 0) return '0';
+    if (a < 1e-3 || a >= 1e6) return v.toExponential(2);
+    if (Number.isInteger(v)) return String(v);
+    return String(parseFloat(v.toPrecision(4)));
+  }
+  function fmtMs(v) {
+    if (typeof v !== 'number' || !isFinite(v)) return '\u2014';
+    return v < 0.1 ? v.toFixed(3) : v < 10 ? v.toFixed(2) : v.toFixed(1);
+  }
+  function fmtBytes(b) {
+    if (typeof b !== 'number' || !isFinite(b)) return '\u2014';
+    var u = ['B', 'KiB', 'MiB', 'GiB'], i = 0;
+    while (b >= 1024 && i < u.length - 1) { b /= 1024; ++i; }
+    return (i ? b.toFixed(1) : String(b)) + ' ' + u[i];
+  }
+  function metric(row, name) {
+    var m = row.metrics || {};
+    return Object.prototype.hasOwnProperty.call(m, name) ? m[name] : undefined;
+  }
+
+  // ---------------------------------------------------------------- images
+  var LITTLE_ENDIAN = new Uint8Array(new Uint32Array([1]).buffer)[0] === 1;
+  var decoded = {};  // id -> {w, h, px: Float32Array RGB} | null (use the PNG)
+  function floatImage(id) {
+    if (Object.prototype.hasOwnProperty.call(decoded, id)) return decoded[id];
+    var src = (window.GIB_IMG || {})[id];
+    var out = null;
+    if (src && typeof src.data === 'string') {
+      var bin = atob(src.data);
+      var n = src.w * src.h * 3;
+      if (bin.length !== n * 4) {
+        fail('img/' + id + '.js: ' + bin.length + ' bytes of data, expected ' + (n * 4) + ' for ' + src.w + 'x' + src.h + ' RGB float32');
+      } else {
+        var bytes = new Uint8Array(bin.length);
+        for (var i = 0; i < bin.length; ++i) bytes[i] = bin.charCodeAt(i);
+        var px;
+        if (LITTLE_ENDIAN) px = new Float32Array(bytes.buffer);
+        else {
+          px = new Float32Array(n);
+          var dv = new DataView(bytes.buffer);
+          for (var j = 0; j < n; ++j) px[j] = dv.getFloat32(j * 4, true);
+        }
+        out = { w: src.w, h: src.h, px: px };
+      }
+    }
+    decoded[id] = out;
+    return out;
+  }
+
+  // Linear [0,1] -> sRGB 8 bit, through a table (exposure is applied before the lookup).
+  var LUT_N = 16384;
+  var SRGB_LUT = new Uint8ClampedArray(LUT_N + 1);
+  for (var li = 0; li <= LUT_N; ++li) {
+    var lin = li / LUT_N;
+    var enc = lin <= 0.0031308 ? 12.92 * lin : 1.055 * Math.pow(lin, 1 / 2.4) - 0.055;
+    SRGB_LUT[li] = Math.round(enc * 255);
+  }
+  function drawFloat(canvas, img, ev) {
+    var ctx = canvas.getContext('2d');
+    var data = ctx.createImageData(img.w, img.h);
+    var d = data.data, px = img.px, scale = Math.pow(2, ev) * LUT_N;
+    for (var p = 0, q = 0; p < px.length; p += 3, q += 4) {
+      var r = px[p], g = px[p + 1], b = px[p + 2];
+      if (r !== r || g !== g || b !== b) {  // NaN: flag it in magenta
+        d[q] = 255; d[q + 1] = 0; d[q + 2] = 255;
+      } else {
+        r *= scale; g *= scale; b *= scale;
+        d[q] = SRGB_LUT[r >= LUT_N ? LUT_N : r > 0 ? r | 0 : 0];
+        d[q + 1] = SRGB_LUT[g >= LUT_N ? LUT_N : g > 0 ? g | 0 : 0];
+        d[q + 2] = SRGB_LUT[b >= LUT_N ? LUT_N : b > 0 ? b | 0 : 0];
+      }
+      d[q + 3] = 255;
+    }
+    ctx.putImageData(data, 0, 0);
+  }
+
+  var pendingImages = [];
+  function loadImg(src, alt) {
+    var img = new Image();
+    var done;
+    pendingImages.push(new Promise(function (resolve) { done = resolve; }));
+    img.onload = function () { done(); };
+    img.onerror = function () {
+      fail('failed to load ' + src);
+      var fig = img.closest('.frame');
+      if (fig) fig.classList.add('missing');
+      done();
+    };
+    img.alt = alt;
+    img.decoding = 'async';
+    img.src = src;
+    return img;
+  }
+
+  // One image panel: a canvas from the float data (exposure-controlled) or the PNG preview;
+  // ROI outlines in normalised coordinates; a crosshair for the linked pixel readout.
+  function figure(opts) {
+    var frame = h('div', { class: 'frame' });
+    var fl = opts.floatId ? floatImage(opts.floatId) : null;
+    var media;
+    if (fl) {
+      media = h('canvas', { width: fl.w, height: fl.h, class: 'media', 'data-img': opts.floatId });
+      opts.caseState.canvases.push({ canvas: media, img: fl });
+      drawFloat(media, fl, opts.caseState.ev);
+      frame.style.aspectRatio = fl.w + ' / ' + fl.h;
+    } else {
+      media = loadImg(opts.png, opts.label);
+      media.className = 'media' + (opts.floatId ? ' fallback' : '');
+      if (opts.w && opts.h) frame.style.aspectRatio = opts.w + ' / ' + opts.h;
+    }
+    frame.appendChild(media);
+    frame.appendChild(h('div', { class: 'missing-note' }, 'missing: ' + opts.png));
+    (opts.rois || []).forEach(function (r) {
+      frame.appendChild(h('div', {
+        class: 'roi',
+        title: 'ROI ' + r.name,
+        style: {
+          left: (r.x0 * 100) + '%', top: (r.y0 * 100) + '%',
+          width: ((r.x1 - r.x0) * 100) + '%', height: ((r.y1 - r.y0) * 100) + '%'
+        }
+      }, h('span', { class: 'roi-label' }, r.name)));
+    });
+    var cross = h('div', { class: 'cross' });
+    frame.appendChild(cross);
+    var tag = fl ? h('span', { class: 'tag hdr', title: 'drawn from float data: the exposure slider applies' }, 'HDR')
+      : opts.floatId ? h('span', { class: 'tag png', title: 'no float data (img/' + opts.floatId + '.js): fixed-exposure PNG preview' }, 'PNG')
+        : null;
+    return {
+      el: h('figure', { class: 'panel ' + (opts.kind || '') }, [
+        h('figcaption', null, [h('span', { class: 'cap' }, opts.label), tag]),
+        frame,
+        opts.legend || null
+      ]),
+      frame: frame, cross: cross, floatImg: fl
+    };
+  }
+
+  function magmaLegend() {
+    return h('div', { class: 'legend' }, [
+      h('span', null, '0'), h('span', { class: 'ramp' }), h('span', null, '1')
+    ]);
+  }
+
+  // Reference | output | FLIP error map, with a linked crosshair and a pixel readout.
+  function imageRow(row, c, cs) {
+    var w = c ? c.width : 0, hh = c ? c.height : 0, rois = c ? c.rois : [];
+    var panels = [];
+    if (row.reference_image) {
+      panels.push(figure({ label: 'reference', floatId: row.reference_image, png: 'img/' + row.reference_image + '.png',
+        rois: rois, caseState: cs, w: w, h: hh, kind: 'ref' }));
+    }
+    if (row.image) {
+      panels.push(figure({ label: row.kind === 'negative_control' ? 'negative control output' : 'output',
+        floatId: row.image, png: 'img/' + row.image + '.png', rois: rois, caseState: cs, w: w, h: hh, kind: 'out' }));
+      if (row.reference_image) {
+        panels.push(figure({ label: 'FLIP error vs reference', png: 'img/' + row.image + '.flip.png', rois: rois,
+          caseState: cs, w: w, h: hh, kind: 'flip', legend: magmaLegend() }));
+      }
+    }
+    if (!panels.length) return h('p', { class: 'muted' }, 'No images for this row.');
+    var readout = h('div', { class: 'readout' }, 'Hover an image for linear pixel values.');
+    function move(ev) {
+      var rect = ev.currentTarget.getBoundingClientRect();
+      var u = (ev.clientX - rect.left) / rect.width, v = (ev.clientY - rect.top) / rect.height;
+      if (u < 0 || v < 0 || u >= 1 || v >= 1) return;
+      var iw = w, ih = hh;
+      panels.forEach(function (p) { if (p.floatImg) { iw = p.floatImg.w; ih = p.floatImg.h; } });
+      var x = Math.floor(u * iw), y = Math.floor(v * ih);
+      panels.forEach(function (p) {
+        p.cross.style.display = 'block';
+        p.cross.style.left = ((x + 0.5) / iw * 100) + '%';
+        p.cross.style.top = ((y + 0.5) / ih * 100) + '%';
+      });
+      var parts = [h('span', { class: 'xy' }, 'x ' + x + '  y ' + y)];
+      panels.forEach(function (p) {
+        if (!p.floatImg || x >= p.floatImg.w || y >= p.floatImg.h) return;
+        var i = (y * p.floatImg.w + x) * 3, px = p.floatImg.px;
+        parts.push(h('span', null, [h('b', null, p.el.querySelector('.cap').textContent + ' '),
+          fmtNum(px[i]) + '  ' + fmtNum(px[i + 1]) + '  ' + fmtNum(px[i + 2])]));
+      });
+      readout.textContent = '';
+      append(readout, parts);
+    }
+    function leave() { panels.forEach(function (p) { p.cross.style.display = 'none'; }); }
+    panels.forEach(function (p) {
+      p.frame.addEventListener('mousemove', move);
+      p.frame.addEventListener('mouseleave', leave);
+    });
+    return h('div', { class: 'images-wrap' }, [
+      h('div', { class: 'images n' + panels.length }, panels.map(function (p) { return p.el; })),
+      readout
+    ]);
+  }
+
+  // ---------------------------------------------------------------- status badges
+  function badge(row) {
+    var neg = row.kind === 'negative_control';
+    var s = row.status || 'error';
+    var label = neg ? (s === 'pass' ? 'caught' : s === 'fail' ? 'NOT caught' : 'error') : s;
+    return h('span', { class: 'badge ' + s, title: neg ? 'negative control: status pass means a threshold caught it' : null }, label);
+  }
+
+  function optionsText(o) {
+    var keys = Object.keys(o || {});
+    if (!keys.length) return '';
+    return keys.map(function (k) { return k + '=' + fmtNum(o[k]); }).join(' \u00b7 ');
+  }
+
+  function rowAnchor(row, i) { return 'row-' + slug(row.case) + '-' + i; }
+
+  // ---------------------------------------------------------------- checks
+  function checksList(row) {
+    var checks = row.checks || [];
+    if (!checks.length) return h('p', { class: 'muted' }, 'No checks.');
+    return h('ul', { class: 'checks' }, checks.map(function (c) {
+      var bound = [];
+      if (typeof c.max === 'number') bound.push('\u2264 ' + fmtNum(c.max));
+      if (typeof c.min === 'number') bound.push('\u2265 ' + fmtNum(c.min));
+      // Gauge: value relative to the bound, the bound at two thirds of the width.
+      var thr = typeof c.max === 'number' ? c.max : c.min;
+      var frac = (typeof c.value === 'number' && isFinite(c.value) && thr) ? Math.max(0, Math.min(1.5, c.value / thr)) / 1.5
+        : (typeof c.value === 'number' && isFinite(c.value) ? 0 : 1);
+      var name = c.metric + (c.against ? ' vs ' + c.against : '') + (c.roi ? ' [' + c.roi + ']' : '');
+      return h('li', { class: c.pass ? 'pass' : 'fail', title: c.message || '' }, [
+        h('span', { class: 'icon' }, c.pass ? '\u2713' : '\u2717'),
+        h('span', { class: 'cname' }, name),
+        h('span', { class: 'gauge' }, [h('span', { class: 'fill', style: { width: (frac * 100) + '%' } }), h('span', { class: 'thr' })]),
+        h('span', { class: 'cval' }, fmtNum(c.value)),
+        h('span', { class: 'cbound' }, bound.join(' ') || '\u2014'),
+        c.pass ? null : h('div', { class: 'cmsg' }, c.message || '')
+      ]);
+    }));
+  }
+
+  // ---------------------------------------------------------------- passes and plan
+  function passBars(row, maxMs) {
+    var passes = row.passes || [];
+    var ran = passes.filter(function (p) { return p.status === 'ran'; });
+    var culled = passes.filter(function (p) { return p.status !== 'ran'; });
+    var out = [];
+    if (ran.length) {
+      out.push(h('div', { class: 'bars' }, ran.map(function (p) {
+        var ms = typeof p.ms === 'number' ? p.ms : 0;
+        var pct = maxMs > 0 ? Math.max(0.5, ms / maxMs * 100) : 0;
+        var tip = p.name + ': median ' + fmtMs(p.ms) + ' ms' +
+          (typeof p.min_ms === 'number' ? ', min ' + fmtMs(p.min_ms) + ', max ' + fmtMs(p.max_ms) : '');
+        return h('div', { class: 'bar-row', title: tip }, [
+          h('span', { class: 'bar-name' }, p.name),
+          h('span', { class: 'bar-track' }, [
+            h('span', { class: 'bar', style: { width: pct + '%' } }),
+            typeof p.min_ms === 'number' && maxMs > 0 ? h('span', {
+              class: 'bar-range',
+              style: { left: (p.min_ms / maxMs * 100) + '%', width: (Math.max(0, p.max_ms - p.min_ms) / maxMs * 100) + '%' }
+            }) : null
+          ]),
+          h('span', { class: 'bar-ms' }, typeof p.ms === 'number' ? fmtMs(p.ms) + ' ms' : 'no timing')
+        ]);
+      })));
+    } else {
+      out.push(h('p', { class: 'muted' }, 'No pass ran.'));
+    }
+    if (culled.length) {
+      out.push(h('div', { class: 'plan-head' }, 'Culled by the plan'));
+      out.push(h('ul', { class: 'culled' }, culled.map(function (p) {
+        return h('li', null, [h('span', { class: 'bar-name' }, p.name), h('span', { class: 'reason' }, p.reason || 'culled')]);
+      })));
+    }
+    out.push(h('div', { class: 'plan-foot' }, [
+      ran.length + ' ran, ' + culled.length + ' culled \u00b7 frame ' + fmtMs(row.gpu_ms) + ' ms \u00b7 resources ' + fmtBytes(row.resource_bytes)
+    ]));
+    return out;
+  }
+
+  // ---------------------------------------------------------------- per row detail card
+  function detailCard(row, idx, c, cs, maxMs) {
+    var neg = row.kind === 'negative_control';
+    var title = neg ? [h('span', { class: 'neg-name' }, row.negative_control || 'negative control'), ' ',
+      h('span', { class: 'sub' }, row.technique + ' \u00b7 ' + row.preset)]
+      : [row.technique, ' ', h('span', { class: 'sub' }, row.preset)];
+    var opts = optionsText(row.options);
+    var msgs = row.messages || [];
+    return h('article', { class: 'card ' + (row.status || 'error') + (neg ? ' negative' : ''), id: rowAnchor(row, idx) }, [
+      h('header', { class: 'card-head' }, [
+        badge(row),
+        h('h4', null, title),
+        opts ? h('span', { class: 'opts' }, opts) : null,
+        h('span', { class: 'spacer' }),
+        h('span', { class: 'kv' }, ['FLIP ', h('b', null, fmtNum(metric(row, 'flip_vs_reference'), 4))]),
+        h('span', { class: 'kv' }, ['PSNR ', h('b', null, fmtNum(metric(row, 'psnr_vs_reference'), 2)), ' dB']),
+        h('span', { class: 'kv' }, ['GPU ', h('b', null, fmtMs(row.gpu_ms)), ' ms'])
+      ]),
+      neg ? h('p', { class: 'why' }, [h('b', null, 'Breaks: '), row.why || '(no description)']) : null,
+      msgs.length ? h('ul', { class: 'messages ' + (row.status === 'pass' ? 'ok' : 'bad') },
+        msgs.map(function (m) { return h('li', null, m); })) : null,
+      imageRow(row, c, cs),
+      h('div', { class: 'card-cols' }, [
+        h('section', { class: 'col' }, [h('h5', null, 'Checks'), checksList(row)]),
+        h('section', { class: 'col' }, [h('h5', null, 'GPU passes & plan')].concat(passBars(row, maxMs)))
+      ])
+    ]);
+  }
+
+  // ---------------------------------------------------------------- per case
+  function resultsTable(rows, indexOf) {
+    var psnrDef = (window.GIB_RESULTS && window.GIB_RESULTS.psnr_definition) || '';
+    return h('table', { class: 'results' }, [
+      h('thead', null, h('tr', null, [
+        h('th', null, 'technique'), h('th', null, 'preset'), h('th', null, 'status'),
+        h('th', { class: 'num', title: 'mean FLIP vs the path-traced reference (lower is better)' }, 'FLIP ref'),
+        h('th', { class: 'num', title: psnrDef }, 'PSNR ref'),
+        h('th', { class: 'num', title: 'mean FLIP vs the approved golden' }, 'FLIP golden'),
+        h('th', { class: 'num' }, 'GPU ms'),
+        h('th', null, 'messages')
+      ])),
+      h('tbody', null, rows.map(function (r) {
+        var neg = r.kind === 'negative_control';
+        var msgs = r.messages || [];
+        var anchor = '#' + rowAnchor(r, indexOf(r));
+        return h('tr', { class: 'st-' + (r.status || 'error') }, [
+          h('td', null, [h('a', { href: anchor }, neg ? (r.negative_control || r.technique) : r.technique),
+            neg ? h('div', { class: 'sub' }, r.technique) : null,
+            optionsText(r.options) ? h('div', { class: 'sub' }, optionsText(r.options)) : null]),
+          h('td', null, r.preset),
+          h('td', null, badge(r)),
+          h('td', { class: 'num' }, fmtNum(metric(r, 'flip_vs_reference'), 4)),
+          h('td', { class: 'num' }, fmtNum(metric(r, 'psnr_vs_reference'), 2)),
+          h('td', { class: 'num' }, fmtNum(metric(r, 'flip_vs_golden'), 4)),
+          h('td', { class: 'num' }, fmtMs(r.gpu_ms)),
+          h('td', { class: 'msgs' }, msgs.length ? msgs.map(function (m) { return h('div', null, m); }) : h('span', { class: 'muted' }, '\u2014'))
+        ]);
+      }))
+    ]);
+  }
+
+  function countStatus(rows) {
+    var n = { pass: 0, fail: 0, error: 0 };
+    rows.forEach(function (r) { n[r.status in n ? r.status : 'error']++; });
+    return n;
+  }
+
+  function caseSection(name, c, rows, errors, indexOf) {
+    var cs = { ev: 0, canvases: [] };
+    var tech = rows.filter(function (r) { return r.kind !== 'negative_control'; });
+    var neg = rows.filter(function (r) { return r.kind === 'negative_control'; });
+    var n = countStatus(rows);
+    var bad = n.fail + n.error + errors.length;
+    var maxMs = 0;
+    rows.forEach(function (r) {
+      (r.passes || []).forEach(function (p) {
+        if (p.status === 'ran') maxMs = Math.max(maxMs, typeof p.max_ms === 'number' ? p.max_ms : 0, typeof p.ms === 'number' ? p.ms : 0);
+      });
+    });
+
+    var evLabel = h('output', { class: 'ev-val' }, '+0.0 EV');
+    function setEv(v) {
+      cs.ev = v;
+      evLabel.textContent = (v >= 0 ? '+' : '\u2212') + Math.abs(v).toFixed(1) + ' EV';
+      cs.canvases.forEach(function (k) { drawFloat(k.canvas, k.img, v); });
+    }
+    var slider = h('input', { type: 'range', min: -8, max: 8, step: 0.25, value: 0, 'aria-label': 'exposure (EV)',
+      oninput: function (e) { setEv(parseFloat(e.target.value)); } });
+    var reset = h('button', { type: 'button', onclick: function () { slider.value = 0; setEv(0); } }, 'reset');
+
+    var meta = [];
+    if (c) {
+      meta.push(h('span', null, c.width + '\u00d7' + c.height));
+      meta.push(h('span', null, ['compares ', h('code', null, c.output)]));
+      if (c.rois && c.rois.length) meta.push(h('span', null, 'ROIs: ' + c.rois.map(function (r) { return r.name; }).join(', ')));
+    }
+    meta.push(h('span', null, tech.length + ' technique row' + (tech.length === 1 ? '' : 's') + ', ' + neg.length + ' negative control' + (neg.length === 1 ? '' : 's')));
+
+    var idx = function (r) { return indexOf(r); };
+    var section = h('section', { class: 'case ' + (bad ? 'has-fail' : 'all-pass'), id: 'case-' + slug(name) }, [
+      h('header', { class: 'case-head' }, [
+        h('h2', null, name),
+        h('span', { class: 'pill pass' }, n.pass + ' passed'),
+        n.fail ? h('span', { class: 'pill fail' }, n.fail + ' failed') : null,
+        n.error + errors.length ? h('span', { class: 'pill error' }, (n.error + errors.length) + ' error' + (n.error + errors.length === 1 ? '' : 's')) : null
+      ]),
+      c && c.description ? h('p', { class: 'desc' }, c.description) : null,
+      h('div', { class: 'meta' }, meta),
+      errors.length ? h('div', { class: 'case-errors' }, errors.map(function (e) { return h('div', null, [h('b', null, 'case error: '), e]); })) : null,
+      tech.length ? resultsTable(tech, idx) : null,
+      h('div', { class: 'exposure' }, [h('label', null, 'Exposure'), h('span', { class: 'ev-min' }, '\u22128'), slider,
+        h('span', { class: 'ev-max' }, '+8'), evLabel, reset,
+        h('span', { class: 'hint' }, 'applies to reference and outputs of this case (HDR panels)')]),
+      h('div', { class: 'cards' }, tech.map(function (r) { return detailCard(r, idx(r), c, cs, maxMs); })),
+      neg.length ? h('section', { class: 'negatives' }, [
+        h('h3', null, 'Negative controls'),
+        h('p', { class: 'explain' }, 'Each one deliberately breaks the technique. It must fail at least one threshold: ' +
+          '\u201ccaught\u201d means the case can tell good from bad; \u201cNOT caught\u201d fails the case.'),
+        resultsTable(neg, idx),
+        h('div', { class: 'cards' }, neg.map(function (r) { return detailCard(r, idx(r), c, cs, maxMs); }))
+      ]) : null
+    ]);
+    return { el: section, n: n, bad: bad };
+  }
+
+  // ---------------------------------------------------------------- page
+  function render() {
+    var R = window.GIB_RESULTS;
+    var app = document.getElementById('app');
+    app.textContent = '';
+    if (!R || typeof R !== 'object') {
+      fail('results.js did not load (window.GIB_RESULTS is missing)');
+      app.appendChild(h('p', { class: 'fatal' }, 'results.js did not load: no results to show.'));
+      return;
+    }
+    var results = R.results || [];
+    var cases = R.cases || [];
+    var caseErrors = R.case_errors || [];
+    var dev = R.device || {};
+
+    // Case order: the cases list, then any case named only by a row.
+    var order = [], byName = {};
+    cases.forEach(function (c) { if (!byName[c.name]) { byName[c.name] = c; order.push(c.name); } });
+    results.forEach(function (r) { if (!(r.case in byName)) { byName[r.case] = null; order.push(r.case); } });
+    var errorsFor = {}, globalErrors = [];
+    caseErrors.forEach(function (e) {
+      var hit = order.filter(function (n) { return e.indexOf(n + ':') === 0; })[0];
+      if (hit !== undefined) (errorsFor[hit] = errorsFor[hit] || []).push(e.slice(hit.length + 1).trim());
+      else globalErrors.push(e);
+    });
+    var indexOf = function (r) { return results.indexOf(r); };
+
+    var total = countStatus(results);
+    var failed = total.fail + total.error + caseErrors.length;
+
+    document.title = (failed ? '\u2717 ' + failed + ' failed' : '\u2713 all passed') + ' \u2014 gibench report';
+
+    var sections = order.map(function (name) {
+      var rows = results.filter(function (r) { return r.case === name; });
+      return { name: name, s: caseSection(name, byName[name], rows, errorsFor[name] || [], indexOf) };
+    });
+
+    var header = h('header', { class: 'top ' + (failed ? 'bad' : 'good') }, [
+      h('div', { class: 'top-inner' }, [
+        h('div', { class: 'brand' }, [h('h1', null, 'gibench'), h('span', { class: 'verdict' }, failed ? failed + ' failed' : 'all passed')]),
+        h('div', { class: 'device' }, [
+          h('div', { class: 'dev-name' }, dev.name || 'unknown device'),
+          h('div', { class: 'dev-sub' }, [dev.type, dev.driver, dev.driver_info].filter(Boolean).join(' \u00b7 ') +
+            (dev['class'] ? ' \u00b7 golden class ' + dev['class'] : ''))
+        ]),
+        h('div', { class: 'totals' }, [
+          h('div', { class: 'total pass' }, [h('b', null, String(total.pass)), h('span', null, 'passed')]),
+          h('div', { class: 'total fail' + (total.fail ? '' : ' zero') }, [h('b', null, String(total.fail)), h('span', null, 'failed')]),
+          h('div', { class: 'total error' + (total.error + caseErrors.length ? '' : ' zero') }, [h('b', null, String(total.error + caseErrors.length)), h('span', null, 'errors')])
+        ])
+      ])
+    ]);
+
+    var errorBox = caseErrors.length ? h('section', { class: 'errors-box' }, [
+      h('h2', null, caseErrors.length + ' case error' + (caseErrors.length === 1 ? '' : 's')),
+      h('ul', null, caseErrors.map(function (e) { return h('li', null, e); }))
+    ]) : null;
+
+    var nav = h('nav', { class: 'case-nav' }, sections.map(function (x) {
+      var n = x.s.n;
+      return h('a', { href: '#case-' + slug(x.name), class: x.s.bad ? 'bad' : 'good' }, [
+        h('span', { class: 'dot' }), x.name,
+        h('span', { class: 'count' }, n.pass + '/' + (n.pass + n.fail + n.error))
+      ]);
+    }));
+
+    var roiToggle = h('input', { type: 'checkbox', checked: true, onchange: function (e) {
+      document.body.classList.toggle('hide-rois', !e.target.checked);
+    } });
+    var failToggle = h('input', { type: 'checkbox', onchange: function (e) {
+      document.body.classList.toggle('only-failures', e.target.checked);
+    } });
+    var toolbar = h('div', { class: 'toolbar' }, [
+      h('label', null, [roiToggle, ' ROI outlines']),
+      h('label', null, [failToggle, ' only failures']),
+      h('span', { class: 'spacer' }),
+      h('span', { class: 'hint' }, 'Hover an image for pixel values; click a technique to jump to its images.')
+    ]);
+
+    var main = h('main', null, [errorBox, nav, toolbar].concat(sections.map(function (x) { return x.s.el; })).concat([
+      !order.length ? h('p', { class: 'muted' }, 'No cases ran.') : null,
+      h('footer', null, [
+        R.psnr_definition ? h('p', null, [h('b', null, 'PSNR: '), R.psnr_definition]) : null,
+        h('p', null, 'FLIP error maps use the magma colour map (black = no error, light yellow = 1). ' +
+          'Negative-control status pass means the break was caught. NaN pixels show in magenta.')
+      ])
+    ]));
+    app.appendChild(header);
+    app.appendChild(main);
+  }
+
+  function start() {
+    (window.GIB_ERRORS || []).forEach(fail);
+    try {
+      render();
+    } catch (e) {
+      console.error(e && e.stack ? e.stack : e);
+      fail('render: ' + (e && e.message ? e.message : String(e)));
+    }
+    // Canvases are drawn synchronously above; the images' load events all come before the
+    // window's load event, which headless Chromium waits for before it dumps the DOM.
+    Promise.all(pendingImages).then(function () {
+      if (failedWith === null) document.body.dataset.gibStatus = 'ok';
+    });
+  }
+
+  start();
+})();

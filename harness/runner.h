@@ -1,0 +1,79 @@
+// `gibench run`: every case x technique x preset against the reference and the approved
+// goldens, expectations and negative controls; writes results.json, junit.xml and the HTML
+// report; exit code non-zero when anything fails.
+// `gibench update-goldens`: renders and replaces goldens on request, atomically, with history.
+#pragma once
+#include <map>
+#include <string>
+#include <vector>
+
+#include "harness/case.h"
+#include "renderer/graph/float_image.h"
+#include "harness/render.h"
+#include <nlohmann/json.hpp>
+#include <optional>
+
+namespace gib {
+
+struct SuiteOptions {
+  std::vector<std::string> case_globs;  // empty: all
+  std::string cases_dir = "cases";
+  std::string goldens_dir = "goldens";
+  std::string out = "out";
+  std::string device;
+  bool validate = false;
+  bool noise_floor = false;  // run: also render each reference twice and record the floor
+};
+
+struct CheckResult {
+  std::string metric, against, roi;
+  double value = 0;
+  std::optional<double> max, min;
+  bool pass = true;
+  std::string message;  // "flip vs reference 0.21 > max 0.15 (by 0.06)"
+};
+
+struct ResultRow {
+  std::string case_name, technique, preset, kind;  // kind: "technique" | "negative_control"
+  std::string control_name, control_why;
+  std::map<std::string, double> options;
+  std::string status;  // pass | fail | error
+  std::vector<std::string> messages;
+  std::map<std::string, double> metrics;
+  std::vector<CheckResult> checks;
+  double gpu_ms = 0;  // median per frame
+  std::vector<PassStats> passes;
+  Plan plan;
+  std::string image_id;      // files under DIR/img/: <id>.png, <id>.js, <id>.flip.png, <id>.exr
+  std::string reference_id;  // the reference AOV it was compared with: DIR/img/<id>.png/.js
+  std::string device;
+};
+
+struct SuiteResult {
+  DeviceInfo device;
+  std::string device_class;
+  std::vector<ResultRow> rows;
+  std::vector<std::string> case_errors;  // "<case>: message"
+  int failures() const;
+};
+
+int cmd_run(const SuiteOptions& o);
+
+struct UpdateOptions {
+  SuiteOptions suite;
+  std::vector<std::string> techniques;  // empty: all of the case's
+  bool reference = false;               // (re)render the path-traced reference
+  std::string reason;
+  bool yes = true;                      // no interactive confirmation (CI, scripts)
+};
+int cmd_update_goldens(const UpdateOptions& o);
+
+bool glob_match(const std::string& pattern, const std::string& text);
+std::vector<Case> select_cases(const SuiteOptions& o);
+
+// The metric named by a threshold, of `output` against `against` (may be empty for metrics
+// that need none), inside roi (normalised; whole image when absent).
+double compute_metric(const Case& c, const std::string& metric, const FloatImage& output, const FloatImage* against,
+                      const Roi* roi);
+
+}  // namespace gib

@@ -1,0 +1,23 @@
+// `gibench sweep --case NAME`: every technique x preset of a case, error (FLIP vs the
+// reference golden) against GPU time per frame; writes sweep.csv, sweep.json and sweep.svg
+// (one series per technique, the Pareto front marked) under --out.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "harness/runner.h"
+
+namespace gib {
+
+struct SweepPoint {
+  std::string technique, preset;
+  double gpu_ms = 0, flip = 0;
+  bool pareto = false;
+};
+
+// Marks points not dominated by any other (lower or equal time and error, one strictly lower).
+void mark_pareto(std::vector<SweepPoint>& points);
+std::string sweep_svg(const std::string& case_name, const std::vector<SweepPoint>& points);
+int cmd_sweep(const SuiteOptions& o);
+
+}  // namespace gib

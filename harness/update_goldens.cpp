@@ -1,0 +1,99 @@
+// `gibench update-goldens`: renders what was asked, prints old-vs-new FLIP for every golden it
+// replaces, writes atomically and keeps the old file in history/. golden.json records device,
+// driver, revision, settings hash, date and reason; with --reference also spp, seed and the
+// noise floor (FLIP between two renders with different seeds).
+#include <fmt/format.h>
+
+#include <filesystem>
+
+#include "harness/case_render.h"
+#include "harness/goldens.h"
+#include "harness/metrics/flip.h"
+#include "harness/runner.h"
+
+namespace gib {
+namespace {
+
+FlipOptions flip_opts(const Case& c) {
+  FlipOptions f;
+  f.ppd = c.ppd;
+  f.mode = c.flip_mode == "ldr" ? FlipOptions::Mode::ldr : FlipOptions::Mode::hdr;
+  return f;
+}
+
+nlohmann::json file_record(const Gpu& gpu, const CaseRender& r, const std::string& reason) {
+  return {{"device", gpu.info().name}, {"driver", gpu.info().driver_name + " " + gpu.info().driver_info},
+          {"revision", renderer_revision()}, {"settings_hash", r.settings_hash}, {"date", utc_now_iso()},
+          {"reason", reason}, {"technique", r.technique}, {"preset", r.preset}, {"frames", r.frames},
+          {"spp", r.spp}};
+}
+
+void replace(GoldenStore& store, nlohmann::json& meta, const std::string& stem, const std::string& cls,
+             const FloatImage& image, nlohmann::json record, const Case& c) {
+  std::string old_path = store.find(stem, cls);
+  std::string name = store.file_name(stem, cls);
+  if (!old_path.empty() && std::filesystem::path(old_path).filename() == name) {
+    FloatImage old = store.read(old_path);
+    if (old.width == image.width && old.height == image.height) {
+      double f = flip(old, image, flip_opts(c)).mean;
+      fmt::print("  {}: old vs new FLIP {:.6f}\n", name, f);
+      record["flip_vs_previous"] = f;
+    } else {
+      fmt::print("  {}: old {}x{} vs new {}x{} (size changed)\n", name, old.width, old.height, image.width,
+                 image.height);
+    }
+  } else {
+    fmt::print("  {}: new golden\n", name);
+  }
+  std::string hist = store.write(stem, cls, image);
+  if (!hist.empty()) {
+    fmt::print("  previous kept as {} (move it back to undo)\n", hist);
+    record["previous"] = std::filesystem::path(hist).filename().string();
+  }
+  meta["files"][name] = record;
+}
+
+}  // namespace
+
+int cmd_update_goldens(const UpdateOptions& o) {
+  if (o.reason.empty()) throw std::invalid_argument("--reason: expected why the goldens change (recorded in golden.json)");
+  std::vector<Case> cases = select_cases(o.suite);
+  auto gpu = Gpu::create({o.suite.device, o.suite.validate});
+  std::string cls = device_class(gpu->info().driver_name, gpu->info().name);
+  for (const Case& c : cases) {
+    GoldenStore store(o.suite.goldens_dir, c.name);
+    nlohmann::json meta = store.metadata();
+    fmt::print("{}:\n", c.name);
+    if (o.reference) {
+      TechniqueRun ref_run{"reference", {"ultra"}, {}, "", {}};
+      CaseRender r = render_case(*gpu, c, ref_run, "ultra");
+      for (auto& [aov, img] : r.aovs) {
+        nlohmann::json rec = file_record(*gpu, r, o.reason);
+        rec["aov"] = aov;
+        rec["seed"] = c.reference_seed;
+        replace(store, meta, GoldenStore::reference_stem(aov, c.output), cls, img, rec, c);
+      }
+      // Noise floor: the same reference with another seed; thresholds vs the reference must
+      // sit above it.
+      CaseRender r2 = render_case(*gpu, c, ref_run, "ultra", 1000);
+      double floor = flip(r.image, r2.image, flip_opts(c)).mean;
+      meta["noise_floor"] = {{"flip", floor}, {"spp", r.spp}, {"seeds", {c.reference_seed, c.reference_seed + 1000}},
+                             {"device_class", cls}, {"date", utc_now_iso()}};
+      fmt::print("  noise floor (FLIP between two seeds at {} spp): {:.6f}\n", r.spp, floor);
+    }
+    for (auto& run : c.techniques) {
+      if (!o.techniques.empty() &&
+          std::find(o.techniques.begin(), o.techniques.end(), run.technique) == o.techniques.end())
+        continue;
+      for (auto& preset : run.presets) {
+        CaseRender r = render_case(*gpu, c, run, preset);
+        replace(store, meta, GoldenStore::technique_stem(run.technique, preset), cls, r.image,
+                file_record(*gpu, r, o.reason), c);
+      }
+    }
+    store.write_metadata(meta);
+  }
+  return 0;
+}
+
+}  // namespace gib
