@@ -10,10 +10,14 @@ class GbufferPass final : public Pass {
   PassDecl declare(const Scene&, const Settings&) const override {
     PassDecl d;
     d.name = "gbuffer";
+    // Normal and position are persistent so temporal passes may read last frame's copy
+    // (read_prev): the graph then keeps two and ping-pongs them; otherwise they cost one.
+    ResourceDesc normal{Format::rgba16_float, SizeRule::render}, position{Format::rgba32_float, SizeRule::render};
+    normal.persistent = position.persistent = true;
     d.slots = {{"vbuffer", Access::read},
                {"gbuffer_albedo", Access::write, {Format::rgba16_float, SizeRule::render}},
-               {"gbuffer_normal", Access::write, {Format::rgba16_float, SizeRule::render}},
-               {"gbuffer_position", Access::write, {Format::rgba32_float, SizeRule::render}},
+               {"gbuffer_normal", Access::write, normal},
+               {"gbuffer_position", Access::write, position},
                {"gbuffer_emissive", Access::write, {Format::rgba16_float, SizeRule::render}}};
     return d;
   }
