@@ -54,33 +54,52 @@ std::vector<std::unique_ptr<Pass>> make_passes(const Technique& t) {
 }
 
 namespace {
-
-uint32_t* option_field(const std::string& technique, const std::string& name, Settings& s) {
-  if (technique == "direct" && name == "sky_rays") return &s.sky_rays;
-  if (technique == "reference" && name == "max_bounces") return &s.max_bounces;
-  if (technique == "reference" && name == "spp_per_frame") return &s.spp_per_frame;
-  return nullptr;
-}
-
 std::string option_value_text(double v) {
   if (std::isnan(v)) return "NaN";
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
   return fmt::format("{}", v);
 }
-
+#define GIB_UINT_OPTION(field) [](Settings& s, double v) { field = static_cast<uint32_t>(v); }
+#define GIB_FLOAT_OPTION(field) [](Settings& s, double v) { field = static_cast<float>(v); }
+#define GIB_BOOL_OPTION(field) [](Settings& s, double v) { field = v != 0.0; }
 }  // namespace
 
 const std::vector<TechniqueOption>& technique_options(const Technique& t) {
   static const std::vector<TechniqueOption> kDirect = {
-      {"sky_rays", "sky visibility rays per pixel (0: no sky light)", 0},
+      {"sky_rays", "sky visibility rays per pixel (0: no sky light)", 0, 4294967295.0, true, GIB_UINT_OPTION(s.sky_rays)},
   };
   static const std::vector<TechniqueOption> kReference = {
-      {"max_bounces", "path length cap (1: direct light only, no interreflection)", 1},
-      {"spp_per_frame", "samples per pixel added each frame", 1},
+      {"max_bounces", "path length cap (1: direct light only, no interreflection)", 1, 4294967295.0, true,
+       GIB_UINT_OPTION(s.max_bounces)},
+      {"spp_per_frame", "samples per pixel added each frame", 1, 4294967295.0, true, GIB_UINT_OPTION(s.spp_per_frame)},
+  };
+  static const std::vector<TechniqueOption> kRadianceCache = {
+      {"visibility_test", "leak mitigation: Chebyshev test on probe distance moments (0/1)", 0, 1, true,
+       GIB_BOOL_OPTION(s.rc.visibility_test)},
+      {"normal_bias", "leak mitigation: metres along the normal before sampling probes", 0, 10, false,
+       GIB_FLOAT_OPTION(s.rc.normal_bias)},
+      {"view_bias", "leak mitigation: metres towards the viewer before sampling probes", 0, 10, false,
+       GIB_FLOAT_OPTION(s.rc.view_bias)},
+      {"disocclusion", "temporal filter rejects history failing depth/normal tests (0/1)", 0, 1, true,
+       GIB_BOOL_OPTION(s.rc.disocclusion)},
+      {"history_format", "GI history: 0 RGB9E5, 1 RGBA16F, 2 R11G11B10F, 3 RGBA32F", 0, 3, true,
+       GIB_UINT_OPTION(s.rc.history_format)},
+      {"history_max_frames", "n_max of the temporal filter", 1, 1024, true, GIB_UINT_OPTION(s.rc.history_max_frames)},
+      {"cascades", "irradiance-volume cascades", 1, 8, true, GIB_UINT_OPTION(s.rc.cascades)},
+      {"rays_per_probe", "visibility rays per updated probe", 1, 64, true, GIB_UINT_OPTION(s.rc.rays_per_probe)},
+      {"probe_spacing", "metres between cascade-0 probes", 0.01, 100, false, GIB_FLOAT_OPTION(s.rc.probe_spacing)},
+      {"gather_divisor", "final gather at 1/2 or 1/4 resolution (2 or 4)", 2, 4, true,
+       GIB_UINT_OPTION(s.rc.gather_divisor)},
+      {"cache_log2_cells", "radiance cache capacity, log2 cells", 4, 24, true, GIB_UINT_OPTION(s.rc.cache_log2_cells)},
+      {"cache_reuse_frames", "frames a shaded cache cell is reused", 1, 1024, true,
+       GIB_UINT_OPTION(s.rc.cache_reuse_frames)},
+      {"denoise_radius", "bilateral half-width in gather pixels (0: off)", 0, 16, true,
+       GIB_UINT_OPTION(s.rc.denoise_radius)},
   };
   static const std::vector<TechniqueOption> kNone;
   if (t.name == "direct") return kDirect;
   if (t.name == "reference") return kReference;
+  if (t.name == "radiance-cache") return kRadianceCache;
   return kNone;
 }
 
@@ -88,8 +107,9 @@ std::string check_option(const Technique& t, const std::string& name, double val
   const auto& opts = technique_options(t);
   for (const auto& o : opts) {
     if (o.name != name) continue;
-    if (!std::isfinite(value) || value != std::floor(value) || value < o.min || value > o.max)
-      return fmt::format("expected an integer in [{}, {}], got {}", o.min, o.max, option_value_text(value));
+    if (!std::isfinite(value) || (o.integer && value != std::floor(value)) || value < o.min || value > o.max)
+      return fmt::format("expected {} in [{}, {}], got {}", o.integer ? "an integer" : "a number", o.min, o.max,
+                         option_value_text(value));
     return "";
   }
   std::vector<std::string> names;
@@ -102,7 +122,8 @@ Settings apply_options(const Technique& t, Settings s, const std::map<std::strin
   for (const auto& [name, value] : options) {
     std::string err = check_option(t, name, value);
     if (!err.empty()) throw std::invalid_argument(fmt::format("option \"{}\": {}", name, err));
-    if (uint32_t* field = option_field(t.name, name, s)) *field = static_cast<uint32_t>(value);
+    for (const auto& o : technique_options(t))
+      if (o.name == name && o.apply) o.apply(s, value);
   }
   return s;
 }

@@ -26,12 +26,15 @@ Settings apply_preset(const Technique& t, const std::string& preset, Settings ba
 std::vector<std::unique_ptr<Pass>> make_passes(const Technique& t);
 
 // A named option of a technique: a Settings field a case (or the CLI) may set directly,
-// overriding the preset. All options are unsigned integers in [min, max].
+// overriding the preset. Values are numbers in [min, max]; integer options reject fractions
+// (switches are integers in [0, 1]).
 struct TechniqueOption {
   std::string name;         // e.g. "sky_rays"
   std::string description;
   double min = 0;
   double max = 4294967295.0;
+  bool integer = true;
+  void (*apply)(Settings&, double) = nullptr;
 };
 
 // The options `t` accepts, in a stable order (empty for a technique with none).
