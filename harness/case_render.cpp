@@ -28,7 +28,10 @@ CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const s
   if (reference) frames = std::max(1u, c.reference_spp / s.spp_per_frame);
 
   std::string aov = run.compare_aov.empty() ? c.output : run.compare_aov;
-  std::string out_name = reference ? aov : t.output;
+  // A technique that produces the compared AOV itself (e.g. radiance-cache's indirect_diffuse)
+  // is compared on that AOV; otherwise on its final output.
+  bool own_aov = std::find(t.aovs.begin(), t.aovs.end(), aov) != t.aovs.end();
+  std::string out_name = reference ? aov : (own_aov ? aov : t.output);
   std::vector<std::string> outputs{out_name};
   if (reference)
     for (auto& a : std::vector<std::string>{t.output, "direct", "indirect_diffuse"})

@@ -68,8 +68,8 @@ std::string find_chromium() {
 
 #define REQUIRE_CHROMIUM(var)                                                                              \
   const std::string var = find_chromium();                                                                 \
-  ASSERT_FALSE(var.empty()) << "chromium is not installed (neither `which chromium` nor `apt list --installed " \
-                               "chromium` finds it): the report test needs headless Chromium; run ci/setup.sh"
+  ASSERT_FALSE(var.empty()) << "chromium is not installed (not on PATH): the report test needs headless Chromium; " \
+                               "run ci/setup.sh (it installs the apt package `chromium`)"
 
 struct BrowserRun {
   int exit_code = -1;

@@ -276,6 +276,8 @@
   // ---------------------------------------------------------------- checks
   function checksList(row) {
     var checks = row.checks || [];
+    // In a negative control a failed check is the point: it is what caught the break.
+    var neg = row.kind === 'negative_control';
     if (!checks.length) return h('p', { class: 'muted' }, 'No checks.');
     return h('ul', { class: 'checks' }, checks.map(function (c) {
       var bound = [];
@@ -286,9 +288,10 @@
       var frac = (typeof c.value === 'number' && isFinite(c.value) && thr) ? Math.max(0, Math.min(1.5, c.value / thr)) / 1.5
         : (typeof c.value === 'number' && isFinite(c.value) ? 0 : 1);
       var name = c.metric + (c.against ? ' vs ' + c.against : '') + (c.roi ? ' [' + c.roi + ']' : '');
-      return h('li', { class: c.pass ? 'pass' : 'fail', title: c.message || '' }, [
+      var cls = c.pass ? 'pass' : neg ? 'fail caught' : 'fail';
+      return h('li', { class: cls, title: c.message || '' }, [
         h('span', { class: 'icon' }, c.pass ? '\u2713' : '\u2717'),
-        h('span', { class: 'cname' }, name),
+        h('span', { class: 'cname' }, [name, !c.pass && neg ? h('span', { class: 'caught-tag' }, 'caught it') : null]),
         h('span', { class: 'gauge' }, [h('span', { class: 'fill', style: { width: (frac * 100) + '%' } }), h('span', { class: 'thr' })]),
         h('span', { class: 'cval' }, fmtNum(c.value)),
         h('span', { class: 'cbound' }, bound.join(' ') || '\u2014'),
@@ -480,11 +483,10 @@
     var order = [], byName = {};
     cases.forEach(function (c) { if (!byName[c.name]) { byName[c.name] = c; order.push(c.name); } });
     results.forEach(function (r) { if (!(r.case in byName)) { byName[r.case] = null; order.push(r.case); } });
-    var errorsFor = {}, globalErrors = [];
+    var errorsFor = {};  // case errors not naming a case (e.g. validation) appear only in the top box
     caseErrors.forEach(function (e) {
       var hit = order.filter(function (n) { return e.indexOf(n + ':') === 0; })[0];
       if (hit !== undefined) (errorsFor[hit] = errorsFor[hit] || []).push(e.slice(hit.length + 1).trim());
-      else globalErrors.push(e);
     });
     var indexOf = function (r) { return results.indexOf(r); };
 

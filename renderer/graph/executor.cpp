@@ -63,11 +63,18 @@ void record_compute(RecordContext& ctx, const ComputeDispatch& d) {
   if (d.scene) binds = ctx.scene_gpu.binds();
   for (auto& ib : d.images) {
     desc.bindings.push_back({ib.binding, DescriptorKind::storage_image});
-    binds.push_back({ib.binding, nullptr, &ctx.image(ib.slot)});
+    binds.push_back({ib.binding, nullptr, ib.prev ? &ctx.prev_image(ib.slot) : &ctx.image(ib.slot)});
+  }
+  for (auto& bb : d.buffers) {
+    desc.bindings.push_back({bb.binding, DescriptorKind::storage_buffer});
+    binds.push_back({bb.binding, bb.prev ? &ctx.prev_buffer(bb.slot) : &ctx.buffer(bb.slot), nullptr});
   }
   auto pipeline = ctx.gpu.compute_pipeline(desc);
   ctx.cmd.bind(*pipeline, binds, d.push, d.push_bytes);
-  ctx.cmd.dispatch(d.groups_x, d.groups_y, d.groups_z);
+  if (d.indirect)
+    ctx.cmd.dispatch_indirect(ctx.buffer(d.indirect), d.indirect_offset);
+  else
+    ctx.cmd.dispatch(d.groups_x, d.groups_y, d.groups_z);
 }
 
 // ---------------------------------------------------------------- Executor
@@ -253,6 +260,18 @@ FloatImage Executor::read(const std::string& name) {
   int cur = a.ping_pong ? int((frame_ + 1) & 1) : 0;
   const Image& img = *a.image[cur];
   return decode_texels(img.format(), img.width(), img.height(), gpu_.download(img));
+}
+
+std::vector<uint8_t> Executor::read_buffer(const std::string& name) {
+  auto it = allocations_.find(name);
+  if (it == allocations_.end() || !it->second.buffer[0])
+    throw GraphError(fmt::format("read_buffer: '{}' is not a buffer resource of the plan", name));
+  auto& a = it->second;
+  int cur = a.ping_pong ? int((frame_ + 1) & 1) : 0;
+  const Buffer& buf = *a.buffer[cur];
+  std::vector<uint8_t> out(buf.size());
+  if (!out.empty()) gpu_.download(buf, out.data(), out.size());
+  return out;
 }
 
 }  // namespace gib

@@ -34,6 +34,8 @@ class Executor {
   // Any image resource of the plan as float texels (ids and packed formats decoded to floats).
   FloatImage read(const std::string& name);
   std::vector<std::string> image_names() const;
+  // Raw bytes of a buffer resource of the plan (the copy written most recently).
+  std::vector<uint8_t> read_buffer(const std::string& name);
 
  private:
   std::map<std::string, ResolvedSlot> bind_slots(const PassDecl& decl);

@@ -13,6 +13,30 @@
 
 namespace gib {
 
+// radiance-cache (idTech 8 GI) settings; presets and case options set them. Design notes:
+// renderer/techniques/radiance_cache.md.
+struct RadianceCacheSettings {
+  uint32_t cascades = 3;            // irradiance-volume cascades (16^3 probes each), one updated per frame
+  float probe_spacing = 0.5f;       // metres between cascade-0 probes; doubles per cascade
+  uint32_t rays_per_probe = 32;     // visibility rays per updated probe (16 / 32 / 64)
+  float probe_hysteresis = 0.85f;   // weight of last frame's probe texel when blending
+  uint32_t gather_divisor = 2;      // final gather at 1/2 or 1/4 resolution
+  uint32_t cache_log2_cells = 15;   // world radiance cache capacity (2^n cells)
+  uint32_t cache_max_probe = 8;     // linear-probing steps before an insertion is dropped
+  float cache_cell_size = 0.25f;    // metres at LOD 0
+  float cache_lod_distance = 8.0f;  // metres: LOD = 2^floor(log2(1 + dist / this))
+  uint32_t cache_reuse_frames = 4;  // a shaded cell is reused this many frames
+  uint32_t light_grid_cascades = 4; // 16^3 cells each, first cascade light_grid_extent metres wide
+  float light_grid_extent = 32.0f;
+  bool visibility_test = true;      // leak mitigation: Chebyshev test on RG16F probe moments
+  float normal_bias = 0.1f;         // leak mitigation: metres along the normal before sampling probes
+  float view_bias = 0.1f;           // leak mitigation: metres towards the viewer
+  bool disocclusion = true;         // temporal filter rejects history failing depth/normal tests
+  uint32_t history_format = 0;      // 0 RGB9E5 (R32_UINT), 1 RGBA16F, 2 R11G11B10F, 3 RGBA32F
+  uint32_t history_max_frames = 16; // n_max of the temporal filter
+  uint32_t denoise_radius = 3;      // bilateral half-width in gather pixels
+};
+
 struct Settings {
   uint32_t width = 256, height = 144;
   uint32_t seed = 1;
@@ -20,6 +44,7 @@ struct Settings {
   uint32_t spp_per_frame = 1;  // reference: samples per pixel added each frame
   uint32_t max_bounces = 8;    // reference: path length cap (Russian roulette after 3)
   uint32_t sky_rays = 4;       // direct: sky visibility rays per pixel
+  RadianceCacheSettings rc;
 };
 
 // The scene as GPU buffers, in the binding order of frame_shared.h / scene.glsl.
@@ -80,9 +105,16 @@ std::vector<BindingDecl> scene_bindings();
 
 // The common shape of a compute pass: the scene bundle plus storage images bound by slot name,
 // one dispatch. Push constants and specialization constants optional.
+// prev: bind last frame's copy of a ping-pong resource (the slot declares read_prev).
 struct ImageBinding {
   uint32_t binding;
   const char* slot;
+  bool prev = false;
+};
+struct BufferBinding {  // a storage buffer slot
+  uint32_t binding;
+  const char* slot;
+  bool prev = false;
 };
 struct ComputeDispatch {
   std::string shader;
@@ -92,6 +124,9 @@ struct ComputeDispatch {
   uint32_t push_bytes = 0;
   std::vector<SpecConstant> spec_constants;
   bool scene = true;  // bind frame + scene buffers
+  std::vector<BufferBinding> buffers;
+  const char* indirect = nullptr;  // buffer slot holding VkDispatchIndirectCommand: replaces groups_*
+  uint64_t indirect_offset = 0;
 };
 void record_compute(RecordContext& ctx, const ComputeDispatch& d);
 

@@ -1,0 +1,18 @@
+// Builds the push-constant block every radiance-cache pass shares from Settings (C++ only).
+#pragma once
+#include "renderer/graph/pass.h"
+#include "radiance_cache_shared.h"
+
+namespace gib {
+
+inline glsl::RcParams make_rc_params(const Settings& s, uint32_t frame) {
+  const RadianceCacheSettings& r = s.rc;
+  glsl::RcParams p{};
+  p.grid = {r.probe_spacing, float(r.cascades), float(r.rays_per_probe), float(frame % r.cascades)};
+  p.cache = {r.cache_cell_size, r.cache_lod_distance, float(r.cache_log2_cells), float(r.cache_max_probe)};
+  p.bias = {r.normal_bias, r.view_bias, r.visibility_test ? 1.0f : 0.0f, r.probe_hysteresis};
+  p.misc = {frame, r.cache_reuse_frames, r.gather_divisor, r.light_grid_cascades};
+  return p;
+}
+
+}  // namespace gib
