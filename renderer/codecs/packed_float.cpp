@@ -1,7 +1,7 @@
 #include "renderer/codecs/packed_float.h"
 
+#include <bit>
 #include <cmath>
-#include <limits>
 
 namespace gib::codecs {
 
@@ -9,7 +9,7 @@ float half_to_float(uint16_t h) {
   uint32_t sign = (h >> 15) & 1, e = (h >> 10) & 0x1F, m = h & 0x3FF;
   float v;
   if (e == 0) v = std::ldexp(float(m), -24);
-  else if (e == 31) v = m ? std::numeric_limits<float>::quiet_NaN() : std::numeric_limits<float>::infinity();
+  else if (e == 31) v = std::bit_cast<float>(0x7f800000u | (m << 13));  // Inf; NaN keeps its payload
   else v = std::ldexp(float(m | 0x400), int(e) - 25);
   return sign ? -v : v;
 }
@@ -17,7 +17,7 @@ float half_to_float(uint16_t h) {
 float ufloat_to_float(uint32_t bits, uint32_t mantissa_bits) {
   uint32_t m = bits & ((1u << mantissa_bits) - 1), e = bits >> mantissa_bits;
   if (e == 0) return std::ldexp(float(m), -14 - int(mantissa_bits));
-  if (e == 31) return m ? std::numeric_limits<float>::quiet_NaN() : std::numeric_limits<float>::infinity();
+  if (e == 31) return std::bit_cast<float>(0x7f800000u | (m << (23 - mantissa_bits)));  // Inf, NaN
   return std::ldexp(float(m | (1u << mantissa_bits)), int(e) - 15 - int(mantissa_bits));
 }
 

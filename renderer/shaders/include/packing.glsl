@@ -1,0 +1,139 @@
+// Packed float formats by hand (owner: codecs). CPU mirrors in renderer/codecs/ (rgb9e5.h,
+// r11g11b10.h, half.h) agree bit for bit (tests/test_codecs.cpp); their headers state the
+// policies. Everything is integer arithmetic on float bits, so the result does not depend on a
+// device's float rounding, denormal flushing or NaN handling in min/max.
+//
+// RGB9E5 (E5B9G9R9_UFLOAT_PACK32 layout, stored in R32_UINT images): Vulkan spec shared
+// exponent, round half up; NaN / negatives -> 0; clamp to 65408.
+//   uint gib_pack_rgb9e5(vec3 rgb); vec3 gib_unpack_rgb9e5(uint p);
+// R11G11B10F (B10G11R11_UFLOAT_PACK32 layout): rounding toward zero, like an imageStore to a
+// B10G11R11 image on lavapipe and NVIDIA; negatives -> 0; finite above max -> max finite
+// (65024 / 64512); +Inf -> Inf; NaN -> NaN (0x7e0 / 0x3f0). gib_pack_r11g11b10_rne rounds to
+// nearest even (no downward bias).
+//   uint gib_pack_r11g11b10(vec3 rgb); uint gib_pack_r11g11b10_rne(vec3 rgb);
+//   vec3 gib_unpack_r11g11b10(uint p);
+// Half (IEEE binary16): round to nearest even with denormals, overflow -> Inf, NaN -> quiet
+// NaN with the sign and top payload bits. Equal to packHalf2x16 on lavapipe and NVIDIA for all
+// non-NaN inputs (Vulkan leaves packHalf2x16's rounding open; these are exact everywhere).
+//   uint gib_float_to_half(float f); float gib_half_to_float(uint h);
+//   uint gib_pack_half2x16(vec2 v); vec2 gib_unpack_half2x16(uint p);
+#ifndef GIB_PACKING_GLSL
+#define GIB_PACKING_GLSL
+
+// Round the non-negative finite float with bits a (< 0x7f800000) to a small float with 5
+// exponent bits (bias 15) and mbits mantissa bits, denormals included. Returns
+// exponent << mbits | mantissa; >= 31 << mbits means overflow. rne: nearest even, else toward 0.
+uint gib_round_to_small_float(uint a, uint mbits, bool rne) {
+  int e = int(a >> 23) - 127;
+  uint m = (e < -126) ? (a & 0x7fffffu) : ((a & 0x7fffffu) | 0x800000u);
+  uint exp_field;
+  int shift;
+  if (e >= -14) {
+    exp_field = uint(e + 15);
+    shift = 23 - int(mbits);
+  } else {
+    exp_field = 0u;
+    shift = 23 - int(mbits) + (-14 - e);
+  }
+  if (shift > 25) return 0u;
+  uint kept = m >> uint(shift);
+  uint rest = m & ((1u << uint(shift)) - 1u);
+  uint half_unit = 1u << uint(shift - 1);
+  uint bits = (exp_field == 0u) ? kept : ((exp_field << mbits) + (kept - (1u << mbits)));
+  if (rne && (rest > half_unit || (rest == half_unit && (kept & 1u) != 0u))) bits += 1u;
+  return bits;
+}
+
+// ---- half
+uint gib_float_to_half(float f) {
+  uint u = floatBitsToUint(f);
+  uint sign = (u >> 16) & 0x8000u;
+  uint a = u & 0x7fffffffu;
+  if (a > 0x7f800000u) return sign | 0x7e00u | ((a >> 13) & 0x1ffu);
+  if (a == 0x7f800000u) return sign | 0x7c00u;
+  uint h = gib_round_to_small_float(a, 10u, true);
+  return sign | min(h, 0x7c00u);
+}
+
+float gib_half_to_float(uint h) {
+  uint sign = (h & 0x8000u) << 16;
+  uint e = (h >> 10) & 0x1fu;
+  uint m = h & 0x3ffu;
+  if (e == 31u) return uintBitsToFloat(sign | 0x7f800000u | (m << 13));  // Inf, NaN
+  if (e == 0u) {
+    // Denormal: m * 2^-24, exact (a normal float); the sign goes on last so -0 stays -0.
+    float v = float(m) * uintBitsToFloat(0x33800000u);
+    return uintBitsToFloat(sign | floatBitsToUint(v));
+  }
+  return uintBitsToFloat(sign | ((e + 112u) << 23) | (m << 13));
+}
+
+uint gib_pack_half2x16(vec2 v) { return gib_float_to_half(v.x) | (gib_float_to_half(v.y) << 16); }
+vec2 gib_unpack_half2x16(uint p) {
+  return vec2(gib_half_to_float(p & 0xffffu), gib_half_to_float(p >> 16));
+}
+
+// ---- R11G11B10F
+uint gib_encode_ufloat(float f, uint mbits, bool rne) {
+  uint u = floatBitsToUint(f);
+  uint inf_bits = 31u << mbits;
+  if ((u & 0x7fffffffu) > 0x7f800000u) return inf_bits | (1u << (mbits - 1u));  // NaN
+  if ((u & 0x80000000u) != 0u) return 0u;  // negative, -0, -Inf
+  if (u == 0x7f800000u) return inf_bits;   // +Inf
+  return min(gib_round_to_small_float(u, mbits, rne), inf_bits - 1u);
+}
+
+float gib_decode_ufloat(uint bits, uint mbits) {
+  uint e = bits >> mbits;
+  uint m = bits & ((1u << mbits) - 1u);
+  if (e == 31u) return uintBitsToFloat(0x7f800000u | (m << (23u - mbits)));  // Inf, NaN
+  if (e == 0u) return float(m) * uintBitsToFloat((127u - 14u - mbits) << 23);  // m * 2^(-14-mbits)
+  return uintBitsToFloat(((e + 112u) << 23) | (m << (23u - mbits)));
+}
+
+uint gib_pack_r11g11b10(vec3 rgb) {
+  return gib_encode_ufloat(rgb.r, 6u, false) | (gib_encode_ufloat(rgb.g, 6u, false) << 11) |
+         (gib_encode_ufloat(rgb.b, 5u, false) << 22);
+}
+uint gib_pack_r11g11b10_rne(vec3 rgb) {
+  return gib_encode_ufloat(rgb.r, 6u, true) | (gib_encode_ufloat(rgb.g, 6u, true) << 11) |
+         (gib_encode_ufloat(rgb.b, 5u, true) << 22);
+}
+vec3 gib_unpack_r11g11b10(uint p) {
+  return vec3(gib_decode_ufloat(p & 0x7ffu, 6u), gib_decode_ufloat((p >> 11) & 0x7ffu, 6u),
+              gib_decode_ufloat(p >> 22, 5u));
+}
+
+// ---- RGB9E5
+uint gib_rgb9e5_clamp_bits(float f) {
+  uint u = floatBitsToUint(f);
+  return (u > 0x7f800000u) ? 0u : min(u, 0x477f8000u);  // NaN, negatives -> 0; max 65408
+}
+
+// floor(c / 2^unit_exp + 0.5) for the clamped channel with bits u.
+uint gib_rgb9e5_round(uint u, int unit_exp) {
+  if (u < 0x00800000u) return 0u;
+  uint m = (u & 0x7fffffu) | 0x800000u;
+  int shift = unit_exp - (int(u >> 23) - 150);
+  if (shift > 24) return 0u;
+  return (m + (1u << uint(shift - 1))) >> uint(shift);
+}
+
+uint gib_pack_rgb9e5(vec3 rgb) {
+  uint r = gib_rgb9e5_clamp_bits(rgb.r);
+  uint g = gib_rgb9e5_clamp_bits(rgb.g);
+  uint b = gib_rgb9e5_clamp_bits(rgb.b);
+  uint mx = max(r, max(g, b));
+  int exp_shared = max(int(mx >> 23) - 127, -16) + 16;
+  if (gib_rgb9e5_round(mx, exp_shared - 24) == 512u) exp_shared += 1;
+  int unit = exp_shared - 24;
+  return gib_rgb9e5_round(r, unit) | (gib_rgb9e5_round(g, unit) << 9) |
+         (gib_rgb9e5_round(b, unit) << 18) | (uint(exp_shared) << 27);
+}
+
+vec3 gib_unpack_rgb9e5(uint p) {
+  float scale = uintBitsToFloat(((p >> 27) + 103u) << 23);  // 2^(e - 24): always a normal float
+  return vec3(uvec3(p, p >> 9, p >> 18) & 0x1ffu) * scale;
+}
+
+#endif  // GIB_PACKING_GLSL
