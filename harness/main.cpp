@@ -5,6 +5,7 @@
 #include <exception>
 
 #include "harness/compare.h"
+#include "harness/perf/cli.h"
 #include "harness/render.h"
 #include "harness/runner.h"
 #include "harness/sweep.h"
@@ -78,6 +79,9 @@ int main(int argc, char** argv) {
   compare->add_option("--error-map", co.error_map, "write the magma error map PNG");
   compare->add_flag("--json", co.json, "print one JSON object");
 
+  gib::perf::PerfCli perf;
+  gib::perf::add_perf_commands(app, perf);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -85,6 +89,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (app.got_subcommand("devices")) return gib::cmd_devices();
+    if (int rc = gib::perf::run_perf_commands(perf); rc >= 0) return rc;
     if (app.got_subcommand("run")) return gib::cmd_run(run_opts);
     if (app.got_subcommand("update-goldens")) return gib::cmd_update_goldens(up);
     if (app.got_subcommand("sweep")) return gib::cmd_sweep(sweep_opts);

@@ -1,0 +1,71 @@
+// `gibench bench` and `gibench perf-diff` (also built into gibench-perf, which links no
+// OpenImageIO so it can be carried to a GPU machine; see bench/README.md).
+//
+// bench: runs every technique's passes at each console profile's workload, times them
+// (median of frames after warm-up, repeated), splits each pass into memory and compute time
+// with the calibrated device throughput, scales both to every profile, compares with the seed
+// timings, measures its own noise floor, writes JSON (all samples) and appends a history line.
+// perf-diff: per pass, a Mann-Whitney rank test between two such files (or Google Benchmark
+// JSON with repetitions); flags changes outside noise; exit 1 on any regression.
+#pragma once
+#include <cstdint>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "renderer/graph/graph.h"
+
+namespace gib::perf {
+
+struct BenchOptions {
+  std::string profiles = "all";
+  std::vector<std::string> techniques;  // empty: every technique
+  std::string case_name = "cornell";    // a case (cases/<name>.json), a scene, or a path
+  std::string preset = "medium";
+  uint32_t frames = 0;        // timed frames per repeat (0: 5 on a CPU device, 30 on a GPU)
+  uint32_t repeats = 2;       // fresh executor each; >= 2 gives the noise floor
+  uint32_t warmup = 0;        // frames before timing (0: 1 on a CPU device, 5 on a GPU)
+  std::string scale_resolution;  // "1/8" or "0.125"; "" auto: 1 on a GPU, 1/8 on a CPU device
+  std::string json;              // write the run here
+  std::string history;           // "" : <source>/bench/history.jsonl
+  bool no_history = false;
+  std::string device;
+  std::string data_dir;
+  uint32_t calibration_repeats = 7;
+  double min_change = 0.02;
+};
+int cmd_bench(const BenchOptions& o);
+
+struct DiffOptions {
+  std::string base, next;
+  double confidence = 0.95;
+  double min_change = 0.02;
+};
+// 0: no regression; 1: at least one; errors throw.
+int cmd_perf_diff(const DiffOptions& o);
+
+// Bytes a running pass touches per frame: resources it reads (read, read_write, read_prev; one
+// copy each) and the plan's bytes_written.
+struct PassBytes {
+  uint64_t read = 0, written = 0;
+  uint64_t total() const { return read + written; }
+};
+PassBytes pass_bytes(const Plan& plan, const PlannedPass& pass);
+
+// Samples per benchmark key from a `gibench bench --json` file ("<technique>/<pass>/<WxH>",
+// ms per frame) or a Google Benchmark JSON file (run_name, one sample per repetition, ms).
+// Throws PerfError naming the file and field on malformed input.
+struct SampleFile {
+  std::string format;  // "gibench-perf-1" or "google-benchmark"
+  std::string device;
+  std::map<std::string, std::vector<double>> samples;
+  std::map<std::string, double> detectable;  // noise floor per key, when the file has one
+};
+SampleFile parse_sample_file(const std::string& text, const std::string& file);
+SampleFile load_sample_file(const std::string& path);
+
+// "1/8", "0.125", "1" -> fraction in (0, 1]; PerfError otherwise.
+double parse_scale(const std::string& text);
+
+}  // namespace gib::perf

@@ -1,0 +1,276 @@
+// Perf tooling: the rank test and its interval on synthetic samples with known answers, the
+// noise-floor estimate, the console-scaling arithmetic, plan byte counts, and error messages of
+// the profile / sample loaders. No timing here: timings belong in benchmarks.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <random>
+
+#include "harness/perf/perf.h"
+#include "harness/perf/profiles.h"
+#include "harness/perf/stats.h"
+
+namespace gib::perf {
+namespace {
+
+std::vector<double> lognormal(uint32_t seed, size_t n, double median, double sigma) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> z(0, 1);
+  std::vector<double> v;
+  for (size_t i = 0; i < n; ++i) v.push_back(median * std::exp(sigma * z(rng)));
+  return v;
+}
+
+// Evenly spread quantiles of a log-normal: the same "shape" at every n, no sampling luck.
+std::vector<double> ideal(size_t n, double median, double sigma) {
+  std::vector<double> v;
+  for (size_t i = 0; i < n; ++i) v.push_back(median * std::exp(sigma * normal_quantile((i + 0.5) / double(n))));
+  return v;
+}
+
+TEST(PerfStats, ExactNullDistributionMatchesCounting) {
+  // m = n = 5: 252 equally likely orderings; U <= 2 in 1 + 1 + 2 of them.
+  auto cdf = mann_whitney_cdf(5, 5);
+  ASSERT_EQ(cdf.size(), 26u);
+  EXPECT_NEAR(cdf[0], 1.0 / 252, 1e-12);
+  EXPECT_NEAR(cdf[2], 4.0 / 252, 1e-12);
+  EXPECT_NEAR(cdf[3], 7.0 / 252, 1e-12);
+  EXPECT_NEAR(cdf[25], 1.0, 1e-12);
+  for (size_t u = 0; u < 25; ++u) EXPECT_NEAR(cdf[u], 1.0 - cdf[24 - u], 1e-12) << u;  // symmetric
+}
+
+TEST(PerfStats, CompleteSeparationHasTheSmallestExactP) {
+  std::vector<double> base{1, 2, 3, 4, 5}, next{6, 7, 8, 9, 10};
+  RankTest t = mann_whitney(base, next);
+  EXPECT_TRUE(t.exact);
+  EXPECT_DOUBLE_EQ(t.u, 25);
+  EXPECT_NEAR(t.p, 2.0 / 252, 1e-12);
+  EXPECT_TRUE(t.ci_valid);
+  EXPECT_GT(t.ci_low, 0);
+}
+
+TEST(PerfStats, IdenticalSamplesAreUnchanged) {
+  auto a = lognormal(1, 20, 5.0, 0.05);
+  RankTest t = mann_whitney(a, a);
+  EXPECT_NEAR(t.change, 0, 1e-12);
+  EXPECT_GT(t.p, 0.9);
+  EXPECT_LT(t.ci_low, 0);
+  EXPECT_GT(t.ci_high, 0);
+  EXPECT_EQ(judge(t, 0.0), Verdict::unchanged);
+}
+
+TEST(PerfStats, SameDistributionIsRarelyFlagged) {
+  // 200 comparisons of two independent draws from one distribution: at 95% about 2.5% should
+  // come out as regressions by chance; far more means the test or its interval is wrong.
+  int flagged = 0;
+  for (uint32_t s = 0; s < 200; ++s) {
+    RankTest t = mann_whitney(lognormal(2 * s + 10, 15, 3.0, 0.1), lognormal(2 * s + 11, 15, 3.0, 0.1));
+    flagged += judge(t, 0.0) == Verdict::regression;
+  }
+  EXPECT_LE(flagged, 12);
+}
+
+TEST(PerfStats, TenPercentShiftWithLowNoiseIsFlagged) {
+  auto base = lognormal(7, 10, 2.0, 0.01);
+  auto next = lognormal(8, 10, 2.2, 0.01);
+  RankTest t = mann_whitney(base, next);
+  EXPECT_EQ(judge(t, 0.02), Verdict::regression);
+  EXPECT_NEAR(t.change, 0.10, 0.02);
+  EXPECT_LT(t.ci_low, 0.10);
+  EXPECT_GT(t.ci_high, 0.10);
+  // The same shift the other way is an improvement, not a regression.
+  EXPECT_EQ(judge(mann_whitney(next, base), 0.02), Verdict::improvement);
+  // Below min_change it is not worth flagging even though it is significant.
+  EXPECT_EQ(judge(t, 0.2), Verdict::unchanged);
+}
+
+TEST(PerfStats, TooFewSamplesCannotReachTheConfidence) {
+  // m = n = 3: the most extreme ordering has p = 2/20 = 0.1 > 0.05.
+  RankTest t = mann_whitney({1, 1.01, 1.02}, {2, 2.01, 2.02});
+  EXPECT_FALSE(t.ci_valid);
+  EXPECT_EQ(judge(t, 0.0), Verdict::too_few_samples);
+}
+
+TEST(PerfStats, TiesUseTheNormalApproximation) {
+  RankTest t = mann_whitney({1, 1, 1, 2, 2, 2, 2, 1}, {1, 2, 2, 2, 2, 2, 2, 2});
+  EXPECT_FALSE(t.exact);
+  EXPECT_GT(t.p, 0);
+  EXPECT_LE(t.p, 1);
+  EXPECT_THROW(mann_whitney({}, {1.0}), std::invalid_argument);
+  EXPECT_THROW(mann_whitney({1.0, -1.0}, {1.0}), std::invalid_argument);
+}
+
+TEST(PerfStats, DetectableRegressionShrinksWithMoreSamples) {
+  double prev = INFINITY;
+  for (size_t n : {5, 10, 20, 40, 80}) {
+    double d = detectable_regression(ideal(n, 1.0, 0.05));
+    EXPECT_LT(d, prev) << n;
+    EXPECT_GT(d, 0) << n;
+    prev = d;
+  }
+  EXPECT_LT(prev, 0.03);  // 80 samples of 5% noise resolve a few percent
+  EXPECT_TRUE(std::isinf(detectable_regression(ideal(3, 1.0, 0.05))));  // 3 vs 3 never reaches 95%
+}
+
+TEST(PerfStats, DetectableRegressionIsTheFlaggingThreshold) {
+  auto x = ideal(12, 4.0, 0.04);
+  double d = detectable_regression(x);
+  auto scaled = [&](double s) {
+    std::vector<double> y;
+    for (double v : x) y.push_back(v * (1 + s));
+    return y;
+  };
+  EXPECT_EQ(judge(mann_whitney(x, scaled(d * 1.01)), 0.0), Verdict::regression);
+  EXPECT_NE(judge(mann_whitney(x, scaled(d * 0.99)), 0.0), Verdict::regression);
+  // More noise, same n: a larger floor.
+  EXPECT_GT(detectable_regression(ideal(12, 4.0, 0.08)), d);
+}
+
+TEST(PerfStats, SummaryQuantiles) {
+  Summary s = summarize_samples({5, 1, 4, 2, 3});
+  EXPECT_DOUBLE_EQ(s.median, 3);
+  EXPECT_DOUBLE_EQ(s.q1, 2);
+  EXPECT_DOUBLE_EQ(s.q3, 4);
+  EXPECT_DOUBLE_EQ(s.min, 1);
+  EXPECT_DOUBLE_EQ(s.max, 5);
+}
+
+TEST(PerfModel, SplitAndScaleOnKnownNumbers) {
+  DeviceThroughput dev{10000, 1000};  // 10 TFLOP/s, 1000 GB/s
+  PassSplit s = split_pass(3.0, 1e9, dev);  // 1 GB at 1000 GB/s = 1 ms of memory
+  EXPECT_DOUBLE_EQ(s.memory_ms, 1.0);
+  EXPECT_DOUBLE_EQ(s.compute_ms, 2.0);
+  ConsoleProfile p;
+  p.fp32_tflops = 5;       // half the FLOPs: compute x2
+  p.bandwidth_gbs = 250;   // a quarter of the bandwidth: memory x4
+  EXPECT_DOUBLE_EQ(scale_to_profile(s, dev, p), 1.0 * 4 + 2.0 * 2);
+  // More bytes than the measured time allows at the calibrated rate: all memory, no compute.
+  PassSplit c = split_pass(3.0, 5e9, dev);
+  EXPECT_DOUBLE_EQ(c.memory_ms, 3.0);
+  EXPECT_DOUBLE_EQ(c.compute_ms, 0.0);
+  EXPECT_DOUBLE_EQ(scale_to_profile(c, dev, p), 12.0);
+}
+
+TEST(PerfModel, PassBytesFromThePlan) {
+  std::vector<PassDecl> decls(2);
+  decls[0].name = "a";
+  decls[0].slots = {{"img", Access::write, {Format::rgba32_float, SizeRule::render}}};
+  decls[1].name = "b";
+  decls[1].slots = {{"img", Access::read, {}}, {"out", Access::write, {Format::rgba8_unorm, SizeRule::half}}};
+  CompileOptions co;
+  co.outputs = {"out"};
+  co.render_width = 16;
+  co.render_height = 8;
+  Plan plan = compile(decls, co);
+  auto running = plan.running();
+  ASSERT_EQ(running.size(), 2u);
+  PassBytes a = pass_bytes(plan, *running[0]), b = pass_bytes(plan, *running[1]);
+  EXPECT_EQ(a.read, 0u);
+  EXPECT_EQ(a.written, 16u * 8 * 16);
+  EXPECT_EQ(b.read, 16u * 8 * 16);
+  EXPECT_EQ(b.written, 8u * 4 * 4);
+}
+
+TEST(PerfModel, ScaleParsing) {
+  EXPECT_DOUBLE_EQ(parse_scale("1/8"), 0.125);
+  EXPECT_DOUBLE_EQ(parse_scale("0.25"), 0.25);
+  EXPECT_DOUBLE_EQ(parse_scale("1"), 1.0);
+  EXPECT_THROW(parse_scale("2"), PerfError);
+  EXPECT_THROW(parse_scale("1/0"), PerfError);
+  EXPECT_THROW(parse_scale("abc"), PerfError);
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const PerfError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(PerfProfiles, ErrorsNameTheFileAndField) {
+  const std::string ok_profile =
+      R"("fp32_tflops": 4.0, "bandwidth_gbs": 224.0, "targets": {"resolution": [1600, 900]})";
+  auto one = [&](const std::string& body) { return R"({"profiles": {"xss": {)" + body + "}}}"; };
+  EXPECT_EQ(parse_profiles(one(ok_profile), "p.json").at(0).width, 1600u);
+
+  std::string e = error_of([&] { parse_profiles(one(R"("fp32_tflops": 4, "targets": {"resolution": [1, 1]})"), "p.json"); });
+  EXPECT_NE(e.find("p.json"), std::string::npos) << e;
+  EXPECT_NE(e.find("/profiles/xss/bandwidth_gbs"), std::string::npos) << e;
+
+  e = error_of([&] { parse_profiles(one(R"("fp32_tflops": "fast", "bandwidth_gbs": 1, "targets": {"resolution": [1, 1]})"), "p.json"); });
+  EXPECT_NE(e.find("/profiles/xss/fp32_tflops: expected a positive number"), std::string::npos) << e;
+
+  e = error_of([&] { parse_profiles(one(R"("fp32_tflops": 1, "bandwidth_gbs": 1, "targets": {"resolution": [1600]})"), "q.json"); });
+  EXPECT_NE(e.find("q.json: /profiles/xss/targets/resolution"), std::string::npos) << e;
+
+  e = error_of([&] { parse_profiles("{\"profiles\": ", "broken.json"); });
+  EXPECT_NE(e.find("broken.json"), std::string::npos) << e;
+  EXPECT_NE(e.find("parse error"), std::string::npos) << e;
+
+  e = error_of([&] { load_profiles("/nonexistent/profiles.json"); });
+  EXPECT_NE(e.find("/nonexistent/profiles.json"), std::string::npos) << e;
+
+  e = error_of([&] { select_profiles(parse_profiles(one(ok_profile), "p.json"), "ps9"); });
+  EXPECT_NE(e.find("xss"), std::string::npos) << e;
+  EXPECT_NE(e.find("ps9"), std::string::npos) << e;
+
+  e = error_of([&] {
+    parse_seed_table(R"({"idtech8_gi_hotspot": {"platforms": {"ps5": {"resolution": [2560, 1440], "upscale": "slow"}}}})",
+                     "s.json");
+  });
+  EXPECT_NE(e.find("s.json: /idtech8_gi_hotspot/platforms/ps5/upscale"), std::string::npos) << e;
+}
+
+TEST(PerfProfiles, SharedDataLoads) {
+  std::string dir;
+  try {
+    dir = find_data_dir("");
+  } catch (const PerfError&) {
+    GTEST_SKIP() << "no ../shared/data beside the checkout";
+  }
+  auto profiles = load_profiles(dir + "/console-profiles.json");
+  ASSERT_GE(profiles.size(), 1u);
+  auto ps5 = select_profiles(profiles, "ps5");
+  EXPECT_EQ(ps5.at(0).width, 2560u);
+  SeedTable seeds = load_seed_table(dir + "/seed-timings.json");
+  ASSERT_NE(seeds.find("ps5"), nullptr);
+  EXPECT_GT(seeds.find("ps5")->ms.at("final_gather"), 0);
+  // Every pass mapped to a seed row names a row the table has.
+  for (auto& [pass, key] : seed_key_of_pass()) EXPECT_TRUE(seeds.find("ps5")->ms.count(key)) << pass << " -> " << key;
+}
+
+TEST(PerfSamples, ReadsBothFormatsAndNamesBadFields) {
+  SampleFile g = parse_sample_file(
+      R"({"format": "gibench-perf-1", "device": {"name": "dev"}, "runs": [{"passes": [{"key": "t/p/8x8",
+          "samples_ms": [1.0, 2.0]}], "frame": {"key": "t/frame/8x8", "samples_ms": [3.0]}}],
+          "noise_floor": {"t/p/8x8": {"detectable_regression": 0.05}}})",
+      "a.json");
+  EXPECT_EQ(g.device, "dev");
+  EXPECT_EQ(g.samples.at("t/p/8x8").size(), 2u);
+  EXPECT_EQ(g.samples.at("t/frame/8x8").size(), 1u);
+  EXPECT_DOUBLE_EQ(g.detectable.at("t/p/8x8"), 0.05);
+
+  SampleFile b = parse_sample_file(
+      R"({"context": {}, "benchmarks": [
+          {"name": "x/repeats:2", "run_name": "x", "run_type": "iteration", "real_time": 2000, "time_unit": "us"},
+          {"name": "x/repeats:2", "run_name": "x", "run_type": "iteration", "real_time": 3, "time_unit": "ms"},
+          {"name": "x_mean", "run_name": "x", "run_type": "aggregate", "real_time": 2.5, "time_unit": "ms"}]})",
+      "gb.json");
+  ASSERT_EQ(b.samples.at("x").size(), 2u);
+  EXPECT_DOUBLE_EQ(b.samples.at("x")[0], 2.0);
+
+  std::string e = error_of([] {
+    parse_sample_file(R"({"format": "gibench-perf-1", "runs": [{"passes": [{"key": "k", "samples_ms": [1, -2]}]}]})",
+                      "bad.json");
+  });
+  EXPECT_NE(e.find("bad.json: /runs/0/passes/0/samples_ms"), std::string::npos) << e;
+  e = error_of([] { parse_sample_file(R"({"something": 1})", "other.json"); });
+  EXPECT_NE(e.find("other.json"), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace gib::perf
