@@ -1,0 +1,120 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "renderer/passes/radiance_cache_shade/radiance_cache_shade_shared.h"
+#include "frame.glsl"
+#include "scene.glsl"
+GIB_SCENE_BUFFERS(0, kBindSceneFirst)
+#include "hash.glsl"
+#include "material.glsl"
+layout(constant_id = kRcShadeSpecSun) const bool kHasSun = true;
+layout(constant_id = kRcShadeSpecSky) const bool kHasSky = true;
+layout(constant_id = kRcShadeSpecLocal) const bool kHasLocal = true;
+layout(constant_id = kRcShadeSpecAlpha) const bool kHasAlpha = true;
+#define GIB_ALPHA_TEST
+bool gib_alpha_accept(uint triangle, float u, float v) {
+  return !kHasAlpha || gib_alpha_accept_default(triangle, u, v, gib_pcg(triangle ^ gib_frame_index()));
+}
+#include "bvh.glsl"
+#include "lights.glsl"
+#include "surface.glsl"
+
+layout(local_size_x = kRcShadeGroup) in;
+layout(std430, set = 0, binding = kRcShadeBindHits) readonly buffer HitBuffer { ProbeHit probe_hits[]; };
+layout(std430, set = 0, binding = kRcShadeBindActive) readonly buffer ActiveBuffer { uint rc_active[]; };
+layout(std430, set = 0, binding = kRcShadeBindCounters) readonly buffer CounterBuffer { RcCounters counters; };
+layout(push_constant) uniform Push {
+  RcParams rc;
+  LightGridParams lg;
+};
+#include "probe_volume.glsl"
+RC_PROBE_IMAGES(kRcShadeBindProbeIrradiance, kRcShadeBindProbeVisibility)
+#include "radiance_cache.glsl"
+RC_CELL_BUFFER(kRcShadeBindCells, )
+#define LG_PARAMS lg
+#include "light_grid.glsl"
+RC_LIGHT_GRID_BUFFER(kRcShadeBindLightGrid)
+
+const float kFar = 3.4e38;
+
+// Lambertian response (times pi: multiplied by irradiance-like e, divided by pi by the caller)
+// to light from wi at a point with normal n facing the viewer: reflection in front, transmission
+// (translucency) from behind.
+float facing_weight(float translucency, vec3 n, vec3 wi) {
+  float c = dot(n, wi);
+  return c > 0.0 ? (1.0 - translucency) * c : translucency * (-c);
+}
+
+// Radiance leaving the surface at a hit of a bounce ray travelling along wi.
+vec3 bounce_radiance(GibHit hit, vec3 wi, uint now) {
+  GibSurface s = gib_surface(hit.triangle, hit.u, hit.v);
+  vec3 q = s.position;
+  float lod;
+  uint i = rc_find_cell(rc_cell_key(q, lod));
+  if (i != 0xffffffffu) {
+    uint shaded = rc_cells[i].shaded_frame;
+    if (shaded != 0u && shaded != now) return gib_unpack_rgb9e5(rc_cells[i].radiance);
+  }
+  GpuMaterial m = gib_materials[s.material];
+  vec3 n = dot(s.normal, wi) > 0.0 ? -s.normal : s.normal;
+  return m.emissive + gib_material_albedo(m, s.uv) * rc_sample_irradiance(q, n, -wi);
+}
+
+void main() {
+  uint index = gl_GlobalInvocationID.x;
+  if (index >= counters.active_cells) return;
+  uint cell = rc_active[index];
+  uint hit_id = rc_cells[cell].hit_index;
+  ProbeHit h = probe_hits[hit_id];
+  uint now = rc.misc.x + 1u;
+  uint rays = rc_rays_per_probe();
+  uint probe = hit_id / rays, ray = hit_id - probe * rays;
+  vec3 d = rc_ray_direction(ray, rays, rc_frame_rotation(rc.misc.x));
+
+  uint tri = h.triangle_plus1 - 1u;
+  vec2 bary = vec2(h.barycentrics & 0xffffu, h.barycentrics >> 16u) * (1.0 / 65535.0);
+  GibSurface s = gib_surface(tri, bary.x, bary.y);
+  GpuMaterial m = gib_materials[s.material];
+  vec3 albedo = gib_material_albedo(m, s.uv);
+  float translucency = m.translucency;
+  // The side the probe ray saw.
+  vec3 n = dot(s.normal, d) > 0.0 ? -s.normal : s.normal;
+  vec3 x = s.position;
+  GibRng rng = gib_rng(gib_seed(), rc.misc.x, uvec2(cell, hit_id), 21u);
+  vec3 result = m.emissive;
+
+  if (kHasSun && gib_frame.sun_irradiance.w > 0.0) {
+    vec3 wi = gib_uniform_cone(gib_frame.sun_dir.xyz, gib_frame.sun_dir.w, gib_next2(rng));
+    float w = facing_weight(translucency, n, wi);
+    if (w > 0.0 && !trace_any(gib_offset_ray(x, dot(n, wi) > 0.0 ? n : -n), wi, 0.0, kFar))
+      result += albedo / GIB_PI * w * gib_frame.sun_irradiance.rgb;
+  }
+  if (kHasLocal) {
+    uint base = lg_cell_base(x);
+    if (base != kLgInvalid) {
+      uint count = min(LG_CELL_COUNT(base), kLightGridMaxLights);
+      for (uint i = 0u; i < count; ++i) {
+        vec3 wi;
+        float dist;
+        vec3 e = gib_local_light(gib_lights[LG_CELL_LIGHT(base, i)], x, wi, dist);
+        float w = facing_weight(translucency, n, wi);
+        if (w <= 0.0 || all(equal(e, vec3(0.0)))) continue;
+        if (!trace_any(gib_offset_ray(x, dot(n, wi) > 0.0 ? n : -n), wi, 0.0, dist * 0.999))
+          result += albedo / GIB_PI * w * e;
+      }
+    }
+  }
+  {
+    // Sky and bounce: one cosine ray on the front, or (translucency) on the back.
+    vec3 side = translucency > 0.0 && gib_next(rng) < translucency ? -n : n;
+    vec3 wi = gib_cosine_hemisphere(side, gib_next2(rng));
+    GibHit hit;
+    vec3 l;
+    if (!trace_closest(gib_offset_ray(x, side), wi, 0.0, kFar, hit))
+      l = kHasSky ? gib_sky_radiance(wi) : vec3(0.0);
+    else
+      l = bounce_radiance(hit, wi, now);
+    result += albedo * l;
+  }
+  rc_cells[cell].radiance = gib_pack_rgb9e5(result);
+  rc_cells[cell].shaded_frame = now;
+}

@@ -1,0 +1,43 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "tests/rc_world_test_shared.h"
+#include "frame.glsl"
+layout(constant_id = kRcTestSpecMode) const uint kMode = 0u;
+layout(local_size_x = kRcTestGroup) in;
+layout(std430, set = 0, binding = kRcTestBindHits) readonly buffer HitBuffer { ProbeHit probe_hits[]; };
+layout(std430, set = 0, binding = kRcTestBindKeys) writeonly buffer KeyBuffer { RcTestKey keys[]; };
+layout(set = 0, binding = kRcTestBindIrradiance, r32ui) uniform readonly uimage2D atlas_irradiance;
+layout(set = 0, binding = kRcTestBindVisibility, rg16f) uniform readonly image2D atlas_visibility;
+layout(set = 0, binding = kRcTestBindDecoded, rgba32f) uniform writeonly image2D decoded;
+layout(push_constant) uniform Push { RcParams rc; };
+#include "probe_volume.glsl"
+#include "radiance_cache.glsl"
+
+void main() {
+  uint id = gl_GlobalInvocationID.x;
+  if (kMode == 0u) {
+    uint rays = rc_rays_per_probe();
+    if (id >= kProbeGridDim * kProbeGridDim * kProbeGridDim * rays) return;
+    ProbeHit h = probe_hits[id];
+    RcTestKey k;
+    k.position = vec4(0.0);
+    k.key = uvec4(0u);
+    if (h.triangle_plus1 != 0u) {
+      uint probe = id / rays, ray = id - probe * rays;
+      uint c = rc_updated_cascade();
+      vec3 p = rc_hit_position(rc_probe_position(c, rc_probe_coord(probe)),
+                               rc_ray_direction(ray, rays, rc_frame_rotation(rc.misc.x)), h.distance);
+      float lod;
+      uint key = rc_cell_key(p, lod);
+      k.position = vec4(p, lod);
+      k.key = uvec4(key, rc_cell_first_slot(key), 0u, 0u);
+    }
+    keys[id] = k;
+  } else {
+    ivec2 size = imageSize(decoded);
+    ivec2 t = ivec2(int(id) % size.x, int(id) / size.x);
+    if (t.y >= size.y) return;
+    vec2 m = imageLoad(atlas_visibility, t).xy;
+    imageStore(decoded, t, vec4(gib_unpack_rgb9e5(imageLoad(atlas_irradiance, t).x), m.x));
+  }
+}
