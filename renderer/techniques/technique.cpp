@@ -17,6 +17,15 @@ const std::vector<Technique>& techniques() {
        {"low", "medium", "high", "ultra"}},
       {"reference", "progressive path tracer (ground truth)", {"path_trace", "path_trace_resolve"}, "radiance",
        {"direct", "indirect_diffuse"}, {"low", "medium", "high", "ultra"}},
+      {"radiance-cache",
+       "idTech 8 GI: light grid, cascaded irradiance volumes, world radiance cache, 1/2-1/4 res final gather, "
+       "bilateral denoise, upscale + temporal filter (renderer/techniques/radiance_cache.md)",
+       {"visibility", "gbuffer", "direct_lighting", "light_grid", "probe_trace", "radiance_cache_update",
+        "radiance_cache_shade", "irradiance_volume_update", "final_gather", "gi_denoise", "gi_upscale", "composite"},
+       "final_color",
+       {"indirect_diffuse", "gi_irradiance", "direct_light", "probe_irradiance", "probe_visibility", "gather_sh_r",
+        "gbuffer_albedo", "gbuffer_normal", "gbuffer_position"},
+       {"low", "medium", "high", "ultra"}},
   };
   return t;
 }
@@ -43,6 +52,20 @@ Settings apply_preset(const Technique& t, const std::string& preset, Settings s)
   } else if (t.name == "reference") {
     static const uint32_t kBounces[] = {4, 8, 16, 64};
     s.max_bounces = kBounces[level];
+  } else if (t.name == "radiance-cache") {
+    // The seed's platform tiers: 16/32/64 rays per probe, 1/4 or 1/2 gather; cascades and
+    // cache size grow with quality (6 cascades and ~2^20 cells ship on consoles at 'ultra').
+    static const uint32_t kRays[] = {16, 32, 64, 64};
+    static const uint32_t kGather[] = {4, 2, 2, 2};
+    static const uint32_t kCascades[] = {2, 3, 4, 6};
+    static const uint32_t kCacheLog2[] = {13, 15, 16, 18};
+    s.rc.rays_per_probe = kRays[level];
+    s.rc.gather_divisor = kGather[level];
+    s.rc.cascades = kCascades[level];
+    s.rc.cache_log2_cells = kCacheLog2[level];
+    // The sky reaches surfaces through the GI (gather misses return it, in the SH), so
+    // direct_lighting must not add it again.
+    s.sky_rays = 0;
   }
   return s;
 }

@@ -1,0 +1,41 @@
+#include "renderer/passes/composite/composite.h"
+
+#include "renderer/passes/composite/composite_shared.h"
+
+namespace gib {
+namespace {
+
+class CompositePass final : public Pass {
+ public:
+  PassDecl declare(const Scene&, const Settings&) const override {
+    ResourceDesc color{Format::rgba32_float, SizeRule::render};
+    color.persistent = true;
+    PassDecl d;
+    d.name = "composite";
+    d.slots = {{"direct_light", Access::read},
+               {"gbuffer_albedo", Access::read},
+               {"gi_irradiance", Access::read},
+               {"final_color", Access::write, color},
+               {"indirect_diffuse", Access::write, {Format::rgba32_float, SizeRule::render}}};
+    return d;
+  }
+
+  void record(RecordContext& ctx) override {
+    using namespace glsl;
+    record_compute(ctx, {.shader = "composite.comp",
+                         .images = {{kCompositeBindDirect, "direct_light"},
+                                    {kCompositeBindAlbedo, "gbuffer_albedo"},
+                                    {kCompositeBindIrradiance, "gi_irradiance"},
+                                    {kCompositeBindColor, "final_color"},
+                                    {kCompositeBindIndirect, "indirect_diffuse"}},
+                         .groups_x = div_up(ctx.width("final_color"), kCompositeGroup),
+                         .groups_y = div_up(ctx.height("final_color"), kCompositeGroup),
+                         .scene = false});
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Pass> make_composite_pass() { return std::make_unique<CompositePass>(); }
+
+}  // namespace gib

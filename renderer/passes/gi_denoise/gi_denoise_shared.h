@@ -1,0 +1,31 @@
+#ifndef GIB_GI_DENOISE_SHARED_H
+#define GIB_GI_DENOISE_SHARED_H
+#include "frame_shared.h"
+GIB_SHARED_BEGIN
+GIB_CONST(uint, kDenoiseGroup, 8)
+GIB_CONST(uint, kDenoiseBindNormal, 8)     // gbuffer_normal (full res)
+GIB_CONST(uint, kDenoiseBindPosition, 9)   // gbuffer_position (full res)
+GIB_CONST(uint, kDenoiseBindHit, 10)       // gather_hit_distance
+GIB_CONST(uint, kDenoiseBindInR, 11)       // horizontal: gather_sh_*; vertical: gi_denoise_tmp_*
+GIB_CONST(uint, kDenoiseBindInG, 12)
+GIB_CONST(uint, kDenoiseBindInB, 13)
+GIB_CONST(uint, kDenoiseBindOutR, 14)      // horizontal: gi_denoise_tmp_*; vertical: gi_sh_*
+GIB_CONST(uint, kDenoiseBindOutG, 15)
+GIB_CONST(uint, kDenoiseBindOutB, 16)
+// Edge-stopping weights of a tap q for the centre g (gather pixels; geometry from their
+// representative full-res pixels g * divisor + divisor / 2, as final_gather):
+//   normal    pow(max(0, dot(n_g, n_q)), kDenoiseNormalPower)
+//   depth     exp(-rel / kDenoiseDepthSigma), rel = |dot(n_g, p_q - p_g)| / depth_g (distance of
+//             the tap from the centre's tangent plane, relative to the centre's view distance)
+//   hit       exp(-(dh / kDenoiseHitSigma)^2), dh = |h_q - h_g| / max(h_q, h_g)
+//   spatial   exp(-k^2 / (2 sigma^2)), sigma = radius / 2
+GIB_CONST(float, kDenoiseNormalPower, 32.0)
+GIB_CONST(float, kDenoiseDepthSigma, 0.02)
+GIB_CONST(float, kDenoiseHitSigma, 1.0)
+struct DenoisePush {
+  int axis_x, axis_y;  // (1, 0) horizontal, (0, 1) vertical
+  uint radius;         // taps either side
+  uint divisor;        // gather divisor (2 or 4)
+};
+GIB_SHARED_END
+#endif

@@ -1,0 +1,175 @@
+// gi_upscale kernel, included by gi_upscale_<format>.comp with GI_HISTORY_FORMAT defined
+// (0 RGB9E5 in r32ui, 1 rgba16f, 2 r11f_g11f_b10f, 3 rgba32f). See gi_upscale.h.
+#include "renderer/passes/gi_upscale/gi_upscale_shared.h"
+#include "frame.glsl"
+#include "sampling.glsl"
+#include "packing.glsl"
+#include "sh.glsl"
+
+layout(local_size_x = kUpscaleGroup, local_size_y = kUpscaleGroup) in;
+layout(set = 0, binding = kUpscaleBindNormal, rgba16f) uniform readonly image2D gb_normal;
+layout(set = 0, binding = kUpscaleBindPosition, rgba32f) uniform readonly image2D gb_position;
+layout(set = 0, binding = kUpscaleBindPrevNormal, rgba16f) uniform readonly image2D prev_normal;
+layout(set = 0, binding = kUpscaleBindPrevPosition, rgba32f) uniform readonly image2D prev_position;
+layout(set = 0, binding = kUpscaleBindShR, rgba16f) uniform readonly image2D sh_r;
+layout(set = 0, binding = kUpscaleBindShG, rgba16f) uniform readonly image2D sh_g;
+layout(set = 0, binding = kUpscaleBindShB, rgba16f) uniform readonly image2D sh_b;
+layout(set = 0, binding = kUpscaleBindPrevFrames, r32f) uniform readonly image2D prev_frames;
+layout(set = 0, binding = kUpscaleBindFrames, r32f) uniform writeonly image2D out_frames;
+layout(set = 0, binding = kUpscaleBindIrradiance, rgba32f) uniform writeonly image2D out_irradiance;
+layout(push_constant) uniform Push { UpscalePush push; };
+
+// History storage. store_history returns exactly what a later load returns: values are
+// quantised here with a known rounding (the codec's or packHalf2x16), so the image's own
+// conversion on store is exact.
+#if GI_HISTORY_FORMAT == 0
+layout(set = 0, binding = kUpscaleBindPrevHistory, r32ui) uniform readonly uimage2D prev_history;
+layout(set = 0, binding = kUpscaleBindHistory, r32ui) uniform writeonly uimage2D out_history;
+vec3 load_history(ivec2 q) { return gib_unpack_rgb9e5(imageLoad(prev_history, q).x); }
+vec3 store_history(ivec2 p, vec3 v) {
+  uint e = gib_pack_rgb9e5(v);
+  imageStore(out_history, p, uvec4(e, 0u, 0u, 0u));
+  return gib_unpack_rgb9e5(e);
+}
+#elif GI_HISTORY_FORMAT == 1
+layout(set = 0, binding = kUpscaleBindPrevHistory, rgba16f) uniform readonly image2D prev_history;
+layout(set = 0, binding = kUpscaleBindHistory, rgba16f) uniform writeonly image2D out_history;
+vec3 load_history(ivec2 q) { return imageLoad(prev_history, q).rgb; }
+vec3 store_history(ivec2 p, vec3 v) {
+  v = min(v, vec3(65504.0));
+  vec3 h = vec3(unpackHalf2x16(packHalf2x16(v.rg)), unpackHalf2x16(packHalf2x16(vec2(v.b, 0.0))).x);
+  imageStore(out_history, p, vec4(h, 1.0));
+  return h;
+}
+#elif GI_HISTORY_FORMAT == 2
+layout(set = 0, binding = kUpscaleBindPrevHistory, r11f_g11f_b10f) uniform readonly image2D prev_history;
+layout(set = 0, binding = kUpscaleBindHistory, r11f_g11f_b10f) uniform writeonly image2D out_history;
+vec3 load_history(ivec2 q) { return imageLoad(prev_history, q).rgb; }
+vec3 store_history(ivec2 p, vec3 v) {
+  vec3 h = gib_unpack_r11g11b10(gib_pack_r11g11b10(v));
+  imageStore(out_history, p, vec4(h, 1.0));
+  return h;
+}
+#else
+layout(set = 0, binding = kUpscaleBindPrevHistory, rgba32f) uniform readonly image2D prev_history;
+layout(set = 0, binding = kUpscaleBindHistory, rgba32f) uniform writeonly image2D out_history;
+vec3 load_history(ivec2 q) { return imageLoad(prev_history, q).rgb; }
+vec3 store_history(ivec2 p, vec3 v) {
+  imageStore(out_history, p, vec4(v, 1.0));
+  return v;
+}
+#endif
+
+void write_out(ivec2 p, vec3 value, float frames) {
+  vec3 stored = store_history(p, value);
+  imageStore(out_frames, p, vec4(frames, 0.0, 0.0, 0.0));
+  imageStore(out_irradiance, p, vec4(stored, 1.0));
+}
+
+// 4-tap bilateral upscale of the denoised gather SH, evaluated with the full-res normal.
+// Returns false when no gather sample around p lies on p's surface.
+bool upscale(ivec2 p, vec3 x, vec3 n, float dist, out vec3 irradiance) {
+  irradiance = vec3(0.0);
+  int div = int(push.divisor);
+  ivec2 full = imageSize(gb_position), gsize = imageSize(sh_r);
+  // Gather pixel g sits at full-res pixel g * div + div / 2.
+  vec2 xg = (vec2(p) - float(div / 2)) / float(div);
+  ivec2 g0 = ivec2(floor(xg));
+  vec2 f = xg - vec2(g0);
+  vec4 acc_r = vec4(0.0), acc_g = vec4(0.0), acc_b = vec4(0.0);
+  float acc_w = 0.0, best = 0.0;
+  ivec2 best_g = ivec2(-1);
+  for (int i = 0; i < 4; ++i) {
+    ivec2 o = ivec2(i & 1, i >> 1);
+    ivec2 g = clamp(g0 + o, ivec2(0), gsize - 1);
+    vec4 gp = imageLoad(gb_position, min(g * div + div / 2, full - 1));
+    if (gp.w == 0.0) continue;
+    vec3 gn = imageLoad(gb_normal, min(g * div + div / 2, full - 1)).xyz;
+    float similar = pow(max(0.0, dot(n, gn)), kUpscaleNormalPower) *
+                    exp(-abs(dot(n, gp.xyz - x)) / (dist * kUpscaleDepthSigma));
+    if (similar > best) {
+      best = similar;
+      best_g = g;
+    }
+    float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y) * similar;
+    acc_r += w * imageLoad(sh_r, g);
+    acc_g += w * imageLoad(sh_g, g);
+    acc_b += w * imageLoad(sh_b, g);
+    acc_w += w;
+  }
+  if (acc_w > 1e-4) {
+    acc_r /= acc_w;
+    acc_g /= acc_w;
+    acc_b /= acc_w;
+  } else if (best > 1e-3) {  // the bilinear weight sits on other surfaces: take the most similar tap
+    acc_r = imageLoad(sh_r, best_g);
+    acc_g = imageLoad(sh_g, best_g);
+    acc_b = imageLoad(sh_b, best_g);
+  } else {
+    return false;
+  }
+  vec3 e = vec3(gib_sh2_irradiance(acc_r, n), gib_sh2_irradiance(acc_g, n), gib_sh2_irradiance(acc_b, n));
+  irradiance = max(e, vec3(0.0));  // gib_sh2_irradiance returns irradiance / pi
+  return true;
+}
+
+// Last frame's history at x: bilinear over the 4 texels around its reprojection, each kept
+// only if it passes the disocclusion tests. Returns false when none does or x was off screen.
+bool reproject(vec3 x, vec3 n, out vec3 prev, out float frames) {
+  prev = vec3(0.0);
+  frames = 0.0;
+  if (push.history_valid == 0u) return false;
+  vec4 clip = gib_frame.prev_view_proj * vec4(x, 1.0);
+  if (clip.w <= 0.0) return false;
+  vec2 ndc = clip.xy / clip.w;
+  if (any(greaterThan(abs(ndc), vec2(1.0)))) return false;
+  ivec2 full = imageSize(prev_position);
+  vec2 px = (ndc * 0.5 + 0.5) * vec2(full) - 0.5;  // texel centres at integers
+  ivec2 q0 = ivec2(floor(px));
+  vec2 f = px - vec2(q0);
+  vec3 sum = vec3(0.0);
+  float sum_n = 0.0, sum_w = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    ivec2 o = ivec2(i & 1, i >> 1);
+    ivec2 q = q0 + o;
+    if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, full))) continue;
+    float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+    if (w <= 0.0) continue;
+    if (push.disocclusion != 0u) {
+      vec4 qp = imageLoad(prev_position, q);
+      if (qp.w == 0.0) continue;
+      vec3 qn = imageLoad(prev_normal, q).xyz;
+      if (abs(dot(qn, x - qp.xyz)) > kUpscaleDepthTolerance * clip.w) continue;
+      if (dot(n, qn) < kUpscaleNormalCos) continue;
+    }
+    sum += w * load_history(q);
+    sum_n += w * imageLoad(prev_frames, q).x;
+    sum_w += w;
+  }
+  if (sum_w < 1e-2) return false;
+  prev = sum / sum_w;
+  frames = sum_n / sum_w;
+  return true;
+}
+
+void main() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(p, imageSize(out_irradiance)))) return;
+  vec4 pos = imageLoad(gb_position, p);
+  if (pos.w == 0.0) {  // sky
+    write_out(p, vec3(0.0), 0.0);
+    return;
+  }
+  vec3 n = normalize(imageLoad(gb_normal, p).xyz);
+  vec3 curr, prev;
+  float frames;
+  bool have_curr = upscale(p, pos.xyz, n, pos.w, curr);
+  bool have_prev = reproject(pos.xyz, n, prev, frames);
+  if (!have_prev) frames = 0.0;  // rejected: restart the average
+  if (!have_curr) {
+    write_out(p, prev, frames);  // nothing new here this frame: keep what history says
+    return;
+  }
+  // New = (n Prev + Curr) / (n + 1), n = min(n + 1, n_max)  [Mattauch 2010]
+  write_out(p, (frames * prev + curr) / (frames + 1.0), min(frames + 1.0, push.max_frames));
+}

@@ -1,0 +1,480 @@
+// GPU tests of the radiance-cache technique's screen-space half: final_gather, gi_denoise,
+// gi_upscale, composite (lavapipe, small sizes). The world-sampling passes are replaced by a
+// test-only pass that provides zeroed rc_cells / probe atlases (so the world cache never
+// answers and the volumes return 0): these tests isolate the screen half.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <nlohmann/json.hpp>
+
+#include "renderer/graph/executor.h"
+#include "renderer/passes/composite/composite.h"
+#include "renderer/passes/direct_lighting/direct_lighting.h"
+#include "renderer/passes/final_gather/final_gather.h"
+#include "renderer/passes/final_gather/final_gather_shared.h"
+#include "renderer/passes/gbuffer/gbuffer.h"
+#include "renderer/passes/gi_denoise/gi_denoise.h"
+#include "renderer/passes/gi_upscale/gi_upscale.h"
+#include "renderer/passes/irradiance_volume_update/irradiance_volume_update.h"
+#include "renderer/passes/probe_trace/probe_trace.h"
+#include "renderer/passes/radiance_cache_shade/radiance_cache_shade.h"
+#include "renderer/passes/radiance_cache_update/radiance_cache_update.h"
+#include "renderer/passes/visibility/visibility.h"
+#include "renderer/scene/scene_loader.h"
+#include "tests/gpu_fixture.h"
+#include "tests/rc_screen_synth_gather_shared.h"
+
+namespace gib {
+namespace {
+
+using test::GpuTest;
+
+// Zeroed world-sampling outputs, with the descs the design gives them.
+class StubWorldSampling final : public Pass {
+ public:
+  PassDecl declare(const Scene&, const Settings& s) const override {
+    ResourceDesc cells{Format::buffer, SizeRule::buffer};
+    cells.bytes = uint64_t(sizeof(glsl::RcCell)) << s.rc.cache_log2_cells;
+    cells.persistent = true;
+    ResourceDesc irr{Format::r32_uint, SizeRule::fixed, glsl::kProbeAtlasWidth,
+                     glsl::kProbeAtlasRowsPerCascade * s.rc.cascades};
+    ResourceDesc vis = irr;
+    vis.format = Format::rg16_float;
+    irr.persistent = vis.persistent = true;
+    return {"stub_world_sampling", PassKind::transfer, {},
+            {{"rc_cells", Access::write, cells},
+             {"probe_irradiance", Access::write, irr},
+             {"probe_visibility", Access::write, vis}}, false};
+  }
+  void record(RecordContext& ctx) override {
+    const float zero[4] = {0, 0, 0, 0};
+    ctx.cmd.fill(ctx.buffer("rc_cells"), 0);
+    ctx.cmd.clear(ctx.image("probe_irradiance"), zero);
+    ctx.cmd.clear(ctx.image("probe_visibility"), zero);
+  }
+};
+
+// Synthetic gather output (tests/rc_screen_synth_gather.comp) in place of final_gather.
+class SynthGather final : public Pass {
+ public:
+  explicit SynthGather(glsl::SynthPush push) : push_(push) {}
+  PassDecl declare(const Scene&, const Settings&) const override {
+    ResourceDesc sh{Format::rgba16_float, SizeRule::half};
+    return {"synth_gather", PassKind::compute, {},
+            {{"gbuffer_position", Access::read},
+             {"gather_sh_r", Access::write, sh},
+             {"gather_sh_g", Access::write, sh},
+             {"gather_sh_b", Access::write, sh},
+             {"gather_hit_distance", Access::write, {Format::r32_float, SizeRule::half}}}, false};
+  }
+  void record(RecordContext& ctx) override {
+    using namespace glsl;
+    record_compute(ctx, {.shader = "rc_screen_synth_gather.comp",
+                         .images = {{kSynthBindPosition, "gbuffer_position"},
+                                    {kSynthBindShR, "gather_sh_r"},
+                                    {kSynthBindShG, "gather_sh_g"},
+                                    {kSynthBindShB, "gather_sh_b"},
+                                    {kSynthBindHit, "gather_hit_distance"}},
+                         .groups_x = div_up(ctx.width("gather_hit_distance"), kSynthGroup),
+                         .groups_y = div_up(ctx.height("gather_hit_distance"), kSynthGroup),
+                         .push = &push_,
+                         .push_bytes = sizeof(push_),
+                         .scene = false});
+  }
+
+ private:
+  glsl::SynthPush push_;
+};
+
+std::vector<std::unique_ptr<Pass>> screen_passes() {
+  std::vector<std::unique_ptr<Pass>> p;
+  p.push_back(make_visibility_pass());
+  p.push_back(make_gbuffer_pass());
+  p.push_back(make_direct_lighting_pass());
+  p.push_back(std::make_unique<StubWorldSampling>());
+  p.push_back(make_final_gather_pass());
+  p.push_back(make_gi_denoise_pass());
+  p.push_back(make_gi_upscale_pass());
+  p.push_back(make_composite_pass());
+  return p;
+}
+
+Settings small_settings(uint32_t w = 64, uint32_t h = 36) {
+  Settings s;
+  s.width = w;
+  s.height = h;
+  // The sky's first bounce comes from the gather (its misses), not from direct_lighting.
+  s.sky_rays = 0;
+  s.rc.cache_log2_cells = 10;
+  s.rc.cascades = 1;
+  s.rc.history_max_frames = 8;
+  return s;
+}
+
+// Floor, a red box and a sphere under a gradient sky with a sun.
+Scene box_scene(const char* extra_box = "") {
+  std::string json = std::string(R"({
+    "materials": {"white": {"albedo": [0.7, 0.7, 0.7]}, "red": {"albedo": [0.8, 0.1, 0.1]}},
+    "objects": [
+      {"primitive": {"type": "quad", "size": [20, 20], "facing": "+y"}, "material": "white"},
+      {"primitive": {"type": "box", "size": [1, 1, 1]}, "material": "red", )") + extra_box + R"(
+       "transform": {"translate": [0, 0.5, 0]}},
+      {"primitive": {"type": "sphere", "radius": 0.5}, "material": "white", "transform": {"translate": [1.5, 0.5, 0.5]}}
+    ],
+    "sun": {"direction": [0.3, 1, 0.2], "irradiance": [2, 2, 2]},
+    "sky": {"type": "gradient", "radiance": [0.3, 0.4, 0.8], "horizon": [0.6, 0.6, 0.6], "ground": [0.1, 0.1, 0.1]},
+    "frame_time": 1.0,
+    "camera": {"position": [0, 3, 5], "target": [0, 0.5, 0], "fov_y_deg": 50}
+  })";
+  return parse_scene(nlohmann::json::parse(json), "inline");
+}
+
+bool finite_nonneg(const FloatImage& img) {
+  return std::all_of(img.pixels.begin(), img.pixels.end(), [](float v) { return std::isfinite(v) && v >= 0; });
+}
+
+class RadianceCacheScreen : public GpuTest {};
+
+// Constant sky radiance L: every gather ray escapes, so the SH projection, the denoise, the
+// upscale and the temporal filter must return irradiance / pi = L. On the open plane every
+// full-res normal is its gather sample's normal; on the sphere they differ (the upscale
+// evaluates each gather pixel's SH at other normals, so the L1 band is exercised).
+TEST_F(RadianceCacheScreen, ConstantSkyRoundTripsThroughSh) {
+  Scene plane = load_scene(std::string(GIB_SOURCE_DIR) + "/cases/scenes/sky_plane.json");  // albedo 0.5, sky 2
+  Scene sphere = parse_scene(nlohmann::json::parse(R"({
+    "materials": {"grey": {"albedo": [0.5, 0.5, 0.5]}},
+    "objects": [{"primitive": {"type": "sphere", "radius": 1}, "material": "grey"}],
+    "sky": {"type": "constant", "radiance": [2, 2, 2]},
+    "camera": {"position": [0, 0.5, 3], "target": [0, 0, 0], "fov_y_deg": 50}
+  })"), "inline");
+  for (const Scene* scene : {&plane, &sphere}) {
+    const char* name = scene == &plane ? "plane" : "sphere";
+    Settings s = small_settings();
+    Executor ex(gpu(), *scene, s, screen_passes(), {"final_color"});
+    for (int f = 0; f < 12; ++f) ex.run_frame();
+    FloatImage gi = ex.read("gi_irradiance"), ind = ex.read("indirect_diffuse"), pos = ex.read("gbuffer_position");
+    double sum = 0, worst = 0;
+    size_t count = 0;
+    for (uint32_t y = 0; y < gi.height; ++y)
+      for (uint32_t x = 0; x < gi.width; ++x) {
+        if (pos.at(x, y, 3) == 0) continue;
+        for (uint32_t c = 0; c < 3; ++c) {
+          sum += gi.at(x, y, c);
+          ++count;
+          worst = std::max(worst, std::abs(gi.at(x, y, c) / 2.0 - 1.0));
+          EXPECT_NEAR(ind.at(x, y, c), 0.5f * gi.at(x, y, c), 1e-3f);
+        }
+      }
+    double mean = sum / double(count);
+    std::vector<uint8_t> raw = ex.read_buffer("gather_stats");
+    uint32_t stats[4];
+    std::memcpy(stats, raw.data(), sizeof(stats));
+    std::printf("sky round trip (%s): mean gi_irradiance %.4f (sky 2), worst pixel %.2f%%; rays: screen %u world %u "
+                "volume %u sky %u\n", name, mean, 100 * worst, stats[0], stats[1], stats[2], stats[3]);
+    RecordProperty(std::string("sky_mean_relative_error_") + name, std::to_string(mean / 2.0 - 1.0));
+    ASSERT_GT(count, 300u) << name;
+    EXPECT_NEAR(mean, 2.0, 0.03 * 2.0) << name;
+    // The plane is exact up to RGBA16F rounding of the SH; on the sphere other normals than
+    // the gather sample's see its L1 noise and the 2-band truncation.
+    EXPECT_LT(worst, scene == &plane ? 0.005 : 0.15) << name;
+    EXPECT_EQ(stats[0] + stats[1] + stats[2], 0u) << name;
+    EXPECT_GT(stats[glsl::kGatherStatSky], 0u) << name;
+    if (scene == &plane) {
+      EXPECT_EQ(stats[glsl::kGatherStatSky], 32u * 18u);
+    }
+  }
+}
+
+// The sky's first bounce is counted once: by the gather when direct_lighting traces no sky
+// rays, else by direct_lighting alone. A plane of albedo a under sky L is a L both ways.
+TEST_F(RadianceCacheScreen, SkyIsCountedOnceWhicheverPassTracesIt) {
+  Scene scene = load_scene(std::string(GIB_SOURCE_DIR) + "/cases/scenes/sky_plane.json");  // albedo 0.5, sky 2
+  for (uint32_t sky_rays : {0u, 4u}) {
+    Settings s = small_settings();
+    s.sky_rays = sky_rays;
+    Executor ex(gpu(), scene, s, screen_passes(), {"final_color"});
+    for (int f = 0; f < 3; ++f) ex.run_frame();
+    FloatImage out = ex.read("final_color"), gi = ex.read("gi_irradiance");
+    double worst = 0, gi_max = 0;
+    for (uint32_t y = 0; y < out.height; ++y)
+      for (uint32_t x = 0; x < out.width; ++x)
+        for (uint32_t c = 0; c < 3; ++c) {
+          worst = std::max(worst, std::abs(double(out.at(x, y, c)) - 1.0));
+          gi_max = std::max(gi_max, double(gi.at(x, y, c)));
+        }
+    std::printf("sky_rays %u: max |final_color - a L| = %.2g, max gi_irradiance %.3g\n", sky_rays, worst, gi_max);
+    EXPECT_LT(worst, 5e-3) << "sky_rays " << sky_rays;
+    if (sky_rays > 0) {
+      EXPECT_EQ(gi_max, 0.0);
+    }
+  }
+}
+
+// Static camera: n climbs 1, 2, ... to n_max and stays; after that a frame moves the average by
+// at most 1 / (n_max + 1) of the way to the new sample (with the exact RGBA32F history,
+// G_t >= G_{t-1} n / (n + 1) since the sample is >= 0).
+TEST_F(RadianceCacheScreen, TemporalFilterAccumulatesToNMax) {
+  Scene scene = box_scene();
+  Settings s = small_settings();
+  s.rc.history_format = 3;
+  const uint32_t n_max = s.rc.history_max_frames;
+  Executor ex(gpu(), scene, s, screen_passes(), {"final_color"});
+  FloatImage prev;
+  double first_change = 0, last_change = 0;
+  for (uint32_t f = 0; f < n_max + 4; ++f) {
+    ex.run_frame();
+    FloatImage n = ex.read("gi_history_frames"), pos = ex.read("gbuffer_position"), gi = ex.read("gi_irradiance");
+    const float expect = float(std::min(f + 1, n_max));
+    size_t surface = 0, match = 0, below = 0;
+    double change = 0, level = 0;
+    for (uint32_t y = 0; y < n.height; ++y)
+      for (uint32_t x = 0; x < n.width; ++x) {
+        if (pos.at(x, y, 3) == 0) continue;
+        ++surface;
+        match += n.at(x, y, 0) == expect;
+        if (f == 0) continue;
+        for (uint32_t c = 0; c < 3; ++c) {
+          change += std::abs(gi.at(x, y, c) - prev.at(x, y, c));
+          level += gi.at(x, y, c);
+          if (f >= n_max && gi.at(x, y, c) < prev.at(x, y, c) * n_max / (n_max + 1.0f) * (1 - 1e-5f)) ++below;
+        }
+      }
+    ASSERT_GT(surface, 0u);
+    EXPECT_GE(double(match), 0.98 * surface) << "frame " << f << ": n should be " << expect;
+    EXPECT_EQ(below, 0u) << "frame " << f;
+    if (f == 1) first_change = change / level;
+    if (f > 0) last_change = change / level;
+    prev = gi;
+  }
+  std::printf("temporal: mean relative frame-to-frame change %.4f (frame 1) -> %.4f (frame %u)\n", first_change,
+              last_change, n_max + 3);
+  EXPECT_LT(last_change, 0.5 * first_change);
+  EXPECT_LT(last_change, 2.0 / (n_max + 1));
+}
+
+// A box jumps 1 m sideways between two frames (static camera): pixels whose surface changed
+// restart at n = 1, pixels that kept their surface keep n_max. Without disocclusion tests no
+// surface pixel restarts.
+TEST_F(RadianceCacheScreen, DisocclusionResetsOnlyWhereTheSurfaceChanged) {
+  Scene scene = box_scene(R"("animation": [{"time": 0, "translate": [0, 0.5, 0]}, {"time": 10, "translate": [0, 0.5, 0]},
+                                           {"time": 11, "translate": [1, 0.5, 0]}],)");
+  for (bool disocclusion : {true, false}) {
+    Settings s = small_settings();
+    s.rc.disocclusion = disocclusion;
+    const float n_max = float(s.rc.history_max_frames);
+    Executor ex(gpu(), scene, s, screen_passes(), {"final_color"});
+    for (int f = 0; f <= 10; ++f) ex.run_frame();
+    FloatImage p0 = ex.read("gbuffer_position");
+    ex.run_frame();
+    FloatImage p1 = ex.read("gbuffer_position"), n = ex.read("gi_history_frames");
+    size_t same = 0, same_ok = 0, changed = 0, changed_ok = 0;
+    for (uint32_t y = 0; y < n.height; ++y)
+      for (uint32_t x = 0; x < n.width; ++x) {
+        float d1 = p1.at(x, y, 3);
+        if (d1 == 0) continue;
+        float moved = 0;
+        for (uint32_t c = 0; c < 3; ++c) moved = std::max(moved, std::abs(p1.at(x, y, c) - p0.at(x, y, c)));
+        if (p0.at(x, y, 3) != 0 && moved < 0.01f * d1) {
+          ++same;
+          same_ok += n.at(x, y, 0) == n_max;
+        } else if (p0.at(x, y, 3) != 0 && moved > 0.2f * d1) {
+          ++changed;
+          changed_ok += n.at(x, y, 0) == (disocclusion ? 1.0f : n_max);
+        }
+      }
+    std::printf("disocclusion %s: %zu/%zu unchanged pixels kept n_max, %zu/%zu changed pixels %s\n",
+                disocclusion ? "on" : "off", same_ok, same, changed_ok, changed,
+                disocclusion ? "restarted" : "kept n_max");
+    ASSERT_GT(changed, 20u);
+    ASSERT_GT(same, 500u);
+    EXPECT_GE(double(same_ok), 0.98 * same);
+    EXPECT_GE(double(changed_ok), 0.95 * changed);
+  }
+}
+
+// A small camera move: reprojected history survives on most of the image, only newly revealed
+// pixels restart.
+TEST_F(RadianceCacheScreen, CameraMoveKeepsReprojectedHistory) {
+  Scene scene = box_scene();
+  scene.camera.animation = {{0, {0, 3, 5}, {0, 0.5f, 0}, 50}, {6, {0, 3, 5}, {0, 0.5f, 0}, 50},
+                            {7, {0.3f, 3, 5}, {0.3f, 0.5f, 0}, 50}};
+  Settings s = small_settings();
+  Executor ex(gpu(), scene, s, screen_passes(), {"final_color"});
+  for (int f = 0; f <= 7; ++f) ex.run_frame();
+  FloatImage n = ex.read("gi_history_frames"), pos = ex.read("gbuffer_position");
+  size_t surface = 0, kept = 0, restarted = 0;
+  for (uint32_t y = 0; y < n.height; ++y)
+    for (uint32_t x = 0; x < n.width; ++x) {
+      if (pos.at(x, y, 3) == 0) continue;
+      ++surface;
+      kept += n.at(x, y, 0) >= 7.0f;  // n was 7 before the move: 8 when reprojected
+      restarted += n.at(x, y, 0) == 1.0f;
+    }
+  std::printf("camera move: %zu/%zu surface pixels kept history, %zu restarted\n", kept, surface, restarted);
+  EXPECT_GE(double(kept), 0.85 * surface);
+  EXPECT_GT(restarted, 0u);
+}
+
+// Two planes at different depths (floor and the top of a tall block, seen from above): the
+// bilateral denoise smooths the noise on each and never mixes them across the edge.
+TEST_F(RadianceCacheScreen, DenoiseDoesNotBlurAcrossADepthEdge) {
+  Scene scene = parse_scene(nlohmann::json::parse(R"({
+    "materials": {"grey": {"albedo": [0.5, 0.5, 0.5]}},
+    "objects": [
+      {"primitive": {"type": "quad", "size": [60, 60], "facing": "+y"}, "material": "grey"},
+      {"primitive": {"type": "box", "size": [20, 3, 40]}, "material": "grey", "transform": {"translate": [10, 1.5, 0]}}
+    ],
+    "sky": {"type": "constant", "radiance": [1, 1, 1]},
+    "camera": {"position": [0, 10, 0], "target": [0, 0, 0], "up": [0, 0, -1], "fov_y_deg": 60}
+  })"), "inline");
+  Settings s = small_settings();
+  s.rc.denoise_radius = 3;
+  const float low = 1, high = 4, noise = 0.5f;
+  std::vector<std::unique_ptr<Pass>> passes;
+  passes.push_back(make_visibility_pass());
+  passes.push_back(make_gbuffer_pass());
+  passes.push_back(std::make_unique<SynthGather>(glsl::SynthPush{2, 1.5f, low, high, noise, 0, 0, 0}));
+  passes.push_back(make_gi_denoise_pass());
+  Executor ex(gpu(), scene, s, std::move(passes), {"gi_sh_r"});
+  ex.run_frame();
+  FloatImage raw = ex.read("gather_sh_r"), out = ex.read("gi_sh_r"), pos = ex.read("gbuffer_position");
+  double worst_edge = 0, var_in = 0, var_out = 0;
+  size_t edge = 0, interior = 0;
+  for (uint32_t y = 0; y < out.height; ++y)
+    for (uint32_t x = 0; x < out.width; ++x) {
+      uint32_t px = std::min(2 * x + 1, pos.width - 1), py = std::min(2 * y + 1, pos.height - 1);
+      if (pos.at(px, py, 3) == 0) continue;
+      float expect = pos.at(px, py, 1) > 1.5f ? high : low;
+      // Distance (gather pixels) to the nearest pixel of the other plane along the row.
+      int nearest_other = 1000;
+      for (uint32_t x2 = 0; x2 < out.width; ++x2) {
+        uint32_t qx = std::min(2 * x2 + 1, pos.width - 1);
+        if ((pos.at(qx, py, 1) > 1.5f) != (expect == high))
+          nearest_other = std::min(nearest_other, std::abs(int(x2) - int(x)));
+      }
+      double err = std::abs(out.at(x, y, 0) - expect);
+      if (nearest_other <= int(s.rc.denoise_radius)) {
+        ++edge;
+        worst_edge = std::max(worst_edge, err);
+      } else if (nearest_other > 2 * int(s.rc.denoise_radius) && y > 3 && y + 3 < out.height) {
+        ++interior;
+        var_in += std::pow(raw.at(x, y, 0) - expect, 2);
+        var_out += std::pow(out.at(x, y, 0) - expect, 2);
+      }
+    }
+  double rms_in = std::sqrt(var_in / interior), rms_out = std::sqrt(var_out / interior);
+  std::printf("denoise edge: %zu edge pixels, worst |value - own plane| %.3f (planes %.0f / %.0f, noise +-%.1f); "
+              "interior rms noise %.3f -> %.3f\n", edge, worst_edge, low, high, noise, rms_in, rms_out);
+  ASSERT_GT(edge, 10u);
+  ASSERT_GT(interior, 50u);
+  EXPECT_LT(worst_edge, noise);    // a mix across the edge would be off by ~(high - low) / 2
+  EXPECT_LT(rms_out, 0.5 * rms_in);  // and it does denoise
+}
+
+// Every history format runs; RGB9E5 and RGBA16F stay within their precision of RGBA32F (the
+// recursive filter's rounding error is bounded by (n_max + 1) / 2 ulp), R11G11B10F is reported.
+TEST_F(RadianceCacheScreen, HistoryFormatsAgreeWithinTheirPrecision) {
+  Scene scene = box_scene();
+  std::vector<FloatImage> results;
+  for (uint32_t format = 0; format < 4; ++format) {
+    Settings s = small_settings();
+    s.rc.history_format = format;
+    Executor ex(gpu(), scene, s, screen_passes(), {"final_color"});
+    EXPECT_EQ(ex.plan().find("gi_history")->desc.format, gi_history_format(format));
+    for (int f = 0; f < 12; ++f) ex.run_frame();
+    results.push_back(ex.read("gi_irradiance"));
+    EXPECT_TRUE(finite_nonneg(results.back())) << "format " << format;
+    EXPECT_TRUE(finite_nonneg(ex.read("final_color"))) << "format " << format;
+  }
+  const double n_max = small_settings().rc.history_max_frames;
+  // Relative precision of one rounding, relative to the pixel's largest channel: RGB9E5 shares
+  // the exponent (9-bit mantissa, round to nearest: 2^-9 of the max at worst); half rounds by
+  // the device's rule (lavapipe truncates: 2^-10); R11G11B10F truncates (blue: 5 bits, 2^-5).
+  const double ulp[4] = {1.0 / 256, 1.0 / 1024, 1.0 / 32, 0};
+  const char* names[4] = {"rgb9e5", "rgba16f", "r11g11b10f", "rgba32f"};
+  const FloatImage& ref = results[3];
+  for (int format = 0; format < 3; ++format) {
+    double worst = 0, mean_err = 0, mean_ref = 0;
+    for (uint32_t y = 0; y < ref.height; ++y)
+      for (uint32_t x = 0; x < ref.width; ++x) {
+        double mx = std::max({ref.at(x, y, 0), ref.at(x, y, 1), ref.at(x, y, 2)});
+        for (uint32_t c = 0; c < 3; ++c) {
+          double d = std::abs(results[format].at(x, y, c) - ref.at(x, y, c));
+          mean_err += d;
+          mean_ref += ref.at(x, y, c);
+          if (mx > 1e-3) worst = std::max(worst, d / mx);
+        }
+      }
+    std::printf("history %s vs rgba32f: worst %.3f%% of the pixel's max channel, mean %.3f%%\n", names[format],
+                100 * worst, 100 * mean_err / mean_ref);
+    RecordProperty(std::string("history_") + names[format] + "_worst", std::to_string(worst));
+    if (format < 2) {
+      EXPECT_LE(worst, (n_max + 1) * ulp[format]) << names[format];
+    }
+    EXPECT_LE(worst, (n_max + 1) * ulp[2]) << names[format];
+  }
+}
+
+// With the real world-sampling passes instead of the stub: every cache answers some rays, and
+// the image stays finite.
+TEST_F(RadianceCacheScreen, FullChainWithWorldSamplingPasses) {
+  Scene scene = box_scene();
+  Settings s = small_settings();
+  std::vector<std::unique_ptr<Pass>> passes;
+  passes.push_back(make_visibility_pass());
+  passes.push_back(make_gbuffer_pass());
+  passes.push_back(make_direct_lighting_pass());
+  passes.push_back(make_probe_trace_pass());
+  passes.push_back(make_radiance_cache_update_pass());
+  passes.push_back(make_radiance_cache_shade_pass());
+  passes.push_back(make_irradiance_volume_update_pass());
+  passes.push_back(make_final_gather_pass());
+  passes.push_back(make_gi_denoise_pass());
+  passes.push_back(make_gi_upscale_pass());
+  passes.push_back(make_composite_pass());
+  Executor ex(gpu(), scene, s, std::move(passes), {"final_color"});
+  for (auto& p : ex.plan().passes) EXPECT_TRUE(p.runs) << p.name << ": " << p.reason;
+  uint32_t total[4] = {};
+  for (int f = 0; f < 8; ++f) {
+    ex.run_frame();
+    std::vector<uint8_t> raw = ex.read_buffer("gather_stats");
+    uint32_t stats[4];
+    std::memcpy(stats, raw.data(), sizeof(stats));
+    for (int i = 0; i < 4; ++i) total[i] += stats[i];
+  }
+  FloatImage out = ex.read("final_color"), ind = ex.read("indirect_diffuse");
+  double mean_indirect = 0;
+  for (float v : ind.pixels) mean_indirect += v;
+  mean_indirect /= double(ind.pixels.size());
+  std::printf("full chain, 8 frames: rays served by screen %u, world %u, volume %u, sky %u; mean indirect %.4f\n",
+              total[0], total[1], total[2], total[3], mean_indirect);
+  EXPECT_TRUE(finite_nonneg(out));
+  EXPECT_TRUE(finite_nonneg(ind));
+  EXPECT_GT(total[glsl::kGatherStatScreen], 0u);
+  EXPECT_GT(total[glsl::kGatherStatWorld] + total[glsl::kGatherStatVolume], 0u);
+  EXPECT_GT(total[glsl::kGatherStatSky], 0u);
+  EXPECT_GT(mean_indirect, 0.0);
+}
+
+TEST_F(RadianceCacheScreen, PassTimesAt128x72) {
+  Scene scene = box_scene();
+  Settings s = small_settings(128, 72);
+  s.rc.history_max_frames = 16;
+  Executor ex(gpu(), scene, s, screen_passes(), {"final_color"});
+  ex.run_frame();  // pipelines compiled
+  std::map<std::string, double> ms;
+  const int frames = 4;
+  for (int f = 0; f < frames; ++f)
+    for (auto& p : ex.run_frame().passes) ms[p.name] += p.ms / frames;
+  for (const char* name : {"final_gather", "gi_denoise", "gi_upscale", "composite"}) {
+    std::printf("%s: %.3f ms (%s, 128x72)\n", name, ms[name], gpu().info().name.c_str());
+    RecordProperty(std::string(name) + "_ms", std::to_string(ms[name]));
+    EXPECT_GT(ms[name], 0.0);
+  }
+  EXPECT_TRUE(finite_nonneg(ex.read("final_color")));
+}
+
+}  // namespace
+}  // namespace gib
