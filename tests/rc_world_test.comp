@@ -2,6 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 #include "tests/rc_world_test_shared.h"
 #include "frame.glsl"
+#include "scene.glsl"
+GIB_SCENE_BUFFERS(0, kBindSceneFirst)
 layout(constant_id = kRcTestSpecMode) const uint kMode = 0u;
 layout(local_size_x = kRcTestGroup) in;
 layout(std430, set = 0, binding = kRcTestBindHits) readonly buffer HitBuffer { ProbeHit probe_hits[]; };
@@ -25,12 +27,13 @@ void main() {
     if (h.triangle_plus1 != 0u) {
       uint probe = id / rays, ray = id - probe * rays;
       uint c = rc_updated_cascade();
-      vec3 p = rc_hit_position(rc_probe_position(c, rc_probe_coord(probe)),
-                               rc_ray_direction(ray, rays, rc_frame_rotation(rc.misc.x)), h.distance);
+      vec3 d = rc_ray_direction(ray, rays, rc_frame_rotation(rc.misc.x));
+      vec3 p = rc_hit_position(rc_probe_position(c, rc_probe_coord(probe)), d, h.distance);
+      vec3 n = rc_facing_normal(h.triangle_plus1 - 1u, d);
       float lod;
-      uint key = rc_cell_key(p, lod);
+      uint key = rc_cell_key(p, n, lod);
       k.position = vec4(p, lod);
-      k.key = uvec4(key, rc_cell_first_slot(key), 0u, 0u);
+      k.key = uvec4(key, rc_cell_first_slot(key), rc_side(n), 0u);
     }
     keys[id] = k;
   } else {

@@ -103,7 +103,7 @@ struct CpuKey {
   uint32_t key = 0;
   bool near_boundary = false;  // within float noise of a cell or LOD boundary: skip comparing
 };
-CpuKey cpu_cell_key(const float p[3], Vec3 camera, float cell_size, float lod_distance) {
+CpuKey cpu_cell_key(const float p[3], Vec3 camera, float cell_size, float lod_distance, uint32_t side) {
   double dx = p[0] - camera.x, dy = p[1] - camera.y, dz = p[2] - camera.z;
   double l = std::log2(1.0 + std::sqrt(dx * dx + dy * dy + dz * dz) / lod_distance);
   CpuKey k;
@@ -119,6 +119,7 @@ CpuKey cpu_cell_key(const float p[3], Vec3 camera, float cell_size, float lod_di
   uint32_t h = pcg(uint32_t(c[0]));
   h = pcg(uint32_t(c[1]) + h);
   h = pcg(uint32_t(c[2]) + h);
+  h = pcg(side + h);
   k.key = pcg(uint32_t(lod) + h) | 1u;
   return k;
 }
@@ -188,7 +189,7 @@ FrameCheck check_frame(Executor& ex, const Scene& scene, uint32_t frame) {
     ++fc.hits;
     if (!present.count(k.key.x)) ++fc.dropped_keys;
     float p[3] = {k.position.x, k.position.y, k.position.z};
-    CpuKey ck = cpu_cell_key(p, cam, s.rc.cache_cell_size, s.rc.cache_lod_distance);
+    CpuKey ck = cpu_cell_key(p, cam, s.rc.cache_cell_size, s.rc.cache_lod_distance, k.key.z);
     if (ck.near_boundary) continue;
     ++fc.mirror_checked;
     fc.mirror_agree += ck.key == k.key.x;

@@ -103,6 +103,8 @@ const std::vector<TechniqueOption>& technique_options(const Technique& t) {
        GIB_FLOAT_OPTION(s.rc.normal_bias)},
       {"view_bias", "leak mitigation: metres towards the viewer before sampling probes", 0, 10, false,
        GIB_FLOAT_OPTION(s.rc.view_bias)},
+      {"cache_side_key", "leak mitigation: radiance-cache cells keyed by surface side (0/1)", 0, 1, true,
+       GIB_BOOL_OPTION(s.rc.cache_side_key)},
       {"disocclusion", "temporal filter rejects history failing depth/normal tests (0/1)", 0, 1, true,
        GIB_BOOL_OPTION(s.rc.disocclusion)},
       {"history_format", "GI history: 0 RGB9E5, 1 RGBA16F, 2 R11G11B10F, 3 RGBA32F", 0, 3, true,

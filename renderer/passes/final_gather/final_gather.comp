@@ -113,7 +113,7 @@ void main() {
     vec3 n_hit = dot(s.normal, d) > 0.0 ? -s.normal : s.normal;  // the side the ray hit
     if (push.screen_cache != 0u && screen_cache(s.position, n_hit, radiance)) {
       served = kGatherStatScreen;
-    } else if (rc_lookup(s.position, radiance)) {
+    } else if (rc_lookup(s.position, rc_facing_normal(hit.triangle, d), radiance)) {
       served = kGatherStatWorld;
     } else {
       GpuMaterial m = gib_materials[s.material];

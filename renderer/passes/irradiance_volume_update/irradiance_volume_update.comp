@@ -54,7 +54,7 @@ void main() {
       l = gib_sky_radiance(d);
     } else {
       vec3 p = rc_hit_position(o, d, h.distance);
-      if (!rc_lookup(p, l)) l = fallback_radiance(h, p, d);
+      if (!rc_lookup(p, rc_facing_normal(h.triangle_plus1 - 1u, d), l)) l = fallback_radiance(h, p, d);
     }
     s_dir[r] = d;
     s_radiance[r] = l;

@@ -49,7 +49,7 @@ vec3 bounce_radiance(GibHit hit, vec3 wi, uint now) {
   GibSurface s = gib_surface(hit.triangle, hit.u, hit.v);
   vec3 q = s.position;
   float lod;
-  uint i = rc_find_cell(rc_cell_key(q, lod));
+  uint i = rc_find_cell(rc_cell_key(q, rc_facing_normal(hit.triangle, wi), lod));
   if (i != 0xffffffffu) {
     uint shaded = rc_cells[i].shaded_frame;
     if (shaded != 0u && shaded != now) return gib_unpack_rgb9e5(rc_cells[i].radiance);

@@ -64,6 +64,16 @@ class RadianceCacheUpdatePass final : public Pass {
     ctx.cmd.end_label();
     ctx.cmd.barrier(kStageCompute, kStageCompute);
 
+    ctx.cmd.begin_label("radiance_cache_update/pick");
+    record_compute(ctx, {.shader = "radiance_cache_update.comp",
+                         .groups_x = div_up(hits, kRcUpdateGroup),
+                         .push = &push,
+                         .push_bytes = sizeof(push),
+                         .spec_constants = {{kRcUpdateSpecKernel, kRcUpdateKernelPick}},
+                         .buffers = buffers});
+    ctx.cmd.end_label();
+    ctx.cmd.barrier(kStageCompute, kStageCompute);
+
     ctx.cmd.begin_label("radiance_cache_update/args");
     record_compute(ctx, {.shader = "radiance_cache_update.comp",
                          .groups_x = 1,

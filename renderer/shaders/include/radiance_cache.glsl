@@ -18,7 +18,7 @@
 //   RC_CELL_BUFFER(binding, readonly)    // or coherent (writers), or nothing; declares
 //                                        // RcCell rc_cells[] and the accessors used here
 //   vec3 radiance;
-//   if (rc_lookup(p, radiance)) ...       // outgoing diffuse radiance of a shaded cell
+//   if (rc_lookup(p, n, radiance)) ...  // n: geometric normal facing the ray (rc_facing_normal)       // outgoing diffuse radiance of a shaded cell
 #ifndef GIB_RADIANCE_CACHE_GLSL
 #define GIB_RADIANCE_CACHE_GLSL
 #include "radiance_cache_shared.h"
@@ -40,8 +40,28 @@ uint rc_cell_shaded_frame_at(uint i);
 uint rc_cell_mask() { return (1u << uint(rc.cache.z)) - 1u; }
 uint rc_max_probe() { return uint(rc.cache.w); }
 
-// Hash of position and LOD; lod receives the LOD factor (1, 2, 4, ...).
-uint rc_cell_hash(vec3 p, out float lod) {
+// Which side of a surface a point was seen from: the dominant axis and sign of the unit
+// geometric normal facing the viewer/ray (0..5). Part of the key, so the two faces of a wall
+// thinner than a cell get separate cells: without it the sunlit outside of a thin wall lights
+// its inside (the cache's own thin-wall leak).
+uint rc_side(vec3 n) {
+  vec3 a = abs(n);
+  uint axis = a.x >= a.y && a.x >= a.z ? 0u : (a.y >= a.z ? 1u : 2u);
+  return axis * 2u + (n[axis] < 0.0 ? 1u : 0u);
+}
+
+// Unit geometric normal of a triangle, turned to face against `dir` (the ray that hit it).
+vec3 rc_facing_normal(uint triangle, vec3 dir) {
+  GpuTriangle t = gib_triangles[triangle];
+  vec3 a = gib_vertices[t.i0].position, b = gib_vertices[t.i1].position, c = gib_vertices[t.i2].position;
+  vec3 g = cross(b - a, c - a);
+  float len = length(g);
+  g = len > 0.0 ? g / len : vec3(0.0, 1.0, 0.0);
+  return dot(g, dir) > 0.0 ? -g : g;
+}
+
+// Hash of position, side and LOD; lod receives the LOD factor (1, 2, 4, ...).
+uint rc_cell_hash(vec3 p, vec3 n, out float lod) {
   precise vec3 dp = p - gib_frame.camera_pos.xyz;
   precise float dist = sqrt(dot(dp, dp));
   lod = exp2(floor(log2(1.0 + dist / rc.cache.y)));
@@ -51,10 +71,11 @@ uint rc_cell_hash(vec3 p, out float lod) {
   uint h = gib_pcg(uint(cell.x));
   h = gib_pcg(uint(cell.y) + h);
   h = gib_pcg(uint(cell.z) + h);
+  if (rc.flags.x != 0u) h = gib_pcg(rc_side(n) + h);
   return gib_pcg(uint(lod) + h);
 }
 
-uint rc_cell_key(vec3 p, out float lod) { return rc_cell_hash(p, lod) | 1u; }
+uint rc_cell_key(vec3 p, vec3 n, out float lod) { return rc_cell_hash(p, n, lod) | 1u; }
 
 // First slot of a key's probe sequence (bit 0 of a key is always set, so skip it).
 uint rc_cell_first_slot(uint key) { return (key >> 1u) & rc_cell_mask(); }
@@ -73,10 +94,10 @@ uint rc_find_cell(uint key) {
 }
 
 // Outgoing diffuse radiance stored for p's cell, when the cell exists and was ever shaded.
-bool rc_lookup(vec3 p, out vec3 radiance) {
+bool rc_lookup(vec3 p, vec3 n, out vec3 radiance) {
   radiance = vec3(0.0);
   float lod;
-  uint i = rc_find_cell(rc_cell_key(p, lod));
+  uint i = rc_find_cell(rc_cell_key(p, n, lod));
   if (i == 0xffffffffu || rc_cell_shaded_frame_at(i) == 0u) return false;
   radiance = gib_unpack_rgb9e5(rc_cell_radiance_at(i));
   return true;

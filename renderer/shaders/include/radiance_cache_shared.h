@@ -51,12 +51,13 @@ GIB_CONST(uint, kLightGridDim, 16)
 GIB_CONST(uint, kLightGridMaxLights, 64)
 GIB_CONST(uint, kLightGridCellWords, 65)
 
-// Push constants shared by the radiance-cache passes (64 bytes); a pass may append its own.
+// Push constants shared by the radiance-cache passes (80 bytes); a pass may append its own.
 struct RcParams {
   vec4 grid;    // x: cascade-0 probe spacing (m), y: cascades, z: rays per probe, w: cascade updated this frame
   vec4 cache;   // x: cell size (m), y: LOD distance (m), z: log2 cells, w: max probe steps
   vec4 bias;    // x: normal bias (m), y: view bias (m), z: visibility test (0/1), w: probe hysteresis
   uvec4 misc;   // x: frame, y: cache reuse frames, z: gather divisor, w: light-grid cascades
+  uvec4 flags;  // x: cache cells keyed by surface side (leak mitigation), yzw: unused
 };
 struct LightGridParams {
   vec4 extent;  // x: cascade-0 extent (m), y: cascades, z: light count, w: unused
