@@ -15,6 +15,7 @@
 
 #include "harness/perf/perf.h"
 #include "harness/perf/profiles.h"
+#include "bench/bench_common.h"
 #include "renderer/graph/executor.h"
 #include "renderer/scene/scene_loader.h"
 #include "renderer/techniques/technique.h"
@@ -22,16 +23,6 @@
 namespace gib {
 namespace {
 
-Gpu& pass_bench_gpu() {
-  static std::unique_ptr<Gpu> gpu = [] {
-    const char* d = std::getenv("GIB_DEVICE");
-    auto g = Gpu::create({d ? d : "", false});
-    benchmark::AddCustomContext("gpu_device", g->info().name);
-    benchmark::AddCustomContext("gpu_driver", g->info().driver_name + " " + g->info().driver_info);
-    return g;
-  }();
-  return *gpu;
-}
 
 uint32_t env_u32(const char* name, uint32_t fallback) {
   const char* v = std::getenv(name);
@@ -48,7 +39,7 @@ std::string scene_path() {
 
 double run_scale() {
   if (const char* s = std::getenv("GIB_BENCH_SCALE"); s && *s) return perf::parse_scale(s);
-  return pass_bench_gpu().info().is_software() ? 0.125 : 1.0;
+  return bench_gpu().info().is_software() ? 0.125 : 1.0;
 }
 
 Settings settings_for(const Technique& t, uint32_t w, uint32_t h) {
@@ -73,9 +64,9 @@ Live& live(const Technique& t, uint32_t w, uint32_t h) {
   if (l.key != key) {
     l.ex.reset();
     l.scene = std::make_unique<Scene>(load_scene(scene_path()));
-    l.ex = std::make_unique<Executor>(pass_bench_gpu(), *l.scene, settings_for(t, w, h), make_passes(t),
+    l.ex = std::make_unique<Executor>(bench_gpu(), *l.scene, settings_for(t, w, h), make_passes(t),
                                       std::vector<std::string>{t.output});
-    uint32_t warm = env_u32("GIB_BENCH_WARMUP", pass_bench_gpu().info().is_software() ? 1 : 5);
+    uint32_t warm = env_u32("GIB_BENCH_WARMUP", bench_gpu().info().is_software() ? 1 : 5);
     for (uint32_t i = 0; i < warm; ++i) l.ex->run_frame();
     l.key = key;
   }

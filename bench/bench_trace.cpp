@@ -12,6 +12,7 @@
 #include <random>
 
 #include "bench/trace_rays_shared.h"
+#include "bench/bench_common.h"
 #include "renderer/graph/executor.h"
 #include "renderer/scene/bvh.h"
 #include "renderer/scene/scene_loader.h"
@@ -20,16 +21,6 @@
 namespace gib {
 namespace {
 
-Gpu& bench_gpu() {
-  static std::unique_ptr<Gpu> gpu = [] {
-    const char* d = std::getenv("GIB_DEVICE");
-    auto g = Gpu::create({d ? d : "", false});
-    benchmark::AddCustomContext("gpu_device", g->info().name);
-    benchmark::AddCustomContext("gpu_driver", g->info().driver_name + " " + g->info().driver_info);
-    return g;
-  }();
-  return *gpu;
-}
 
 std::pair<uint32_t, uint32_t> bench_size() {
   if (const char* s = std::getenv("GIB_BENCH_SIZE")) {

@@ -1,4 +1,5 @@
 #include "harness/case.h"
+#include "renderer/scene/json_messages.h"
 
 #include <fmt/format.h>
 
@@ -24,49 +25,18 @@ namespace {
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
+using json_messages::ascii_line;
+using json_messages::describe;
+using json_messages::dump_safe;
+using json_messages::pointer_token;
 
 // ---------------------------------------------------------------- message helpers
 
-// RFC 6901: '~' and '/' inside a key are escaped so the pointer stays unambiguous.
-std::string pointer_token(std::string_view key) {
-  std::string out;
-  for (char c : key) {
-    if (c == '~') out += "~0";
-    else if (c == '/') out += "~1";
-    else out += c;
-  }
-  return out;
-}
 
-// Messages end up in JSON reports and JUnit XML: keep them one line of printable ASCII.
-std::string ascii_line(std::string s) {
-  for (char& c : s)
-    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f) c = '?';
-  return s;
-}
 
-std::string dump_safe(const json& v) { return v.dump(-1, ' ', false, json::error_handler_t::replace); }
 
 std::string json_quoted(std::string_view s) { return dump_safe(json(std::string(s))); }
 
-// A short, single-line description of a JSON value for the "got ..." half of a message.
-std::string describe(const json& v) {
-  switch (v.type()) {
-    case json::value_t::null: return "null";
-    case json::value_t::boolean: return v.get<bool>() ? "true" : "false";
-    case json::value_t::number_integer:
-    case json::value_t::number_unsigned:
-    case json::value_t::number_float: return dump_safe(v);
-    case json::value_t::string: {
-      std::string s = dump_safe(v);
-      return s.size() > 48 ? s.substr(0, 44) + "...\"" : s;
-    }
-    case json::value_t::array:
-      return v.empty() ? "empty array" : fmt::format("array of {} element{}", v.size(), v.size() == 1 ? "" : "s");
-    case json::value_t::object: return v.empty() ? "empty object" : "object";
-    default: return "non-JSON value";
-  }
-}
 
 std::string join(const std::vector<std::string>& names, std::string_view sep = ", ") {
   std::string out;
