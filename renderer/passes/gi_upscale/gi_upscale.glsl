@@ -106,7 +106,26 @@ bool upscale(ivec2 p, vec3 x, vec3 n, float dist, out vec3 irradiance) {
     acc_g = imageLoad(sh_g, best_g);
     acc_b = imageLoad(sh_b, best_g);
   } else {
-    return false;
+    // Thin silhouettes: none of the 4 taps lies on this surface (their gather pixels saw the
+    // sky or another object). Take the most similar sample of the surrounding 4x4 instead of
+    // leaving the pixel without indirect light.
+    for (int j = -1; j <= 2; ++j)
+      for (int i = -1; i <= 2; ++i) {
+        ivec2 g = clamp(g0 + ivec2(i, j), ivec2(0), gsize - 1);
+        vec4 gp = imageLoad(gb_position, min(g * div + div / 2, full - 1));
+        if (gp.w == 0.0) continue;
+        vec3 gn = imageLoad(gb_normal, min(g * div + div / 2, full - 1)).xyz;
+        float similar = pow(max(0.0, dot(n, gn)), kUpscaleNormalPower) *
+                        exp(-abs(dot(n, gp.xyz - x)) / (dist * kUpscaleDepthSigma));
+        if (similar > best) {
+          best = similar;
+          best_g = g;
+        }
+      }
+    if (best <= 1e-3) return false;
+    acc_r = imageLoad(sh_r, best_g);
+    acc_g = imageLoad(sh_g, best_g);
+    acc_b = imageLoad(sh_b, best_g);
   }
   vec3 e = vec3(gib_sh2_irradiance(acc_r, n), gib_sh2_irradiance(acc_g, n), gib_sh2_irradiance(acc_b, n));
   irradiance = max(e, vec3(0.0));  // gib_sh2_irradiance returns irradiance / pi
