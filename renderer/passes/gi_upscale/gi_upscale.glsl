@@ -66,13 +66,23 @@ void write_out(ivec2 p, vec3 value, float frames) {
   imageStore(out_irradiance, p, vec4(stored, 1.0));
 }
 
+// How much gather sample g (a gather-res pixel) lies on the surface at x with normal n: normal
+// agreement times distance from the plane; 0 when that gather pixel saw the sky.
+float tap_similarity(ivec2 g, vec3 x, vec3 n, float dist) {
+  int div = int(push.divisor);
+  ivec2 src = min(g * div + div / 2, imageSize(gb_position) - 1);  // gather pixel g's full-res pixel
+  vec4 gp = imageLoad(gb_position, src);
+  if (gp.w == 0.0) return 0.0;
+  vec3 gn = imageLoad(gb_normal, src).xyz;
+  return pow(max(0.0, dot(n, gn)), kUpscaleNormalPower) * exp(-abs(dot(n, gp.xyz - x)) / (dist * kUpscaleDepthSigma));
+}
+
 // 4-tap bilateral upscale of the denoised gather SH, evaluated with the full-res normal.
 // Returns false when no gather sample around p lies on p's surface.
 bool upscale(ivec2 p, vec3 x, vec3 n, float dist, out vec3 irradiance) {
   irradiance = vec3(0.0);
   int div = int(push.divisor);
-  ivec2 full = imageSize(gb_position), gsize = imageSize(sh_r);
-  // Gather pixel g sits at full-res pixel g * div + div / 2.
+  ivec2 gsize = imageSize(sh_r);
   vec2 xg = (vec2(p) - float(div / 2)) / float(div);
   ivec2 g0 = ivec2(floor(xg));
   vec2 f = xg - vec2(g0);
@@ -82,11 +92,7 @@ bool upscale(ivec2 p, vec3 x, vec3 n, float dist, out vec3 irradiance) {
   for (int i = 0; i < 4; ++i) {
     ivec2 o = ivec2(i & 1, i >> 1);
     ivec2 g = clamp(g0 + o, ivec2(0), gsize - 1);
-    vec4 gp = imageLoad(gb_position, min(g * div + div / 2, full - 1));
-    if (gp.w == 0.0) continue;
-    vec3 gn = imageLoad(gb_normal, min(g * div + div / 2, full - 1)).xyz;
-    float similar = pow(max(0.0, dot(n, gn)), kUpscaleNormalPower) *
-                    exp(-abs(dot(n, gp.xyz - x)) / (dist * kUpscaleDepthSigma));
+    float similar = tap_similarity(g, x, n, dist);
     if (similar > best) {
       best = similar;
       best_g = g;
@@ -101,27 +107,20 @@ bool upscale(ivec2 p, vec3 x, vec3 n, float dist, out vec3 irradiance) {
     acc_r /= acc_w;
     acc_g /= acc_w;
     acc_b /= acc_w;
-  } else if (best > 1e-3) {  // the bilinear weight sits on other surfaces: take the most similar tap
-    acc_r = imageLoad(sh_r, best_g);
-    acc_g = imageLoad(sh_g, best_g);
-    acc_b = imageLoad(sh_b, best_g);
   } else {
-    // Thin silhouettes: none of the 4 taps lies on this surface (their gather pixels saw the
-    // sky or another object). Take the most similar sample of the surrounding 4x4 instead of
-    // leaving the pixel without indirect light.
-    for (int j = -1; j <= 2; ++j)
-      for (int i = -1; i <= 2; ++i) {
-        ivec2 g = clamp(g0 + ivec2(i, j), ivec2(0), gsize - 1);
-        vec4 gp = imageLoad(gb_position, min(g * div + div / 2, full - 1));
-        if (gp.w == 0.0) continue;
-        vec3 gn = imageLoad(gb_normal, min(g * div + div / 2, full - 1)).xyz;
-        float similar = pow(max(0.0, dot(n, gn)), kUpscaleNormalPower) *
-                        exp(-abs(dot(n, gp.xyz - x)) / (dist * kUpscaleDepthSigma));
-        if (similar > best) {
-          best = similar;
-          best_g = g;
+    // The bilinear weight sits on other surfaces: take the most similar of the 4 taps, or on
+    // thin silhouettes, where none of them lies on this surface (their gather pixels saw the
+    // sky or another object), the most similar sample of the surrounding 4x4.
+    if (best <= 1e-3)
+      for (int j = -1; j <= 2; ++j)
+        for (int i = -1; i <= 2; ++i) {
+          ivec2 g = clamp(g0 + ivec2(i, j), ivec2(0), gsize - 1);
+          float similar = tap_similarity(g, x, n, dist);
+          if (similar > best) {
+            best = similar;
+            best_g = g;
+          }
         }
-      }
     if (best <= 1e-3) return false;
     acc_r = imageLoad(sh_r, best_g);
     acc_g = imageLoad(sh_g, best_g);
