@@ -271,28 +271,57 @@ std::vector<std::string> reference_outputs() {
   return out;
 }
 
-Threshold read_threshold(const Node& n, const Case& c) {
-  require_object(n, {"metric", "against", "roi", "max", "min"});
+std::string roi_name_what(const Case& c) {
+  std::vector<std::string> names;
+  for (const Roi& r : c.rois) names.push_back(r.name);
+  return names.empty() ? std::string("the name of a ROI in /rois (none defined)")
+                       : fmt::format("the name of a ROI in /rois ({})", join(names));
+}
+
+std::string read_roi_name(const Node& n, const Case& c) {
+  std::string what = roi_name_what(c);
+  std::string name = read_string(n, what);
+  if (std::none_of(c.rois.begin(), c.rois.end(), [&](const Roi& r) { return r.name == name; })) n.fail(what);
+  return name;
+}
+
+Threshold read_threshold(const Node& n, const Case& c, const TechniqueRun& run) {
+  require_object(n, {"metric", "against", "roi", "max", "min", "frame"});
   Threshold t;
-  t.metric = read_choice(n["metric"], case_metrics());
+  Node metric = n["metric"];
+  t.metric = read_choice(metric, case_metrics());
+  if (t.metric == "flicker" && c.flicker_frames < 2)
+    metric.fail("a metric other than flicker, or a top-level \"flicker_frames\" >= 2", json_quoted(t.metric));
+  if (t.metric.rfind("nan_", 0) == 0 && t.metric != "nan_count" && !c.track_nan)
+    metric.fail(fmt::format("a top-level \"track_nan\": true for metric {}", t.metric), json_quoted(t.metric));
+  if (t.metric.rfind("conv_", 0) == 0 && !c.convergence)
+    metric.fail(fmt::format("a top-level \"convergence\" object for metric {}", t.metric), json_quoted(t.metric));
   Node against = n["against"];
   if (!metric_uses_against(t.metric)) {
     if (against.present())
       against.fail(fmt::format("no \"against\" for metric {} (it measures the output alone)", t.metric));
     t.against = "";
   } else if (against.present()) {
-    t.against = read_choice(against, {"reference", "golden", "analytic"});
+    std::vector<std::string> choices = {"reference", "golden", "analytic"};
+    for (auto& [name, opts] : run.variants) choices.push_back("variant:" + name);
+    t.against = read_choice(against, choices);
     if (t.against == "analytic" && !c.analytic_value)
       against.fail("\"analytic\" only in a case with a top-level analytic_value", json_quoted(t.against));
   }
-  if (Node roi = n["roi"]; roi.present()) {
-    std::vector<std::string> names;
-    for (const Roi& r : c.rois) names.push_back(r.name);
-    std::string what = names.empty() ? std::string("the name of a ROI in /rois (none defined)")
-                                     : fmt::format("the name of a ROI in /rois ({})", join(names));
-    t.roi = read_string(roi, what);
-    if (std::find(names.begin(), names.end(), t.roi) == names.end()) roi.fail(what);
+  if (metric_uses_against(t.metric) && t.against == "reference" && c.reference_spp == 0)
+    (against.present() ? against : metric)
+        .fail("a comparison other than \"reference\" (reference_spp is 0: the case has no reference)",
+              json_quoted(t.against));
+  if (Node f = n["frame"]; f.present()) {
+    std::vector<std::string> frames;
+    for (uint32_t e : c.eval_frames) frames.push_back(std::to_string(e));
+    std::string what = frames.empty() ? std::string("no \"frame\" (the case has no eval_frames)")
+                                      : fmt::format("one of the eval_frames ({})", join(frames));
+    t.frame = read_uint(f, 1, c.frames);
+    if (std::find(c.eval_frames.begin(), c.eval_frames.end(), t.frame) == c.eval_frames.end())
+      f.fail(what, number_text(t.frame));
   }
+  if (Node roi = n["roi"]; roi.present()) t.roi = read_roi_name(roi, c);
   if (Node mx = n["max"]; mx.present()) t.max = read_finite(mx);
   if (Node mn = n["min"]; mn.present()) t.min = read_finite(mn);
   if (!t.max && !t.min) n.fail("\"max\" or \"min\" (or both)", "neither");
@@ -301,7 +330,31 @@ Threshold read_threshold(const Node& n, const Case& c) {
 }
 
 // Fields shared by technique entries and negative controls.
-const std::vector<std::string> kRunKeys = {"technique", "presets", "options", "compare_aov", "thresholds"};
+const std::vector<std::string> kRunKeys = {"technique", "presets",  "options",      "compare_aov",
+                                           "thresholds", "variants", "known_failure"};
+
+// An object of option name -> number, validated against the technique's options.
+std::map<std::string, double> read_options(const Node& options, const Technique& tech) {
+  if (!options.v->is_object()) options.fail("object of option name -> number");
+  std::map<std::string, double> out;
+  const auto& known = technique_options(tech);
+  for (auto it = options.v->begin(); it != options.v->end(); ++it) {
+    Node o = options[it.key()];
+    auto k = std::find_if(known.begin(), known.end(), [&](const TechniqueOption& t) { return t.name == it.key(); });
+    std::string err;
+    if (k == known.end()) {
+      err = check_option(tech, it.key(), 0);
+    } else if (!it.value().is_number()) {
+      err = fmt::format("expected an integer in [{}, {}], got {}", number_text(k->min), number_text(k->max),
+                        describe(it.value()));
+    } else {
+      err = check_option(tech, it.key(), it.value().get<double>());
+    }
+    if (!err.empty()) throw CaseError(ascii_line(fmt::format("{}: {}: {}", *options.file, o.pointer(), err)));
+    out[it.key()] = it.value().get<double>();
+  }
+  return out;
+}
 
 TechniqueRun read_run(const Node& n, const Case& c, bool negative) {
   TechniqueRun run;
@@ -325,33 +378,27 @@ TechniqueRun read_run(const Node& n, const Case& c, bool negative) {
     run.presets = {"medium"};
   }
 
-  if (Node options = n["options"]; options.present()) {
-    if (!options.v->is_object()) options.fail("object of option name -> number");
-    const auto& known = technique_options(tech);
-    for (auto it = options.v->begin(); it != options.v->end(); ++it) {
-      Node o = options[it.key()];
-      auto k = std::find_if(known.begin(), known.end(), [&](const TechniqueOption& t) { return t.name == it.key(); });
-      std::string err;
-      if (k == known.end()) {
-        err = check_option(tech, it.key(), 0);
-      } else if (!it.value().is_number()) {
-        err = fmt::format("expected an integer in [{}, {}], got {}", number_text(k->min), number_text(k->max),
-                          describe(it.value()));
-      } else {
-        err = check_option(tech, it.key(), it.value().get<double>());
-      }
-      if (!err.empty()) throw CaseError(ascii_line(fmt::format("{}: {}: {}", *n.file, o.pointer(), err)));
-      run.options[it.key()] = it.value().get<double>();
+  if (Node options = n["options"]; options.present()) run.options = read_options(options, tech);
+  if (Node variants = n["variants"]; variants.present()) {
+    if (!variants.v->is_object() || variants.v->empty()) variants.fail("non-empty object of variant name -> options");
+    for (auto it = variants.v->begin(); it != variants.v->end(); ++it) {
+      Node v = variants[it.key()];
+      if (!is_name(it.key(), true)) v.fail("a variant name of a-z, 0-9, '_' and '-'", json_quoted(it.key()));
+      run.variants[it.key()] = read_options(v, tech);
     }
   }
 
+  if (Node kf = n["known_failure"]; kf.present()) {
+    if (negative) kf.fail("no \"known_failure\" in a negative control (it must fail anyway)");
+    run.known_failure = read_nonempty_string(kf);
+  }
   if (Node aov = n["compare_aov"]; aov.present())
     run.compare_aov = read_choice(aov, reference_outputs(), "one of the reference outputs");
 
   Node thresholds = n["thresholds"];
   if (negative || thresholds.present()) {
     require_array(thresholds, negative);
-    for (size_t i = 0; i < thresholds.v->size(); ++i) run.thresholds.push_back(read_threshold(thresholds[i], c));
+    for (size_t i = 0; i < thresholds.v->size(); ++i) run.thresholds.push_back(read_threshold(thresholds[i], c, run));
   }
   return run;
 }
@@ -359,7 +406,8 @@ TechniqueRun read_run(const Node& n, const Case& c, bool negative) {
 const std::vector<std::string> kTopKeys = {
     "$schema",         "description",  "scene",          "width", "height",          "frames",
     "output",          "reference_spp", "reference_seed", "analytic_value", "flip_mode", "ppd",
-    "golden_flip_max", "rois",          "techniques",     "negative_controls"};
+    "golden_flip_max", "rois",          "techniques",     "negative_controls", "eval_frames", "convergence",
+    "flicker_frames", "track_nan"};
 
 Case parse_case(const json& doc, const std::string& file) {
   Case c;
@@ -378,7 +426,7 @@ Case parse_case(const json& doc, const std::string& file) {
   if (Node n = root["height"]; n.present()) c.height = read_uint(n, 1, 8192);
   if (Node n = root["frames"]; n.present()) c.frames = read_uint(n, 1, 100000);
   if (Node n = root["output"]; n.present()) c.output = read_choice(n, reference_outputs(), "one of the reference outputs");
-  if (Node n = root["reference_spp"]; n.present()) c.reference_spp = read_uint(n, 1, 1048576);
+  if (Node n = root["reference_spp"]; n.present()) c.reference_spp = read_uint(n, 0, 1048576);
   if (Node n = root["reference_seed"]; n.present()) c.reference_seed = read_uint(n, 0, 4294967295.0);
   if (Node n = root["analytic_value"]; n.present()) c.analytic_value = read_finite(n);
   if (Node n = root["flip_mode"]; n.present()) c.flip_mode = read_choice(n, {"hdr", "ldr"});
@@ -386,6 +434,33 @@ Case parse_case(const json& doc, const std::string& file) {
     c.ppd = read_number(n, "number > 0", 0.0, std::numeric_limits<double>::max(), true);
   if (Node n = root["golden_flip_max"]; n.present()) c.golden_flip_max = read_number(n, "number in [0, 1]", 0.0, 1.0);
   c.rois = read_rois(root["rois"]);
+  if (Node n = root["eval_frames"]; n.present()) {
+    require_array(n, true);
+    for (size_t i = 0; i < n.v->size(); ++i) {
+      uint32_t f = read_uint(n[i], 1, c.frames);
+      if (!c.eval_frames.empty() && f <= c.eval_frames.back())
+        n[i].fail(fmt::format("a frame after {} (increasing)", c.eval_frames.back()), number_text(f));
+      c.eval_frames.push_back(f);
+    }
+  }
+  if (Node n = root["convergence"]; n.present()) {
+    require_object(n, {"roi", "target", "settle_frame"});
+    Convergence conv;
+    if (Node r = n["roi"]; r.present()) conv.roi = read_roi_name(r, c);
+    if (Node t = n["target"]; t.present())
+      conv.target = read_number(t, "number > 0", 0.0, std::numeric_limits<double>::max(), true);
+    else if (c.analytic_value && *c.analytic_value > 0)
+      conv.target = *c.analytic_value;
+    else
+      n.fail("\"target\" (or a positive top-level analytic_value)", "neither");
+    if (Node f = n["settle_frame"]; f.present()) conv.settle_frame = read_uint(f, 1, c.frames);
+    c.convergence = conv;
+  }
+  if (Node n = root["flicker_frames"]; n.present()) c.flicker_frames = read_uint(n, 2, c.frames);
+  if (Node n = root["track_nan"]; n.present()) {
+    if (!n.v->is_boolean()) n.fail("true or false");
+    c.track_nan = n.v->get<bool>();
+  }
 
   Node techs = root["techniques"];
   require_array(techs, true);
@@ -431,13 +506,21 @@ Case parse_case(const json& doc, const std::string& file) {
 }  // namespace
 
 const std::vector<std::string>& case_metrics() {
-  static const std::vector<std::string> m = {"flip",          "psnr",      "relmse",   "roi_mean", "roi_ratio",
-                                             "max_abs_error", "nan_count", "inf_count"};
+  static const std::vector<std::string> m = {
+      "flip",      "psnr",    "relmse",         "roi_mean",         "roi_ratio",      "max_abs_error",
+      "nan_count", "inf_count", "uv_shift_max", "banding",          "banding_excess", "flicker",
+      "conv_error_final", "conv_error_max", "conv_drift", "conv_oscillation",
+      "scan_nan", "scan_inf", "scan_negative", "scan_above_max", "nan_frames", "nan_last_frame",
+      "nan_max_pixels"};
   return m;
 }
 
 bool metric_uses_against(const std::string& metric) {
-  return metric != "roi_mean" && metric != "nan_count" && metric != "inf_count";
+  static const std::set<std::string> alone = {"roi_mean", "nan_count", "inf_count", "banding", "flicker",
+                                              "conv_error_final", "conv_error_max", "conv_drift",
+                                              "conv_oscillation", "scan_nan", "scan_inf", "scan_negative",
+                                              "scan_above_max", "nan_frames", "nan_last_frame", "nan_max_pixels"};
+  return alone.count(metric) == 0;
 }
 
 Case load_case(const std::string& path) {

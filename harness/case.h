@@ -32,14 +32,35 @@ struct Roi {
 //   roi_ratio                 roi_mean(output) / roi_mean(against)
 //   max_abs_error             largest |output - against| over channels and pixels
 //   nan_count, inf_count      non-finite values in the output
+//   uv_shift_max              largest CIE 1976 u'v' distance per pixel vs `against` (pixels
+//                             darker than 1e-3 skipped; metrics::chromaticity_shift)
+//   banding                   banding index of the output's luminance (metrics::banding_index)
+//   banding_excess            banding(output) - banding(against): the part the content lacks
+//   flicker                   mean per-pixel relative std of luminance over the last
+//                             Case::flicker_frames frames (needs flicker_frames)
+//   conv_error_final          |m - t| / t at the last frame, m = ROI mean luminance per frame,
+//                             t = Case::convergence target (needs convergence)
+//   conv_error_max            max |m - t| / t over frames >= convergence.settle_frame
+//   conv_drift                |mean m over the last 10% of frames - mean over the first 10%
+//                             from settle_frame| / t: slow drift after convergence
+//   conv_oscillation          (total variation of m from settle_frame on - |net change|) / t,
+//                             after a 5-frame moving mean: 0 for a monotone approach
+//   nan_frames                frames whose output had a NaN pixel (needs track_nan)
+//   nan_last_frame            the last such frame (1-based; 0: none)
+//   nan_max_pixels            the most NaN pixels in any one frame's output
+//   scan_nan, scan_inf,       offending texels/elements over every frame, pass and resource of
+//   scan_negative,            the GPU stability scan (renderer/graph/stability.h; needs the
+//   scan_above_max            scan on, the default of `gibench run`)
 // `against`: "reference" (the path-traced golden), "golden" (this technique's approved
-// golden), or "analytic" (a constant image of Case::analytic_value). Metrics measured on the
-// output alone (roi_mean, nan_count, inf_count) take no `against`: the loader leaves it "".
+// golden), "analytic" (a constant image of Case::analytic_value) or "variant:NAME" (the same
+// technique and preset rendered with TechniqueRun::variants[NAME] on top of its options).
+// Metrics measured on the output alone take no `against`: the loader leaves it "".
 struct Threshold {
   std::string metric;
   std::string against = "reference";
   std::string roi;                   // "" = whole image
   std::optional<double> max, min;    // at least one
+  uint32_t frame = 0;                // one of Case::eval_frames; 0 = every evaluation frame
 };
 
 // A technique run: technique x presets, with named options (technique settings, e.g.
@@ -50,6 +71,20 @@ struct TechniqueRun {
   std::map<std::string, double> options;    // validated against the technique's option names
   std::string compare_aov;                  // reference AOV this output is compared to ("" = Case::output)
   std::vector<Threshold> thresholds;
+  // Named option sets rendered alongside (same technique and preset; these options on top of
+  // `options`) as comparison images: a threshold's against "variant:NAME".
+  std::map<std::string, std::map<std::string, double>> variants;
+  // Non-empty: a defect known to make this run fail, in words (with the issue or note that
+  // tracks it). A failing run is reported as "known_failure" and does not fail the suite; a
+  // run that passes fails it ("remove known_failure"), so the mark cannot go stale.
+  std::string known_failure;
+};
+
+// Per-frame tracking of the mean luminance in one ROI (the convergence curve): conv_* metrics.
+struct Convergence {
+  std::string roi;            // "" = whole image
+  double target = 1.0;        // the value m should converge to (default: analytic_value)
+  uint32_t settle_frame = 1;  // frames before this one (1-based) are the approach, not checked
 };
 
 // A configuration that must FAIL at least one of its thresholds; if it passes, the case fails
@@ -68,8 +103,15 @@ struct Case {
   std::string scene_file;   // "" when inline
   uint32_t width = 256, height = 144;
   uint32_t frames = 1;      // frames rendered for non-reference techniques (the last is compared)
+  // 1-based frames at which thresholds are evaluated (the worst value counts); empty = the
+  // last frame. In a scene with motion, each has its own reference rendered at that frame's
+  // time (goldens reference.<aov>.f<N>.exr).
+  std::vector<uint32_t> eval_frames;
+  std::optional<Convergence> convergence;  // record the ROI mean every frame
+  uint32_t flicker_frames = 0;             // >= 2: keep the last N outputs for the flicker metric
+  bool track_nan = false;                  // count NaN pixels of the output every frame (nan_* metrics)
   std::string output = "radiance";  // reference AOV compared by default
-  uint32_t reference_spp = 256;
+  uint32_t reference_spp = 256;      // 0: no path-traced reference (analytic cases only)
   uint32_t reference_seed = 1;
   std::optional<double> analytic_value;  // for against == "analytic"
   std::string flip_mode = "hdr";         // "hdr" or "ldr"

@@ -3,15 +3,26 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "harness/goldens.h"
+#include "harness/metrics/image_metrics.h"
 #include "renderer/techniques/technique.h"
 
 namespace gib {
 
+std::vector<uint32_t> evaluation_frames(const Case& c) {
+  return c.eval_frames.empty() ? std::vector<uint32_t>{c.frames} : c.eval_frames;
+}
+
+bool per_frame_references(const Case& c) {
+  return !c.eval_frames.empty() && c.scene.features().has(Feature::motion);
+}
+
 CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::string& preset,
-                       uint32_t seed_offset) {
+                       uint32_t seed_offset, uint32_t at_frame, bool scan) {
   const Technique& t = find_technique(run.technique);
   Settings s;
   s.width = c.width;
@@ -25,7 +36,11 @@ CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const s
     while (c.reference_spp % s.spp_per_frame) --s.spp_per_frame;
   }
   s = apply_options(t, s, run.options);
-  if (reference) frames = std::max(1u, c.reference_spp / s.spp_per_frame);
+  if (reference) {
+    frames = std::max(1u, c.reference_spp / s.spp_per_frame);
+    // A reference never moves while it converges: it shows one moment of the scene.
+    s.scene_time = float(at_frame ? at_frame - 1 : 0) * c.scene.frame_time;
+  }
 
   std::string aov = run.compare_aov.empty() ? c.output : run.compare_aov;
   // A technique that produces the compared AOV itself (e.g. radiance-cache's indirect_diffuse)
@@ -38,9 +53,38 @@ CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const s
       if (std::find(outputs.begin(), outputs.end(), a) == outputs.end()) outputs.push_back(a);
 
   Executor ex(gpu, c.scene, s, make_passes(t), outputs);
+  ex.enable_stability_scan(scan);
   std::vector<FrameResult> results;
-  for (uint32_t f = 0; f < frames; ++f) results.push_back(ex.run_frame());
   CaseRender r;
+  std::vector<uint32_t> eval = reference ? std::vector<uint32_t>{} : evaluation_frames(c);
+  std::optional<metrics::Roi> curve_roi;
+  if (!reference && c.convergence) {
+    curve_roi = metrics::Roi{};
+    for (auto& roi : c.rois)
+      if (roi.name == c.convergence->roi) curve_roi = metrics::Roi{roi.x0, roi.y0, roi.x1, roi.y1};
+  }
+  const uint32_t keep_last = reference ? 0 : c.flicker_frames;
+  for (uint32_t f = 1; f <= frames; ++f) {
+    results.push_back(ex.run_frame());
+    bool eval_here = std::find(eval.begin(), eval.end(), f) != eval.end();
+    bool keep = keep_last && f + keep_last > frames;
+    const bool track_nan = c.track_nan;  // the reference too: its accumulation is temporal
+    if (!eval_here && !keep && !curve_roi && !track_nan) continue;
+    FloatImage img = ex.read(out_name);
+    if (track_nan) {
+      size_t n = 0;
+      for (uint32_t y = 0; y < img.height; ++y)
+        for (uint32_t x = 0; x < img.width; ++x) {
+          bool bad = false;
+          for (uint32_t ch = 0; ch < img.channels; ++ch) bad |= std::isnan(img.at(x, y, ch));
+          n += bad;
+        }
+      r.nan_pixels.push_back(double(n));
+    }
+    if (curve_roi) r.curve.push_back(metrics::roi_mean_luminance(img, *curve_roi));
+    if (keep) r.last_frames.push_back(img);
+    if (eval_here) r.frame_images[f] = std::move(img);
+  }
   r.technique = t.name;
   r.preset = preset;
   r.plan = ex.plan();
@@ -55,11 +99,14 @@ CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const s
   r.frames = frames;
   r.spp = reference ? frames * s.spp_per_frame : 0;
   r.image = ex.read(out_name);
+  r.scanned = scan;
+  if (scan) r.stability = ex.stability();
   if (reference)
     for (auto& a : outputs) r.aovs[a] = a == out_name ? r.image : ex.read(a);
   nlohmann::json key{{"case", c.name}, {"technique", t.name}, {"preset", preset}, {"options", run.options},
                      {"size", {c.width, c.height}}, {"frames", frames}, {"seed", s.seed},
                      {"spp", r.spp}, {"scene", c.scene_file.empty() ? std::string("inline") : c.scene_file}};
+  if (at_frame) key["at_frame"] = at_frame;
   r.settings_hash = fnv1a_hex(key.dump());
   return r;
 }

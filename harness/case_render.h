@@ -7,6 +7,7 @@
 
 #include "harness/case.h"
 #include "harness/render.h"
+#include "renderer/graph/stability.h"
 
 namespace gib {
 
@@ -20,11 +21,25 @@ struct CaseRender {
   double gpu_ms_total = 0;           // sum over frames (reference: the whole convergence)
   uint32_t frames = 0, spp = 0;
   std::string settings_hash;
+  // Non-reference runs, from the case's tracking fields:
+  std::map<uint32_t, FloatImage> frame_images;  // Case::eval_frames (1-based) -> output then
+  std::vector<double> curve;                    // Case::convergence: ROI mean luminance per frame
+  std::vector<FloatImage> last_frames;          // Case::flicker_frames: the last N outputs
+  std::vector<double> nan_pixels;               // Case::track_nan: NaN pixels of the output per frame
+  bool scanned = false;
+  StabilityReport stability;                    // when rendered with scan = true
 };
 
 // `aov` picks the reference AOV compared ("" = the case's output). Reference runs use the
-// case's reference_spp and seed (seed_offset shifts it: the noise floor renders twice).
+// case's reference_spp and seed (seed_offset shifts it: the noise floor renders twice);
+// at_frame (1-based, reference only) renders the scene as it is at that frame of a technique
+// run (a per-frame reference of an animated scene; 0 = the scene's first frame, time 0).
 CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::string& preset,
-                       uint32_t seed_offset = 0);
+                       uint32_t seed_offset = 0, uint32_t at_frame = 0, bool scan = false);
+
+// The 1-based frames a technique run is evaluated at: Case::eval_frames, or {frames}.
+std::vector<uint32_t> evaluation_frames(const Case& c);
+// True when the case's evaluation frames need references of their own (the scene moves).
+bool per_frame_references(const Case& c);
 
 }  // namespace gib

@@ -31,8 +31,9 @@ std::string device_class(const std::string& driver, const std::string& name) {
 GoldenStore::GoldenStore(std::string root, std::string case_name)
     : root_(std::move(root)), case_(std::move(case_name)), dir_((fs::path(root_) / case_).string()) {}
 
-std::string GoldenStore::reference_stem(const std::string& aov, const std::string& default_aov) {
-  return aov.empty() || aov == default_aov ? "reference" : "reference." + aov;
+std::string GoldenStore::reference_stem(const std::string& aov, const std::string& default_aov, uint32_t frame) {
+  std::string stem = aov.empty() || aov == default_aov ? "reference" : "reference." + aov;
+  return frame ? fmt::format("{}.f{:03}", stem, frame) : stem;
 }
 
 std::string GoldenStore::technique_stem(const std::string& technique, const std::string& preset) {

@@ -23,8 +23,9 @@ class GoldenStore {
  public:
   GoldenStore(std::string root, std::string case_name);
   const std::string& dir() const { return dir_; }
-  // File stems: "reference", "reference.direct", "direct.medium".
-  static std::string reference_stem(const std::string& aov, const std::string& default_aov);
+  // File stems: "reference", "reference.direct", "reference.direct.f010" (the reference of
+  // frame 10 of an animated case), "direct.medium".
+  static std::string reference_stem(const std::string& aov, const std::string& default_aov, uint32_t frame = 0);
   static std::string technique_stem(const std::string& technique, const std::string& preset);
   // The golden to compare with on `device_class`: "<stem>.<class>.exr" if present, else
   // "<stem>.exr". Empty when neither exists.

@@ -44,12 +44,15 @@ int main(int argc, char** argv) {
   render->add_flag("--plan", ro.plan_only, "print the plan (ran / culled and why) and exit");
   render->add_option("--dump-graph", ro.dot, "write the graph as graphviz .dot");
   render->add_option("--dump", ro.dumps, "also write this resource as EXR (repeatable)");
+  render->add_option("--option", ro.options, "technique option NAME=VALUE, e.g. world_offset_x=10000 (repeatable)");
   render->add_option("--out", ro.out, "output EXR (a PNG preview is written beside it)");
   render->add_option("--json", ro.json, "write device, plan and timings as JSON");
 
   gib::SuiteOptions run_opts;
   auto* run = app.add_subcommand("run", "run the scenario suite: cases vs references and goldens, report");
   add_suite_options(run, run_opts);
+  run->add_flag("!--no-stability-scan", run_opts.stability_scan,
+                "skip the GPU scan of every resource each pass writes for NaN, Inf, negative and out-of-bound values");
   run->add_flag("--noise-floor", run_opts.noise_floor,
                 "render each reference twice (two seeds), record the FLIP between them in golden.json");
 

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -27,7 +29,27 @@ Settings make_settings(const RenderOptions& o, const Technique& t) {
   s.height = o.height;
   s.seed = o.seed;
   s = apply_preset(t, o.preset, s);
-  return s;
+  return apply_options(t, s, parse_render_options(t, o.options));
+}
+
+// Non-finite values among the colour channels of an image.
+struct NonFinite {
+  size_t nan = 0, inf = 0, pixels = 0;  // pixels: with any non-finite channel
+};
+NonFinite count_non_finite(const FloatImage& img) {
+  NonFinite n;
+  const uint32_t channels = std::min(img.channels, 3u);
+  for (size_t i = 0; i < img.pixel_count(); ++i) {
+    bool bad = false;
+    for (uint32_t c = 0; c < channels; ++c) {
+      float v = img.pixels[i * img.channels + c];
+      n.nan += std::isnan(v);
+      n.inf += std::isinf(v);
+      bad = bad || !std::isfinite(v);
+    }
+    n.pixels += bad;
+  }
+  return n;
 }
 
 // Samples per frame: the largest of 16, 8, 4, 2, 1 that divides the total.
@@ -50,6 +72,25 @@ std::string stem_path(const std::string& out, const std::string& suffix) {
 }
 
 }  // namespace
+
+std::map<std::string, double> parse_render_options(const Technique& t, const std::vector<std::string>& options) {
+  std::map<std::string, double> out;
+  for (const std::string& o : options) {
+    size_t eq = o.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw std::invalid_argument(fmt::format("--option: expected NAME=VALUE, got '{}'", o));
+    std::string name = o.substr(0, eq), text = o.substr(eq + 1);
+    char* end = nullptr;
+    double value = text.empty() ? 0.0 : std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0')
+      throw std::invalid_argument(fmt::format("--option {}: expected a number, got '{}'", name, text));
+    if (std::string err = check_option(t, name, value); !err.empty())
+      throw std::invalid_argument(fmt::format("--option {}: {}", name, err));
+    if (!out.emplace(name, value).second)
+      throw std::invalid_argument(fmt::format("--option {}: expected each option once, got it twice", name));
+  }
+  return out;
+}
 
 std::vector<PassStats> summarize(const std::vector<FrameResult>& frames) {
   std::vector<PassStats> out;
@@ -128,6 +169,8 @@ int cmd_render(const RenderOptions& o) {
   for (auto& p : run.plan.passes)
     if (!p.runs) fmt::print("{:<22} {:>7} {:>10} {:>10} {:>10}  {}\n", p.name, "culled", "-", "-", "-", p.reason);
   fmt::print("frame median {:.3f} ms; resources {:.2f} MiB\n", run.frame_median_ms, run.plan.total_bytes() / 1048576.0);
+  const NonFinite bad = count_non_finite(run.output);
+  fmt::print("output {}: {} NaN, {} Inf values ({} pixels)\n", t.output, bad.nan, bad.inf, bad.pixels);
   write_exr(o.out, run.output);
   write_png_preview(stem_path(o.out, ".png"), run.output);
   fmt::print("wrote {} and {}\n", o.out, stem_path(o.out, ".png"));
@@ -145,6 +188,8 @@ int cmd_render(const RenderOptions& o) {
     j["spp"] = run.frames * run.settings.spp_per_frame;
     j["frame_median_ms"] = run.frame_median_ms;
     j["resource_bytes"] = run.plan.total_bytes();
+    j["options"] = parse_render_options(t, o.options);
+    j["output_non_finite"] = {{"nan", bad.nan}, {"inf", bad.inf}, {"pixels", bad.pixels}};
     auto& passes = j["passes"] = nlohmann::json::array();
     for (auto& p : run.plan.passes) {
       nlohmann::json pj{{"name", p.name}, {"status", p.runs ? "ran" : "culled"}, {"reason", p.reason}};

@@ -4,7 +4,10 @@
 #include <string>
 #include <vector>
 
+#include <map>
+
 #include "renderer/graph/executor.h"
+#include "renderer/techniques/technique.h"
 
 namespace gib {
 
@@ -21,6 +24,7 @@ struct RenderOptions {
   bool plan_only = false;
   std::string dot;                  // write the graph as graphviz here
   std::vector<std::string> dumps;   // resources to write as EXR
+  std::vector<std::string> options; // technique options, "NAME=VALUE" each (validated by check_option)
   std::string out;                  // output EXR
   std::string json;                 // machine-readable record
 };
@@ -47,5 +51,7 @@ int cmd_render(const RenderOptions& options);  // returns the process exit code
 int cmd_devices();
 
 std::vector<PassStats> summarize(const std::vector<FrameResult>& frames);
+// "NAME=VALUE" strings to technique options; throws std::invalid_argument naming the bad one.
+std::map<std::string, double> parse_render_options(const Technique& t, const std::vector<std::string>& options);
 
 }  // namespace gib

@@ -109,6 +109,39 @@ nlohmann::json suite_to_json(const SuiteResult& suite) {
                     {"status", r.status}, {"messages", r.messages}, {"metrics", m}, {"checks", checks},
                     {"gpu_ms", r.gpu_ms}, {"passes", passes}, {"device", r.device}, {"image", r.image_id}, {"reference_image", r.reference_id},
                     {"resource_bytes", r.plan.total_bytes()}});
+    auto& row = rows.back();
+    if (!r.curve.empty()) {
+      nlohmann::json curve = nlohmann::json::array();
+      for (double v : r.curve) curve.push_back(finite_or_null(v));
+      row["curve"] = curve;
+      row["curve_target"] = r.curve_target;
+    }
+    if (r.eval_frames.size() > 1) row["eval_frames"] = r.eval_frames;
+    if (r.scanned) {
+      // Per (pass, resource) with any offender: counts over all frames and where it first was.
+      nlohmann::json res = nlohmann::json::array();
+      for (auto& t : r.stability.targets) {
+        uint64_t nan = t.count[size_t(StabilityCategory::nan)];
+        uint64_t inf = t.count[size_t(StabilityCategory::pos_inf)] + t.count[size_t(StabilityCategory::neg_inf)];
+        uint64_t neg = t.count[size_t(StabilityCategory::negative)];
+        uint64_t above = t.count[size_t(StabilityCategory::above_max)];
+        if (!(nan || inf || neg || above)) continue;
+        nlohmann::json e{{"pass", t.pass}, {"resource", t.resource}, {"nan", nan}, {"inf", inf}, {"negative", neg},
+                         {"above_max", above}, {"max_seen", finite_or_null(t.max_seen)}};
+        const StabilityRecord* first = nullptr;
+        for (auto& rec : r.stability.records)
+          if (rec.pass == t.pass && rec.resource == t.resource) { first = &rec; break; }
+        if (first) {
+          e["first_frame"] = first->first_frame;
+          e["first_at"] = first->buffer ? fmt::format("element {}", first->first_x)
+                                        : fmt::format("({}, {})", first->first_x, first->first_y);
+        }
+        res.push_back(e);
+      }
+      row["stability"] = {{"scanned", true}, {"frames", r.stability.frames},
+                          {"targets", r.stability.targets.size()}, {"resources", res},
+                          {"first_offenders", r.stability.first_offender_lines()}};
+    }
   }
   return j;
 }
@@ -137,7 +170,9 @@ void write_suite_outputs(const std::string& out_dir, const SuiteResult& suite, c
       std::string name = r.kind == "negative_control" ? "negative:" + r.control_name : r.technique + "." + r.preset;
       body += fmt::format("    <testcase classname=\"{}\" name=\"{}\" time=\"{:.3f}\">", xml_escape(c.name),
                           xml_escape(name), r.gpu_ms / 1000.0);
-      if (r.status != "pass") {
+      if (r.status == "known_failure") {
+        body += fmt::format("<skipped message=\"{}\"/>", xml_escape(r.messages.empty() ? "known failure" : r.messages[0]));
+      } else if (r.status != "pass") {
         ++fails;
         std::string msg;
         for (auto& m : r.messages) msg += m + "\n";

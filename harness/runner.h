@@ -10,6 +10,7 @@
 #include "harness/case.h"
 #include "renderer/graph/float_image.h"
 #include "harness/render.h"
+#include "renderer/graph/stability.h"
 #include <nlohmann/json.hpp>
 #include <optional>
 
@@ -23,6 +24,7 @@ struct SuiteOptions {
   std::string device;
   bool validate = false;
   bool noise_floor = false;  // run: also render each reference twice and record the floor
+  bool stability_scan = true;  // run: GPU scan of every written resource (renderer/graph/stability.h)
 };
 
 struct CheckResult {
@@ -37,11 +39,16 @@ struct ResultRow {
   std::string case_name, technique, preset, kind;  // kind: "technique" | "negative_control"
   std::string control_name, control_why;
   std::map<std::string, double> options;
-  std::string status;  // pass | fail | error
+  std::string status;  // pass | fail | error | known_failure (TechniqueRun::known_failure, failing as known)
   std::vector<std::string> messages;
   std::map<std::string, double> metrics;
   std::vector<CheckResult> checks;
   double gpu_ms = 0;  // median per frame
+  std::vector<double> curve;  // Case::convergence: ROI mean per frame
+  double curve_target = 0;
+  std::vector<uint32_t> eval_frames;  // frames the thresholds were evaluated at
+  bool scanned = false;               // the stability scan ran (SuiteOptions::stability_scan)
+  StabilityReport stability;
   std::vector<PassStats> passes;
   Plan plan;
   std::string image_id;      // files under DIR/img/: <id>.png, <id>.js, <id>.flip.png, <id>.exr
@@ -71,9 +78,23 @@ int cmd_update_goldens(const UpdateOptions& o);
 bool glob_match(const std::string& pattern, const std::string& text);
 std::vector<Case> select_cases(const SuiteOptions& o);
 
+// What the per-run metrics read beyond one image: the convergence curve (ROI mean luminance
+// per frame, conv_*) and the last frames (flicker).
+struct MetricSeries {
+  const std::vector<double>* curve = nullptr;
+  const std::vector<FloatImage>* frames = nullptr;
+  const StabilityReport* stability = nullptr;  // scan_* metrics
+  const std::vector<double>* nan_pixels = nullptr;  // nan_frames / nan_last_frame / nan_max_pixels
+};
+
 // The metric named by a threshold, of `output` against `against` (may be empty for metrics
 // that need none), inside roi (normalised; whole image when absent).
 double compute_metric(const Case& c, const std::string& metric, const FloatImage& output, const FloatImage* against,
-                      const Roi* roi);
+                      const Roi* roi, const MetricSeries& series = {});
+
+// The convergence metrics of a curve m (one value per frame) towards target t, from the 1-based
+// settle_frame on; see case.h for their definitions.
+double convergence_metric(const std::string& metric, const std::vector<double>& m, double target,
+                          uint32_t settle_frame);
 
 }  // namespace gib

@@ -64,22 +64,30 @@ int cmd_update_goldens(const UpdateOptions& o) {
     GoldenStore store(o.suite.goldens_dir, c.name);
     nlohmann::json meta = store.metadata();
     fmt::print("{}:\n", c.name);
-    if (o.reference) {
-      TechniqueRun ref_run{"reference", {"ultra"}, {}, "", {}};
-      CaseRender r = render_case(*gpu, c, ref_run, "ultra");
-      for (auto& [aov, img] : r.aovs) {
-        nlohmann::json rec = file_record(*gpu, r, o.reason);
-        rec["aov"] = aov;
-        rec["seed"] = c.reference_seed;
-        replace(store, meta, GoldenStore::reference_stem(aov, c.output), cls, img, rec, c);
+    if (o.reference && c.reference_spp == 0) fmt::print("  no reference (reference_spp 0)\n");
+    if (o.reference && c.reference_spp > 0) {
+      TechniqueRun ref_run{"reference", {"ultra"}, {}, "", {}, {}};
+      // A moving scene evaluated at several frames has one reference per frame (scene frozen
+      // at that frame's time); otherwise one reference of the scene at time 0.
+      std::vector<uint32_t> at = per_frame_references(c) ? evaluation_frames(c) : std::vector<uint32_t>{0};
+      for (uint32_t f : at) {
+        CaseRender r = render_case(*gpu, c, ref_run, "ultra", 0, f);
+        for (auto& [aov, img] : r.aovs) {
+          nlohmann::json rec = file_record(*gpu, r, o.reason);
+          rec["aov"] = aov;
+          rec["seed"] = c.reference_seed;
+          if (f) rec["at_frame"] = f;
+          replace(store, meta, GoldenStore::reference_stem(aov, c.output, f), cls, img, rec, c);
+        }
+        if (f != at.back()) continue;
+        // Noise floor: the same reference with another seed; thresholds vs the reference must
+        // sit above it.
+        CaseRender r2 = render_case(*gpu, c, ref_run, "ultra", 1000, f);
+        double floor = flip(r.image, r2.image, flip_opts(c)).mean;
+        meta["noise_floor"] = {{"flip", floor}, {"spp", r.spp}, {"seeds", {c.reference_seed, c.reference_seed + 1000}},
+                               {"device_class", cls}, {"date", utc_now_iso()}};
+        fmt::print("  noise floor (FLIP between two seeds at {} spp): {:.6f}\n", r.spp, floor);
       }
-      // Noise floor: the same reference with another seed; thresholds vs the reference must
-      // sit above it.
-      CaseRender r2 = render_case(*gpu, c, ref_run, "ultra", 1000);
-      double floor = flip(r.image, r2.image, flip_opts(c)).mean;
-      meta["noise_floor"] = {{"flip", floor}, {"spp", r.spp}, {"seeds", {c.reference_seed, c.reference_seed + 1000}},
-                             {"device_class", cls}, {"date", utc_now_iso()}};
-      fmt::print("  noise floor (FLIP between two seeds at {} spp): {:.6f}\n", r.spp, floor);
     }
     for (auto& run : c.techniques) {
       if (!o.techniques.empty() &&

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "harness/case.h"
+#include "harness/runner.h"
 #include "renderer/techniques/technique.h"
 
 #ifndef GIB_SOURCE_DIR
@@ -252,7 +253,9 @@ TEST(CaseErrors, TechniquesPresetsOptions) {
   expect_error(dir, d, "/techniques/0/presets", "non-empty array");
   d = valid_case();
   d["techniques"][0]["options"] = {{"sky_rayz", 1}};
-  expect_error(dir, d, "/techniques/0/options/sky_rayz", "(sky_rays), got unknown option \"sky_rayz\"");
+  // The list: the technique's own options first, then the options every technique shares.
+  expect_error(dir, d, "/techniques/0/options/sky_rayz", "(sky_rays, nan_guards, ");
+  expect_error(dir, d, "/techniques/0/options/sky_rayz", "), got unknown option \"sky_rayz\"");
   d = valid_case();
   d["techniques"][0]["options"] = {{"sky_rays", -1}};
   expect_error(dir, d, "/techniques/0/options/sky_rays", "integer in [0, 4294967295], got -1");
@@ -433,7 +436,7 @@ TEST(CaseOptions, ApplyOptions) {
   };
   std::string m = message(direct, {{"sky_rayz", 1}});
   EXPECT_NE(m.find("\"sky_rayz\""), std::string::npos) << m;
-  EXPECT_NE(m.find("(sky_rays)"), std::string::npos) << m;
+  EXPECT_NE(m.find("(sky_rays, nan_guards, inject_nan, inject_frame, inject_x, inject_y"), std::string::npos) << m;
   m = message(ref, {{"sky_rays", 1}});
   EXPECT_NE(m.find("max_bounces, spp_per_frame"), std::string::npos) << m;
   EXPECT_NE(message(ref, {{"max_bounces", 0}}).find("integer in [1, 4294967295], got 0"), std::string::npos);
@@ -444,8 +447,11 @@ TEST(CaseOptions, ApplyOptions) {
   EXPECT_NE(message(direct, {{"sky_rays", std::numeric_limits<double>::quiet_NaN()}}).find("got NaN"),
             std::string::npos);
   EXPECT_EQ(check_option(direct, "sky_rays", 64), "");
-  EXPECT_EQ(technique_options(direct).size(), 1u);
-  EXPECT_EQ(technique_options(ref).size(), 2u);
+  // Their own options (1 and 2), then the same shared ones (nan_guards, inject_*, ...).
+  EXPECT_EQ(technique_options(direct)[0].name, "sky_rays");
+  EXPECT_EQ(technique_options(ref)[1].name, "spp_per_frame");
+  EXPECT_EQ(technique_options(direct)[1].name, "nan_guards");
+  EXPECT_EQ(technique_options(direct).size() + 1, technique_options(ref).size());
 }
 
 // ---------------------------------------------------------------- directories
@@ -540,6 +546,104 @@ TEST(CaseSchema, SchemaMatchesLoader) {
 
   std::vector<std::string> schema_metrics = schema["$defs"]["threshold"]["properties"]["metric"]["enum"];
   EXPECT_EQ(schema_metrics, case_metrics());
+}
+
+// ---------------------------------------------------------------- tracking: variants, frames, curves
+
+TEST(CaseTracking, VariantsEvalFramesConvergenceFlickerLoad) {
+  TempDir dir;
+  json d = valid_case();
+  d["frames"] = 30;
+  d["eval_frames"] = {10, 30};
+  d["convergence"] = {{"roi", "centre"}, {"target", 2.0}, {"settle_frame", 5}};
+  d["flicker_frames"] = 4;
+  d["techniques"][0]["variants"] = {{"many-rays", {{"sky_rays", 16}}}};
+  d["techniques"][0]["thresholds"] = {
+      {{"metric", "uv_shift_max"}, {"against", "variant:many-rays"}, {"roi", "centre"}, {"max", 0.01}},
+      {{"metric", "flip"}, {"roi", "centre"}, {"frame", 10}, {"max", 0.3}},
+      {{"metric", "conv_error_max"}, {"max", 0.05}},
+      {{"metric", "flicker"}, {"max", 0.1}},
+      {{"metric", "scan_nan"}, {"max", 0}}};
+  Case c = load_case(dir.write("tracking.json", d.dump()));
+  EXPECT_EQ(c.eval_frames, (std::vector<uint32_t>{10, 30}));
+  ASSERT_TRUE(c.convergence.has_value());
+  EXPECT_EQ(c.convergence->roi, "centre");
+  EXPECT_EQ(c.convergence->target, 2.0);
+  EXPECT_EQ(c.convergence->settle_frame, 5u);
+  EXPECT_EQ(c.flicker_frames, 4u);
+  ASSERT_EQ(c.techniques[0].variants.count("many-rays"), 1u);
+  EXPECT_EQ(c.techniques[0].variants.at("many-rays").at("sky_rays"), 16.0);
+  EXPECT_EQ(c.techniques[0].thresholds[0].against, "variant:many-rays");
+  EXPECT_EQ(c.techniques[0].thresholds[1].frame, 10u);
+  EXPECT_EQ(c.techniques[0].thresholds[2].against, "");  // measured on the output alone
+  // The convergence target defaults to the analytic value.
+  d["convergence"].erase("target");
+  d["analytic_value"] = 1.5;
+  EXPECT_EQ(load_case(dir.write("target.json", d.dump())).convergence->target, 1.5);
+}
+
+TEST(CaseTracking, MalformedTrackingFieldsNameThePointer) {
+  TempDir dir;
+  json d = valid_case();
+  d["frames"] = 30;
+  auto with = [&](const std::function<void(json&)>& f) {
+    json x = d;
+    f(x);
+    return x;
+  };
+  expect_error(dir, with([](json& x) { x["eval_frames"] = {10, 5}; }), "/eval_frames/1", "increasing");
+  expect_error(dir, with([](json& x) { x["eval_frames"] = {31}; }), "/eval_frames/0", "integer in [1, 30]");
+  expect_error(dir, with([](json& x) { x["convergence"] = {{"settle_frame", 2}}; }), "/convergence",
+               "\"target\" (or a positive top-level analytic_value)");
+  expect_error(dir, with([](json& x) { x["convergence"] = {{"roi", "nowhere"}, {"target", 1}}; }), "/convergence/roi",
+               "(centre)");
+  expect_error(dir, with([](json& x) { x["flicker_frames"] = 1; }), "/flicker_frames", "integer in [2, 30]");
+  const std::string t0 = "/techniques/0/thresholds/0";
+  expect_error(dir, with([](json& x) { x["techniques"][0]["thresholds"][0] = {{"metric", "flicker"}, {"max", 1}}; }),
+               t0 + "/metric", "flicker_frames");
+  expect_error(dir, with([](json& x) { x["techniques"][0]["thresholds"][0] = {{"metric", "conv_drift"}, {"max", 1}}; }),
+               t0 + "/metric", "convergence");
+  expect_error(dir,
+               with([](json& x) {
+                 x["techniques"][0]["thresholds"][0] = {{"metric", "flip"}, {"against", "variant:none"}, {"max", 1}};
+               }),
+               t0 + "/against", "reference, golden, analytic");
+  expect_error(dir,
+               with([](json& x) {
+                 x["eval_frames"] = {10, 30};
+                 x["techniques"][0]["thresholds"][0] = {{"metric", "flip"}, {"frame", 20}, {"max", 1}};
+               }),
+               t0 + "/frame", "one of the eval_frames (10, 30)");
+  expect_error(dir, with([](json& x) { x["techniques"][0]["variants"] = {{"v", {{"sky_rayz", 1}}}}; }),
+               "/techniques/0/variants/v/sky_rayz", "unknown option");
+  expect_error(dir, with([](json& x) { x["techniques"][0]["variants"] = json::object(); }), "/techniques/0/variants",
+               "non-empty object");
+  // reference_spp 0: no reference, so nothing may be compared with it.
+  expect_error(dir, with([](json& x) { x["reference_spp"] = 0; }), t0 + "/metric", "no reference");
+}
+
+TEST(CaseTracking, ConvergenceMetricsOnKnownCurves) {
+  std::vector<double> flat(50, 2.0);
+  for (const char* m : {"conv_error_final", "conv_error_max", "conv_drift", "conv_oscillation"})
+    EXPECT_NEAR(convergence_metric(m, flat, 2.0, 1), 0.0, 1e-12) << m;
+  std::vector<double> approach = {0.5, 0.9, 1.02, 0.98, 1.0};
+  EXPECT_NEAR(convergence_metric("conv_error_final", approach, 1.0, 1), 0.0, 1e-12);
+  EXPECT_NEAR(convergence_metric("conv_error_max", approach, 1.0, 3), 0.02, 1e-12);
+  EXPECT_NEAR(convergence_metric("conv_error_max", approach, 1.0, 1), 0.5, 1e-12);
+  // A ramp from 1.0 to 1.1 over 100 frames: the last 10 frames' mean minus the first 10's is
+  // 0.1 - 0.1 * 9 / 99; a monotone curve does not oscillate.
+  std::vector<double> ramp;
+  for (int i = 0; i < 100; ++i) ramp.push_back(1.0 + 0.1 * i / 99.0);
+  EXPECT_NEAR(convergence_metric("conv_drift", ramp, 1.0, 1), 0.1 - 0.1 * 9.0 / 99.0, 1e-12);
+  EXPECT_NEAR(convergence_metric("conv_oscillation", ramp, 1.0, 1), 0.0, 1e-12);
+  // Alternating 1.0 / 1.1: the 5-frame mean swings by 0.02 every frame.
+  std::vector<double> ringing;
+  for (int i = 0; i < 100; ++i) ringing.push_back(i % 2 ? 1.1 : 1.0);
+  double osc = convergence_metric("conv_oscillation", ringing, 1.0, 10);
+  EXPECT_GT(osc, 1.5);  // about 90 swings of 0.02
+  EXPECT_LT(osc, 2.0);
+  EXPECT_TRUE(std::isnan(convergence_metric("conv_error_max", {1.0, std::nan(""), 1.0}, 1.0, 1)));
+  EXPECT_THROW(convergence_metric("conv_error_final", {}, 1.0, 1), CaseError);
 }
 
 }  // namespace

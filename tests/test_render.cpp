@@ -137,6 +137,109 @@ TEST_F(Render, EveryPixelFiniteOnFeatureZoo) {
   }
 }
 
+size_t non_finite_values(const FloatImage& img) {
+  size_t bad = 0;
+  for (float v : img.pixels) bad += !std::isfinite(v);
+  return bad;
+}
+
+// The degenerate-geometry inputs (DESIGN.md "Numerical stability"): a mesh whose normals are
+// NaN (null in the file) and zero, with zero-area triangles, filling the view. The guards
+// (Settings::nan_guards; gib_surface falls back to the face normal) keep every output finite;
+// without them the NaN reaches the image, which shows the input does arrive on the GPU as NaN.
+TEST_F(Render, NanAndZeroVertexNormalsRenderFinite) {
+  Scene scene = parse_scene(nlohmann::json::parse(R"({
+    "materials": {"white": {"albedo": [0.7, 0.7, 0.7]}},
+    "objects": [
+      {"primitive": {"type": "mesh",
+                     "positions": [[-3, -2, 0], [3, -2, 0], [3, 2, 0], [-3, 2, 0], [0, 0, 0.5], [0, 0, 0.5], [1, 1, 0]],
+                     "normals": [[0, 0, 1], [0, 0, 1], [0, 0, 0], [0, 0, 1], null, [0, 0, 1], [0, 0, 1]],
+                     "indices": [[0, 1, 4], [1, 2, 4], [2, 3, 5], [3, 0, 4], [4, 4, 5], [0, 6, 2], [4, 4, 4]]},
+       "material": "white"}
+    ],
+    "lights": [{"type": "point", "position": [1, 1, 2], "intensity": [4, 4, 4]}],
+    "sun": {"direction": [0.3, 0.4, 1], "irradiance": [2, 2, 2]},
+    "sky": {"type": "constant", "radiance": [0.5, 0.5, 0.5]},
+    "camera": {"position": [0, 0, 3], "target": [0, 0, 0], "fov_y_deg": 60}
+  })"), "nan_normals");
+  auto run = [&](const std::string& technique, bool guards, std::vector<std::string> extra = {}) {
+    const Technique& t = find_technique(technique);
+    Settings s = apply_preset(t, "low", Settings{});
+    s.width = 32;
+    s.height = 18;
+    s.spp_per_frame = 4;
+    s.nan_guards = guards;
+    std::vector<std::string> outputs{t.output};
+    outputs.insert(outputs.end(), extra.begin(), extra.end());
+    Executor ex(gpu(), scene, s, make_passes(t), outputs);
+    ex.run_frame();
+    Rendered r{ex.read(t.output), {}, ex.plan()};
+    for (auto& e : extra) r.extra[e] = ex.read(e);
+    return r;
+  };
+  Rendered direct = run("direct", true, {"gbuffer_normal"});
+  EXPECT_EQ(non_finite_values(direct.out), 0u);
+  EXPECT_EQ(non_finite_values(direct.extra["gbuffer_normal"]), 0u);
+  EXPECT_GT(mean_channel(direct.out, 0), 0.1);
+  EXPECT_EQ(non_finite_values(run("reference", true).out), 0u);
+  Rendered unguarded = run("direct", false, {"gbuffer_normal"});
+  EXPECT_GT(non_finite_values(unguarded.extra["gbuffer_normal"]), 0u) << "the NaN normal never reached the GPU";
+  EXPECT_GT(non_finite_values(unguarded.out), 0u) << "without the guards the NaN normal should reach the image";
+}
+
+// Settings::world_offset moves the scene, its lights and the camera together: the same
+// triangles cover the same pixels, G-buffer positions move by the offset, distances to the
+// camera and the image stay the same (within float spacing at 10 km, ~1 mm).
+TEST_F(Render, WorldOffsetMovesCameraWithScene) {
+  Scene scene = parse_scene(nlohmann::json::parse(R"({
+    "materials": {"white": {"albedo": [0.7, 0.7, 0.7]}, "red": {"albedo": [0.8, 0.1, 0.1]}},
+    "objects": [
+      {"primitive": {"type": "quad", "size": [20, 20], "facing": "+y"}, "material": "white"},
+      {"primitive": {"type": "box", "size": [1, 1, 1]}, "material": "red", "transform": {"translate": [0, 0.5, 0]}},
+      {"primitive": {"type": "sphere", "radius": 0.5}, "material": "white", "transform": {"translate": [1.5, 0.5, 0.5]}}
+    ],
+    "lights": [{"type": "point", "position": [-1, 2, 1], "intensity": [4, 4, 4], "range": 50}],
+    "sun": {"direction": [0.3, 1, 0.2], "irradiance": [2, 2, 2], "angular_radius_deg": 0},
+    "camera": {"position": [0, 3, 5], "target": [0, 0.5, 0], "fov_y_deg": 50}
+  })"), "inline");
+  const Vec3 offset{10000, 0, 10000};
+  auto run = [&](Vec3 o) {
+    const Technique& t = find_technique("direct");
+    Settings s = apply_preset(t, "medium", Settings{});
+    s.width = 64;
+    s.height = 36;
+    s.world_offset = o;
+    Executor ex(gpu(), scene, s, make_passes(t), {t.output, "vbuffer", "gbuffer_position"});
+    ex.run_frame();
+    Rendered r{ex.read(t.output), {}, ex.plan()};
+    for (const char* e : {"vbuffer", "gbuffer_position"}) r.extra[e] = ex.read(e);
+    return r;
+  };
+  Rendered a = run({0, 0, 0}), b = run(offset);
+  const FloatImage &va = a.extra["vbuffer"], &vb = b.extra["vbuffer"];
+  const FloatImage &pa = a.extra["gbuffer_position"], &pb = b.extra["gbuffer_position"];
+  size_t same = 0, covered = 0;
+  double worst_pos = 0, worst_dist = 0;
+  for (uint32_t y = 0; y < va.height; ++y)
+    for (uint32_t x = 0; x < va.width; ++x) {
+      if (va.at(x, y, 0) != vb.at(x, y, 0)) continue;
+      ++same;
+      if (va.at(x, y, 0) == 0) continue;  // sky
+      ++covered;
+      for (uint32_t c = 0; c < 3; ++c)
+        worst_pos = std::max(worst_pos, std::abs(double(pb.at(x, y, c)) - offset[int(c)] - pa.at(x, y, c)));
+      worst_dist = std::max(worst_dist, std::abs(double(pb.at(x, y, 3)) - pa.at(x, y, 3)));
+    }
+  std::printf("world offset: %zu of %u pixels on the same triangle, worst position error %.3g m, distance %.3g m\n",
+              same, va.width * va.height, worst_pos, worst_dist);
+  EXPECT_GT(covered, va.width * va.height / 2);
+  EXPECT_GE(same, va.width * va.height * 98 / 100);
+  EXPECT_LT(worst_pos, 0.02);   // the camera ray may meet the triangle a few mm apart
+  EXPECT_LT(worst_dist, 0.02);  // the camera moved with the scene
+  for (uint32_t c = 0; c < 3; ++c) EXPECT_NEAR(mean_channel(b.out, c), mean_channel(a.out, c), 0.01 * mean_channel(a.out, c));
+  EXPECT_EQ(non_finite_values(b.out), 0u);
+}
+
 TEST_F(Render, RequestingOnlyTheVisibilityBufferCullsShading) {
   Scene scene = load_scene(scene_path("cornell.json"));
   Settings s;

@@ -491,6 +491,13 @@ TEST(SceneLoader, AnimationChannelsDefaultToStaticTransform) {
   EXPECT_TRUE(s.features().has(Feature::motion));
 }
 
+// A valid one-triangle mesh primitive for object 0; returns it for edits.
+json& set_mesh(json& d) {
+  d["objects"][0]["primitive"] =
+      json::parse(R"({"type": "mesh", "positions": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "indices": [[0, 1, 2]]})");
+  return d["objects"][0]["primitive"];
+}
+
 struct BadCase {
   const char* what;
   void (*edit)(json&);
@@ -564,7 +571,89 @@ const BadCase kBadCases[] = {
     {"frame time zero", [](json& d) { d["frame_time"] = 0; }, "/frame_time", "expected number > 0, got 0"},
     {"unknown top-level key", [](json& d) { d["lihgts"] = json::array(); }, "/lihgts",
      "expected one of the keys materials, objects, lights, sun, sky, camera, frame_time"},
+    // mesh primitive (kMeshDoc: 3 positions, 1 triangle)
+    {"mesh index out of range", [](json& d) { set_mesh(d)["indices"] = json::parse("[[0, 1, 2], [0, 2, 3]]"); },
+     "/objects/0/primitive/indices/1/2", "expected integer in [0, 2], got 3"},
+    {"mesh negative index", [](json& d) { set_mesh(d)["indices"][0][1] = -1; }, "/objects/0/primitive/indices/0/1",
+     "expected integer in [0, 2], got -1"},
+    {"mesh fractional index", [](json& d) { set_mesh(d)["indices"][0][0] = 0.5; }, "/objects/0/primitive/indices/0/0",
+     "expected integer in [0, 2], got 0.5"},
+    {"mesh triangle of two indices", [](json& d) { set_mesh(d)["indices"][0] = {0, 1}; },
+     "/objects/0/primitive/indices/0", "expected array of 3 vertex indices, got array of 2 elements"},
+    {"mesh flat index list", [](json& d) { set_mesh(d)["indices"] = {0, 1, 2}; }, "/objects/0/primitive/indices/0",
+     "expected array of 3 vertex indices, got 0"},
+    {"mesh without indices", [](json& d) { set_mesh(d).erase("indices"); }, "/objects/0/primitive/indices",
+     "expected non-empty array, got missing key"},
+    {"mesh without positions", [](json& d) { set_mesh(d)["positions"] = json::array(); },
+     "/objects/0/primitive/positions", "expected non-empty array, got empty array"},
+    {"mesh position of two numbers", [](json& d) { set_mesh(d)["positions"][1] = {1, 0}; },
+     "/objects/0/primitive/positions/1", "expected array of 3 numbers, got array of 2 elements"},
+    {"mesh NaN position", [](json& d) { set_mesh(d)["positions"][2][1] = std::nan(""); },
+     "/objects/0/primitive/positions/2/1", "expected finite number, got NaN"},
+    {"mesh position overflowing float", [](json& d) { set_mesh(d)["positions"][0][0] = 1e39; },
+     "/objects/0/primitive/positions/0/0", "expected finite number"},
+    {"mesh null position", [](json& d) { set_mesh(d)["positions"][0] = nullptr; }, "/objects/0/primitive/positions/0",
+     "expected array of 3 numbers, got null"},
+    {"mesh normals not one per position", [](json& d) { set_mesh(d)["normals"] = json::parse("[[0, 1, 0], null]"); },
+     "/objects/0/primitive/normals", "expected array of 3 normals (one per position), got array of 2 elements"},
+    {"mesh normal is a string", [](json& d) { set_mesh(d)["normals"] = json::parse(R"([[0, 1, 0], "up", null])"); },
+     "/objects/0/primitive/normals/1", "expected array of 3 numbers or null, got \"up\""},
+    {"mesh infinite normal component",
+     [](json& d) { set_mesh(d)["normals"] = {{0, 1, 0}, {0, HUGE_VAL, 0}, nullptr}; },
+     "/objects/0/primitive/normals/1/1", "expected finite number, got inf"},
+    {"mesh uvs not one per position", [](json& d) { set_mesh(d)["uvs"] = json::parse("[[0, 0]]"); },
+     "/objects/0/primitive/uvs", "expected array of 3 uvs (one per position), got array of 1 element"},
+    {"mesh uv of three numbers", [](json& d) { set_mesh(d)["uvs"] = json::parse("[[0, 0], [1, 0, 0], [0, 1]]"); },
+     "/objects/0/primitive/uvs/1", "expected array of 2 numbers, got array of 3 elements"},
+    {"mesh unknown key", [](json& d) { set_mesh(d)["colors"] = json::array(); }, "/objects/0/primitive/colors",
+     "expected one of the keys type, positions, indices, normals, uvs, got unknown key \"colors\""},
 };
+
+// The mesh primitive keeps degenerate input as written: zero-area triangles, duplicate vertices,
+// zero and null (NaN) normals; flatten passes a NaN normal on for the GPU guard to repair.
+TEST(SceneLoader, MeshPrimitiveKeepsDegenerateInput) {
+  json doc = minimal_doc();
+  doc["objects"][0]["primitive"] = json::parse(R"({
+    "type": "mesh",
+    "positions": [[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 0, 0], [2, 0, 0]],
+    "indices": [[0, 1, 2], [0, 0, 1], [0, 1, 4], [1, 3, 1]],
+    "normals": [[0, 0, 2], null, [0, 0, 0], [0, 0, 1], [0, 0, 1]],
+    "uvs": [[0, 0], [1, 0], [0, 1], [1, 0], [2, 0]]
+  })");
+  json plain = json::parse(R"({"type": "mesh", "positions": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "indices": [[0, 1, 2]]})");
+  doc["objects"].push_back({{"primitive", doc["objects"][0]["primitive"]}, {"material", "white"}});
+  doc["objects"].push_back({{"primitive", plain}, {"material", "white"}, {"transform", {{"translate", {0, 0, 5}}}}});
+  Scene s = parse_scene(doc, "mesh.json");
+  ASSERT_EQ(s.meshes.size(), 2u);  // identical descriptions share one mesh
+  EXPECT_EQ(s.instances[0].mesh, s.instances[1].mesh);
+  const Mesh& m = s.meshes[s.instances[0].mesh];
+  EXPECT_EQ(m.name, "mesh positions=5 triangles=4");
+  ASSERT_EQ(m.positions.size(), 5u);
+  EXPECT_EQ(m.positions[4], (Vec3{2, 0, 0}));
+  EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 0, 0, 1, 0, 1, 4, 1, 3, 1}));
+  ASSERT_EQ(m.normals.size(), 5u);
+  EXPECT_EQ(m.normals[0], (Vec3{0, 0, 2}));  // kept as written; flatten normalises
+  EXPECT_TRUE(std::isnan(m.normals[1].x) && std::isnan(m.normals[1].y) && std::isnan(m.normals[1].z));
+  EXPECT_EQ(m.normals[2], (Vec3{0, 0, 0}));
+  ASSERT_EQ(m.uvs.size(), 5u);
+  EXPECT_EQ(m.uvs[4].x, 2.0f);
+  const Mesh& p = s.meshes[s.instances[2].mesh];
+  EXPECT_TRUE(p.normals.empty());  // no normals: zero normals after flatten, shading uses the face normal
+  EXPECT_TRUE(p.uvs.empty());
+
+  FlatScene f = flatten(s, 0.0f);
+  EXPECT_EQ(f.instances[0].triangle_count, 4u);  // degenerate triangles are kept (the BVH skips them)
+  ASSERT_EQ(f.vertices.size(), 13u);
+  EXPECT_NEAR(f.vertices[0].nz, 1.0f, 1e-6f);
+  EXPECT_TRUE(std::isnan(f.vertices[1].nx) && std::isnan(f.vertices[1].ny) && std::isnan(f.vertices[1].nz));
+  EXPECT_EQ(f.vertices[2].nx, 0.0f);
+  EXPECT_EQ(f.vertices[2].ny, 0.0f);
+  EXPECT_EQ(f.vertices[2].nz, 0.0f);
+  for (uint32_t v = 10; v < 13; ++v) {
+    EXPECT_EQ(length({f.vertices[v].nx, f.vertices[v].ny, f.vertices[v].nz}), 0.0f);
+    EXPECT_NEAR(f.vertices[v].pz, 5.0f, 1e-6f);
+  }
+}
 
 TEST(SceneLoader, MalformedInputsNameFileAndPointer) {
   for (const BadCase& c : kBadCases) {
@@ -634,6 +723,54 @@ TEST(SceneLoader, MutatedScenesNeverEscapeAsOtherErrors) {
   }
   EXPECT_GT(accepted, 0u);
   EXPECT_GT(rejected, 1000u);
+}
+
+// The same for a mesh primitive: every value and every key of it replaced or removed.
+TEST(SceneLoader, MutatedMeshesNeverEscapeAsOtherErrors) {
+  json original = minimal_doc();
+  original["objects"][0]["primitive"] = json::parse(R"({"type": "mesh",
+    "positions": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "indices": [[0, 1, 2], [0, 0, 1]],
+    "normals": [[0, 0, 1], null, [0, 0, 0]], "uvs": [[0, 0], [1, 0], [0, 1]]})");
+  const json::json_pointer root("/objects/0/primitive");
+  json flat = original[root].flatten();
+  std::set<std::string> seen;
+  std::vector<json::json_pointer> pointers;
+  for (auto it = flat.begin(); it != flat.end(); ++it)
+    for (json::json_pointer p(it.key()); !p.empty(); p = p.parent_pointer())
+      if (seen.insert(p.to_string()).second) pointers.push_back(root / p);
+  const json replacements[] = {nullptr, true, -1, 0, 3, 2.5, 1e39, std::nan(""), "x", json::array(), json::object(),
+                               json::array({1, 2, 3}), json::array({json::array({0, 1, 2})})};
+  size_t accepted = 0, rejected = 0;
+  auto check = [&](const json& doc, const std::string& what) {
+    try {
+      flatten(parse_scene(doc, "mesh"), 0.0f);  // accepted meshes must also flatten (indices in range)
+      ++accepted;
+    } catch (const SceneError& e) {
+      ++rejected;
+      std::string msg = e.what();
+      EXPECT_EQ(msg.rfind("mesh: /objects/0/primitive", 0), 0u) << what << ": " << msg;
+      EXPECT_NE(msg.find(": expected "), std::string::npos) << what << ": " << msg;
+      EXPECT_NE(msg.find(", got "), std::string::npos) << what << ": " << msg;
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << what << ": escaped as " << e.what();
+    }
+  };
+  for (const json::json_pointer& p : pointers) {
+    for (const json& r : replacements) {
+      json doc = original;
+      doc[p] = r;
+      check(doc, p.to_string() + " = " + r.dump());
+    }
+    json doc = original;
+    json& parent = doc[p.parent_pointer()];
+    if (parent.is_object())
+      parent.erase(p.back());
+    else
+      parent.erase(static_cast<size_t>(std::stoul(p.back())));
+    check(doc, "remove " + p.to_string());
+  }
+  EXPECT_GT(accepted, 0u);
+  EXPECT_GT(rejected, 100u);
 }
 
 class TempFile {
@@ -741,6 +878,44 @@ TEST(SceneSamples, FurnaceIsWhiteOpenAndApart) {
   Mat4 view = Mat4::look_at(s.camera.position, s.camera.target, s.camera.up);
   EXPECT_LT(view.transform_point((lo0 + hi0) * 0.5f).z, 0.0f);
   EXPECT_LT(view.transform_point((lo1 + hi1) * 0.5f).z, 0.0f);
+}
+
+// The degenerate-geometry case's scene holds every input it promises (DESIGN.md).
+TEST(SceneSamples, DegenerateHoldsTheDegenerateInputs) {
+  Scene s = load_scene(scene_path("degenerate.json"));
+  EXPECT_EQ(s.features(), SceneFeatures(Feature::sun) | Feature::sky | Feature::local_lights | Feature::textured)
+      << to_string(s.features());
+  EXPECT_EQ(s.lights.size(), 1u);
+  const Mesh* mesh = nullptr;
+  bool thin_slab = false;
+  for (const Mesh& m : s.meshes) {
+    if (m.name.rfind("mesh ", 0) == 0) mesh = &m;
+    Vec3 e = bounds_extent(m);
+    thin_slab = thin_slab || (m.name.rfind("thin_slab", 0) == 0 && std::fmin(e.x, std::fmin(e.y, e.z)) <= 1e-5f);
+  }
+  EXPECT_TRUE(thin_slab);
+  ASSERT_NE(mesh, nullptr);
+  size_t nan_normals = 0, zero_normals = 0, duplicates = 0, repeated_index = 0, collinear = 0;
+  for (Vec3 n : mesh->normals) {
+    nan_normals += std::isnan(n.x);
+    zero_normals += n == Vec3{0, 0, 0};
+  }
+  for (size_t i = 0; i < mesh->positions.size(); ++i)
+    for (size_t j = i + 1; j < mesh->positions.size(); ++j) duplicates += mesh->positions[i] == mesh->positions[j];
+  for (size_t t = 0; t < mesh->indices.size() / 3; ++t) {
+    uint32_t a = mesh->indices[3 * t], b = mesh->indices[3 * t + 1], c = mesh->indices[3 * t + 2];
+    bool repeated = a == b || b == c || a == c;
+    repeated_index += repeated;
+    Vec3 g = cross(mesh->positions[b] - mesh->positions[a], mesh->positions[c] - mesh->positions[a]);
+    collinear += !repeated && length(g) == 0.0f;
+  }
+  EXPECT_GE(nan_normals, 1u);
+  EXPECT_GE(zero_normals, 1u);
+  EXPECT_GE(duplicates, 1u);
+  EXPECT_GE(repeated_index, 1u);
+  EXPECT_GE(collinear, 1u);
+  FlatScene f = flatten(s, 0.0f);
+  for (const GpuVertex& v : f.vertices) ASSERT_TRUE(finite({v.px, v.py, v.pz}));
 }
 
 TEST(SceneSamples, SkyPlaneFillsTheView) {

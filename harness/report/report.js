@@ -261,7 +261,7 @@
   function badge(row) {
     var neg = row.kind === 'negative_control';
     var s = row.status || 'error';
-    var label = neg ? (s === 'pass' ? 'caught' : s === 'fail' ? 'NOT caught' : 'error') : s;
+    var label = neg ? (s === 'pass' ? 'caught' : s === 'fail' ? 'NOT caught' : 'error') : s === 'known_failure' ? 'known failure' : s;
     return h('span', { class: 'badge ' + s, title: neg ? 'negative control: status pass means a threshold caught it' : null }, label);
   }
 
@@ -339,6 +339,76 @@
     return out;
   }
 
+  // ---------------------------------------------------------------- stability
+  function svgEl(tag, attrs, children) {
+    var el = document.createElementNS('http://www.w3.org/2000/svg', tag);
+    Object.keys(attrs || {}).forEach(function (k) { el.setAttribute(k, attrs[k]); });
+    (children || []).forEach(function (ch) {
+      if (ch) el.appendChild(typeof ch === 'string' ? document.createTextNode(ch) : ch);
+    });
+    return el;
+  }
+
+  // Convergence: the ROI mean divided by the target, per frame, with the +-5% band.
+  function convergencePlot(row) {
+    var curve = row.curve || [];
+    var t = row.curve_target;
+    if (curve.length < 2 || !(t > 0)) return null;
+    var W = 420, H = 150, L = 44, R = 8, T = 8, B = 24;
+    var ys = curve.map(function (v) { return v === null ? NaN : v / t; });
+    var finite = ys.filter(function (v) { return isFinite(v); });
+    var lo = Math.min(0.9, Math.min.apply(null, finite.concat([1])));
+    var hi = Math.max(1.1, Math.max.apply(null, finite.concat([1])));
+    function X(i) { return L + (W - L - R) * i / (curve.length - 1); }
+    function Y(v) { return T + (H - T - B) * (1 - (v - lo) / (hi - lo)); }
+    var d = '';
+    ys.forEach(function (v, i) { if (isFinite(v)) d += (d ? 'L' : 'M') + X(i).toFixed(1) + ' ' + Y(v).toFixed(1); });
+    var kids = [
+      svgEl('rect', { x: L, y: Y(1.05), width: W - L - R, height: Math.max(0, Y(0.95) - Y(1.05)), class: 'band' }),
+      svgEl('line', { x1: L, x2: W - R, y1: Y(1), y2: Y(1), class: 'target' }),
+      svgEl('path', { d: d, class: 'curve' }),
+      svgEl('text', { x: L - 4, y: Y(hi) + 10, 'text-anchor': 'end' }, [hi.toFixed(2)]),
+      svgEl('text', { x: L - 4, y: Y(1) + 4, 'text-anchor': 'end' }, ['1.00']),
+      svgEl('text', { x: L - 4, y: Y(lo), 'text-anchor': 'end' }, [lo.toFixed(2)]),
+      svgEl('text', { x: L, y: H - 6 }, ['frame 1']),
+      svgEl('text', { x: W - R, y: H - 6, 'text-anchor': 'end' }, ['frame ' + curve.length])
+    ];
+    return svgEl('svg', { class: 'conv', viewBox: '0 0 ' + W + ' ' + H, width: W, height: H,
+      'aria-label': 'ROI mean / target per frame' }, kids);
+  }
+
+  // Per resource scan counts (NaN/Inf/negative/above bound) and the first offenders.
+  function stabilitySection(row) {
+    var st = row.stability;
+    var plot = convergencePlot(row);
+    var m = row.metrics || {};
+    var figures = ['flicker', 'conv_error_final', 'conv_error_max', 'conv_drift', 'conv_oscillation']
+      .filter(function (k) { return k in m; })
+      .map(function (k) { return h('span', { class: 'kv' }, [k + ' ', h('b', null, fmtNum(m[k], 4))]); });
+    if (!st && !plot && !figures.length) return null;
+    var out = [h('h5', null, 'Stability')];
+    if (figures.length) out.push(h('div', { class: 'figures' }, figures));
+    if (plot) out.push(h('div', { class: 'plot' }, [plot, h('div', { class: 'muted' },
+      'ROI mean / target per frame (band: \u00b15%)')]));
+    if (st) {
+      var recs = st.resources || [];
+      out.push(h('p', null, st.scanned ? (recs.length ? '' : 'GPU scan: every written resource finite and in range on every frame.')
+        : 'GPU scan off.'));
+      (st.first_offenders || []).forEach(function (f) { out.push(h('p', { class: 'offender' }, f)); });
+      if (recs.length) {
+        out.push(h('table', { class: 'stability' }, [
+          h('thead', null, h('tr', null, ['pass', 'resource', 'NaN', 'Inf', 'negative', 'above bound', 'first frame', 'first at']
+            .map(function (t) { return h('th', null, t); }))),
+          h('tbody', null, recs.map(function (r) {
+            return h('tr', null, [r.pass, r.resource, r.nan, r.inf, r.negative, r.above_max, r.first_frame, r.first_at]
+              .map(function (v) { return h('td', null, v === undefined || v === null ? '' : String(v)); }));
+          }))
+        ]));
+      }
+    }
+    return h('section', { class: 'col stability-col' }, out);
+  }
+
   // ---------------------------------------------------------------- per row detail card
   function detailCard(row, idx, c, cs, maxMs) {
     var neg = row.kind === 'negative_control';
@@ -363,7 +433,8 @@
       imageRow(row, c, cs),
       h('div', { class: 'card-cols' }, [
         h('section', { class: 'col' }, [h('h5', null, 'Checks'), checksList(row)]),
-        h('section', { class: 'col' }, [h('h5', null, 'GPU passes & plan')].concat(passBars(row, maxMs)))
+        h('section', { class: 'col' }, [h('h5', null, 'GPU passes & plan')].concat(passBars(row, maxMs))),
+        stabilitySection(row)
       ])
     ]);
   }
@@ -401,7 +472,7 @@
   }
 
   function countStatus(rows) {
-    var n = { pass: 0, fail: 0, error: 0 };
+    var n = { pass: 0, fail: 0, error: 0, known_failure: 0 };
     rows.forEach(function (r) { n[r.status in n ? r.status : 'error']++; });
     return n;
   }
@@ -443,6 +514,7 @@
         h('h2', null, name),
         h('span', { class: 'pill pass' }, n.pass + ' passed'),
         n.fail ? h('span', { class: 'pill fail' }, n.fail + ' failed') : null,
+        n.known_failure ? h('span', { class: 'pill known_failure' }, n.known_failure + ' known failure') : null,
         n.error + errors.length ? h('span', { class: 'pill error' }, (n.error + errors.length) + ' error' + (n.error + errors.length === 1 ? '' : 's')) : null
       ]),
       c && c.description ? h('p', { class: 'desc' }, c.description) : null,

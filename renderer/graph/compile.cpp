@@ -122,9 +122,31 @@ class Compiler {
       }
     }
     if (r.desc_owner < 0) return;
+    resolve_values(r);
     if ((r.desc.format == Format::buffer) != (r.desc.size == SizeRule::buffer))
       fail(fmt::format("pass '{}' slot '{}': format buffer and SizeRule::buffer go together",
                        pname(r.desc_owner), r.name));
+  }
+
+  // The value domain is metadata: any slot producing the resource may declare it (a
+  // read_write slot with an otherwise unspecified desc too); declarations must agree.
+  void resolve_values(Resource& r) {
+    int owner = -1;
+    ValueDomain values;
+    auto take = [&](int p) {
+      const ValueDomain& v = slot_of(p, r.name).desc.values;
+      if (!v.scanned()) return;
+      if (owner >= 0 && !(v == values))
+        fail(fmt::format("pass '{}' declares the values of '{}' as '{}' but pass '{}' declares '{}'", pname(p),
+                         r.name, describe(v), pname(owner), describe(values)));
+      if (owner < 0) {
+        owner = p;
+        values = v;
+      }
+    };
+    if (r.writer >= 0) take(r.writer);
+    for (int m : r.modifiers) take(m);
+    r.desc.values = values;
   }
 
   void validate() {

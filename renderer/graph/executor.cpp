@@ -2,10 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstring>
 
+#include "renderer/graph/stability_scan_shared.h"
 #include "renderer/scene/bvh.h"
 #include "renderer/shaders/include/frame_shared.h"
 
@@ -105,12 +108,217 @@ Executor::Executor(Gpu& gpu, const Scene& scene, Settings settings, std::vector<
     }
     allocations_[r.name] = std::move(a);
   }
+  zero_persistent();
+  plan_stability_scan();
 }
 
 Executor::~Executor() = default;
 
+// Persistent resources carry values from frame to frame: zero both copies once, so nothing a
+// pass reads before it first writes is uninitialised memory (which may hold NaN bit patterns).
+// Depth clears to 1 (far), as the Vulkan layer clears a new depth image.
+void Executor::zero_persistent() {
+  std::unique_ptr<Cmd> cmd;
+  for (auto& r : plan_.resources) {
+    if (!r.desc.persistent) continue;
+    if (!cmd) cmd = gpu_.begin();
+    auto& a = allocations_.at(r.name);
+    for (int i = 0; i < 2; ++i) {
+      if (a.buffer[i]) cmd->fill(*a.buffer[i], 0);
+      if (a.image[i]) {
+        const float v = a.image[i]->format() == Format::d32_float ? 1.0f : 0.0f;
+        const float value[4] = {v, v, v, v};
+        cmd->clear(*a.image[i], value);
+      }
+    }
+  }
+  if (!cmd) return;
+  cmd->barrier(kStageTransfer, kStageCompute | kStageGraphics | kStageTransfer);
+  gpu_.submit(std::move(cmd));
+}
+
+// ---------------------------------------------------------------- stability scan
+struct Executor::ScanTarget {
+  std::string resource;
+  bool buffer = false;
+  const char* shader = "";
+  DescriptorKind source_kind = DescriptorKind::sampled_image;
+  glsl::StabilityScanPush push{};
+  uint32_t groups_x = 1, groups_y = 1;
+  uint32_t width = 0, height = 0;
+};
+
+void Executor::plan_stability_scan() {
+  auto running = plan_.running();
+  scan_of_pass_.assign(running.size(), {});
+  for (size_t i = 0; i < running.size(); ++i) {
+    const PassDecl& decl = decls_[running[i]->decl_index];
+    for (const Slot& s : decl.slots) {
+      if (s.access != Access::write && s.access != Access::read_write) continue;
+      const ResolvedResource* r = plan_.find(s.name);
+      const ValueDomain& declared = r->desc.values;
+      if (!declared.scanned()) continue;
+      const bool buffer = r->desc.format == Format::buffer;
+      const ValueDomain v = effective_domain(r->desc.format, declared);
+      ScanTarget t;
+      t.resource = s.name;
+      t.buffer = buffer;
+      uint64_t count = 0;
+      if (buffer) {
+        if (declared.stride_words == 0) continue;  // no layout: not scanned
+        const uint32_t max_words = declared.encoding == Encoding::rgb9e5 ? 10 : 32;
+        if (declared.value_words == 0 || declared.value_words > max_words ||
+            declared.first_word + declared.value_words > declared.stride_words)
+          throw GraphError(fmt::format("pass '{}' slot '{}': buffer value layout words {}+{} of {} is invalid (1..{} "
+                                       "value words inside the stride)", decl.name, s.name, declared.first_word,
+                                       declared.value_words, declared.stride_words, max_words));
+        count = r->bytes_per_copy / 4 / declared.stride_words;
+        t.shader = "stability_scan_buffer.comp";
+        t.source_kind = DescriptorKind::storage_buffer;
+      } else {
+        count = uint64_t(r->width) * r->height;
+        t.width = r->width;
+        t.height = r->height;
+        const Format f = r->desc.format;
+        if (f == Format::rg32_uint || f == Format::rgba32_uint)
+          throw GraphError(fmt::format("pass '{}' slot '{}': a {} image cannot be scanned (only r32_uint among uint "
+                                       "formats); declare Domain::none", decl.name, s.name, format_name(f)));
+        if (declared.encoding == Encoding::rgb9e5 && f != Format::r32_uint)
+          throw GraphError(fmt::format("pass '{}' slot '{}': RGB9E5 encoding needs an r32_uint image, not {}", decl.name,
+                                       s.name, format_name(f)));
+        if (f == Format::r32_uint) {
+          t.shader = "stability_scan_uint.comp";
+          t.source_kind = DescriptorKind::storage_image;
+        } else {
+          t.shader = "stability_scan_image.comp";  // through a sampler: any float format, depth, E5B9G9R9
+        }
+      }
+      if (count == 0 || count > 0xffffffffull) continue;
+      t.push.record = uint32_t(scan_targets_.size());
+      t.push.count = uint32_t(count);
+      t.push.width = t.width;
+      t.push.channels = v.channels;
+      t.push.signed_channels = v.signed_channels;
+      t.push.domain = uint32_t(v.domain);
+      t.push.max_value = v.max_value;
+      t.push.encoding = v.encoding == Encoding::rgb9e5 ? glsl::kStabilityEncodingRgb9e5 : 0u;
+      t.push.stride_words = v.stride_words;
+      t.push.first_word = v.first_word;
+      t.push.words = v.value_words;
+      t.push.height = t.height;
+      if (buffer) {
+        t.groups_x = uint32_t(std::min<uint64_t>((count + glsl::kStabilityScanGroup - 1) / glsl::kStabilityScanGroup,
+                                                 glsl::kStabilityScanMaxGroups));
+      } else {  // at most 16 x 16 tiles of 16 x 16: a grid-stride loop covers the rest
+        t.groups_x = std::min(div_up(t.width, glsl::kStabilityScanTile), 16u);
+        t.groups_y = std::min(div_up(t.height, glsl::kStabilityScanTile), 16u);
+      }
+      scan_of_pass_[i].push_back(scan_targets_.size());
+      scan_targets_.push_back(t);
+      StabilityTarget st;
+      st.pass = decl.name;
+      st.resource = s.name;
+      st.values = declared;
+      st.buffer = buffer;
+      st.elements = count;
+      stability_.targets.push_back(st);
+    }
+  }
+  static_assert(uint32_t(Domain::finite) == glsl::kStabilityDomainFinite &&
+                uint32_t(Domain::non_negative) == glsl::kStabilityDomainNonNegative &&
+                uint32_t(Domain::unit) == glsl::kStabilityDomainUnit);
+  stability_.dispatches_per_frame = uint32_t(scan_targets_.size());
+}
+
+// Records the scans of running pass `running_index` into cmd; the first of a frame also resets
+// the result buffer. Returns the number of dispatches.
+uint32_t Executor::record_scans(Cmd& cmd, size_t running_index, bool& reset) {
+  const auto& targets = scan_of_pass_[running_index];
+  if (targets.empty()) return 0;
+  if (!scan_results_) {
+    uint64_t bytes = uint64_t(scan_targets_.size()) * glsl::kStabilityRecordWords * 4;
+    scan_results_ = gpu_.create_buffer(bytes, BufferUsage::storage, "stability_scan_results");
+  }
+  cmd.begin_label("stability_scan");
+  if (!reset) {
+    cmd.fill(*scan_results_, 0);
+    reset = true;
+  }
+  // The pass's writes (any kind) and the reset before the scan's reads.
+  cmd.barrier(kStageCompute | kStageGraphics | kStageTransfer, kStageCompute);
+  for (size_t ti : targets) {
+    const ScanTarget& t = scan_targets_[ti];
+    auto& a = allocations_.at(t.resource);
+    const int cur = a.ping_pong ? int(frame_ & 1) : 0;  // the copy this frame's passes write
+    ComputePipelineDesc desc;
+    desc.shader = t.shader;
+    desc.bindings = {{glsl::kStabilityScanBindResults, DescriptorKind::storage_buffer},
+                     {glsl::kStabilityScanBindSource, t.source_kind}};
+    desc.push_constant_bytes = sizeof(t.push);
+    auto pipeline = gpu_.compute_pipeline(desc);
+    Bind binds[2] = {{glsl::kStabilityScanBindResults, scan_results_.get(), nullptr},
+                     {glsl::kStabilityScanBindSource, a.buffer[cur].get(), a.image[cur].get()}};
+    cmd.bind(*pipeline, binds, &t.push, sizeof(t.push));
+    cmd.dispatch(t.groups_x, t.groups_y);
+  }
+  // Later passes may overwrite what the scan reads.
+  cmd.barrier(kStageCompute, kStageCompute | kStageGraphics | kStageTransfer);
+  cmd.end_label();
+  return uint32_t(targets.size());
+}
+
+void Executor::collect_scan_results() {
+  const uint32_t n = uint32_t(scan_targets_.size());
+  std::vector<uint32_t> words(size_t(n) * glsl::kStabilityRecordWords);
+  gpu_.download(*scan_results_, words.data(), words.size() * 4);
+  ++stability_.frames;
+  // Scan targets are in execution order then slot order, so appending in this order keeps
+  // records in order of first offence.
+  std::map<std::string, uint32_t> pass_order;
+  {
+    auto running = plan_.running();
+    for (uint32_t i = 0; i < running.size(); ++i) pass_order[running[i]->name] = i;
+  }
+  for (uint32_t t = 0; t < n; ++t) {
+    const uint32_t* rec = &words[size_t(t) * glsl::kStabilityRecordWords];
+    StabilityTarget& target = stability_.targets[t];
+    const float max_abs = std::bit_cast<float>(rec[glsl::kStabilityRecordMaxAbs]);
+    target.max_seen = std::max(target.max_seen, max_abs);
+    for (auto& r : stability_.records)
+      if (r.pass == target.pass && r.resource == target.resource) r.max_seen = target.max_seen;
+    for (uint32_t c = 0; c < kStabilityCategoryCount; ++c) {
+      const uint32_t count = rec[c];
+      if (!count) continue;
+      target.count[c] += count;
+      const uint64_t index = ~rec[glsl::kStabilityRecordFirst + c];
+      StabilityRecord* r = nullptr;
+      for (auto& x : stability_.records)
+        if (x.pass == target.pass && x.resource == target.resource && uint32_t(x.category) == c) r = &x;
+      if (!r) {
+        StabilityRecord nr;
+        nr.pass = target.pass;
+        nr.resource = target.resource;
+        nr.category = StabilityCategory(c);
+        nr.first_frame = frame_;
+        nr.first_count = count;
+        nr.first_index = uint32_t(index);
+        nr.buffer = target.buffer;
+        const uint32_t w = scan_targets_[t].width;
+        nr.first_x = target.buffer ? uint32_t(index) : uint32_t(index % w);
+        nr.first_y = target.buffer ? 0u : uint32_t(index / w);
+        nr.pass_order = pass_order[target.pass];
+        nr.max_seen = target.max_seen;
+        stability_.records.push_back(nr);
+        r = &stability_.records.back();
+      }
+      r->count += count;
+      r->frames_with_issue += 1;
+    }
+  }
+}
+
 void Executor::upload_scene(float time) {
-  FlatScene flat = flatten(scene_, time);
+  FlatScene flat = flatten(scene_, time, settings_.world_offset);
   Bvh bvh = build_bvh(flat);
   auto put = [&](uint32_t i, const void* data, uint64_t bytes, const char* name) {
     uint64_t alloc = std::max<uint64_t>(bytes, 16);
@@ -132,15 +340,23 @@ void Executor::upload_scene(float time) {
 
 void Executor::upload_frame_constants(float time) {
   Camera cam = scene_.camera_at(time);
+  cam.position += settings_.world_offset;  // the camera moves with the scene (upload_scene)
+  cam.target += settings_.world_offset;
   float aspect = float(settings_.width) / float(settings_.height);
   float fov = cam.fov_y_deg * 3.14159265f / 180.0f;
   Mat4 view = Mat4::look_at(cam.position, cam.target, cam.up);
   Mat4 proj = Mat4::perspective(fov, aspect, cam.near_plane, cam.far_plane);
   Mat4 vp = proj * view;
-  Mat4 inv = vp.inverse();
+  // Camera rays come from the inverse of the view-projection without the camera's translation:
+  // NDC to an offset from camera_pos. A world-space inverse, evaluated on the far plane, scales
+  // its rounding error (1e-3 of the far point, from the cancelling w) about the world origin,
+  // which 10 km away turns into metres sideways: whole pixels.
+  Mat4 view_rotation = view;
+  view_rotation.m[3][0] = view_rotation.m[3][1] = view_rotation.m[3][2] = 0.0f;
+  Mat4 inv_rel = (proj * view_rotation).inverse();
   glsl::GpuFrame f{};
   std::memcpy(f.view_proj.m, vp.m, 64);
-  std::memcpy(f.inv_view_proj.m, inv.m, 64);
+  std::memcpy(f.inv_view_proj_rel.m, inv_rel.m, 64);
   std::memcpy(f.prev_view_proj.m, frame_ ? prev_view_proj_ : &vp.m[0][0], 64);
   std::memcpy(prev_view_proj_, vp.m, 64);
   f.camera_pos = {cam.position.x, cam.position.y, cam.position.z, std::tan(fov * 0.5f)};
@@ -190,7 +406,7 @@ std::map<std::string, ResolvedSlot> Executor::bind_slots(const PassDecl& decl) {
 }
 
 FrameResult Executor::run_frame() {
-  float time = float(frame_) * scene_.frame_time;
+  float time = settings_.scene_time >= 0.0f ? settings_.scene_time : float(frame_) * scene_.frame_time;
   if (!scene_uploaded_ || scene_.features().has(Feature::motion)) {
     upload_scene(time);
     scene_uploaded_ = true;
@@ -203,14 +419,20 @@ FrameResult Executor::run_frame() {
   // submit-and-wait, which on a CPU device is the time the device spent on it. A GPU records
   // the whole frame in one submission with a timestamp pair around every pass.
   const bool per_pass_submit = gpu_.info().is_software();
+  // Stability scans: after each pass's end timestamp (GPU), or in a submission of their own
+  // after the pass's host-timed one (CPU device), so pass timings never include them.
+  const bool scan = scan_enabled_ && !scan_targets_.empty();
+  bool scan_reset = false;
+  std::vector<bool> scanned_after(running.size(), false);
   FrameResult fr;
   fr.frame = frame_;
   std::unique_ptr<Cmd> cmd;
   uint32_t q = 0;
   std::vector<double> ns;
   auto t_frame = std::chrono::steady_clock::now();
-  for (auto* pp : running) {
-    if (!cmd) cmd = gpu_.begin(per_pass_submit ? 2u : static_cast<uint32_t>(running.size() * 2));
+  for (size_t i = 0; i < running.size(); ++i) {
+    const PlannedPass* pp = running[i];
+    if (!cmd) cmd = gpu_.begin(per_pass_submit ? 2u : static_cast<uint32_t>(running.size() * 2 + (scan ? 1 : 0)));
     const PassDecl& decl = decls_[pp->decl_index];
     if (!pp->barrier_before.resources.empty())
       cmd->barrier(pp->barrier_before.src_kinds, pp->barrier_before.dst_kind);
@@ -226,16 +448,36 @@ FrameResult Executor::run_frame() {
       double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       fr.passes.push_back({decl.name, ms});
       q = 0;
+      if (scan && !scan_of_pass_[i].empty()) {
+        auto t1 = std::chrono::steady_clock::now();
+        auto scan_cmd = gpu_.begin();
+        fr.scan_dispatches += record_scans(*scan_cmd, i, scan_reset);
+        gpu_.submit(std::move(scan_cmd));
+        fr.scan_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count();
+      }
+    } else if (scan) {
+      const uint32_t d = record_scans(*cmd, i, scan_reset);
+      fr.scan_dispatches += d;
+      scanned_after[i] = d > 0;
     }
   }
   if (per_pass_submit) {
-    fr.total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_frame).count();
+    fr.total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_frame).count() -
+                  fr.scan_ms;
   } else if (cmd) {
+    if (scan) cmd->timestamp(q++);  // closes the last pass's scans
     ns = gpu_.submit(std::move(cmd));
-    for (size_t i = 0; i < running.size(); ++i)
-      fr.passes.push_back({running[i]->name, (ns[2 * i + 1] - ns[2 * i]) * 1e-6});
-    if (!ns.empty()) fr.total_ms = (ns.back() - ns.front()) * 1e-6;
+    const size_t n = running.size();
+    for (size_t i = 0; i < n; ++i) fr.passes.push_back({running[i]->name, (ns[2 * i + 1] - ns[2 * i]) * 1e-6});
+    if (n && ns.size() >= 2 * n) {
+      // The scans after pass i lie between its end timestamp and the next one written.
+      for (size_t i = 0; i < n; ++i)
+        if (scanned_after[i] && 2 * i + 2 < ns.size()) fr.scan_ms += (ns[2 * i + 2] - ns[2 * i + 1]) * 1e-6;
+      double last_pass_scan = scanned_after[n - 1] && ns.size() > 2 * n ? (ns[2 * n] - ns[2 * n - 1]) * 1e-6 : 0.0;
+      fr.total_ms = (ns[2 * n - 1] - ns[0]) * 1e-6 - (fr.scan_ms - last_pass_scan);
+    }
   }
+  if (scan_reset) collect_scan_results();
   ++frame_;
   return fr;
 }

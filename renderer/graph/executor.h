@@ -1,6 +1,7 @@
 // Runs a compiled graph: allocates the plan's resources, uploads the scene (again each frame
 // when it moves), records every running pass between a timestamp pair and a debug label with
-// the barriers the plan placed, and reads back GPU time per pass.
+// the barriers the plan placed, and reads back GPU time per pass. Optionally scans every
+// resource a pass writes for NaN / Inf / out-of-domain values on the GPU (stability.h).
 #pragma once
 #include <memory>
 #include <string>
@@ -8,6 +9,7 @@
 
 #include "renderer/graph/float_image.h"
 #include "renderer/graph/pass.h"
+#include "renderer/graph/stability.h"
 
 namespace gib {
 
@@ -19,7 +21,9 @@ struct PassTiming {
 struct FrameResult {
   uint32_t frame = 0;
   std::vector<PassTiming> passes;  // running passes, execution order
-  double total_ms = 0;             // first timestamp to last
+  double total_ms = 0;             // first timestamp to last, less the stability scans
+  double scan_ms = 0;              // stability scans (GPU: between timestamps; CPU: host clock)
+  uint32_t scan_dispatches = 0;    // stability scan dispatches this frame
 };
 
 class Executor {
@@ -31,6 +35,15 @@ class Executor {
   const Settings& settings() const { return settings_; }
   FrameResult run_frame();
   uint32_t frames_run() const { return frame_; }
+  // Stability scan (off by default): from the next frame on, after each running pass, one
+  // compute dispatch per resource the pass writes (write / read_write) whose declared value
+  // domain is not none reduces it to per-category counts and first offending texel; the
+  // executor reads the small result buffer back once per frame and accumulates stability().
+  // Pass timings exclude it: on a GPU it is recorded after the pass's end timestamp, on a CPU
+  // device it is its own submission after the pass's host-timed one.
+  void enable_stability_scan(bool on = true) { scan_enabled_ = on; }
+  bool stability_scan_enabled() const { return scan_enabled_; }
+  const StabilityReport& stability() const { return stability_; }
   // Any image resource of the plan as float texels (ids and packed formats decoded to floats).
   FloatImage read(const std::string& name);
   std::vector<std::string> image_names() const;
@@ -39,6 +52,11 @@ class Executor {
 
  private:
   std::map<std::string, ResolvedSlot> bind_slots(const PassDecl& decl);
+  struct ScanTarget;
+  void plan_stability_scan();
+  void zero_persistent();
+  uint32_t record_scans(Cmd& cmd, size_t running_index, bool& reset);
+  void collect_scan_results();
   void upload_scene(float time);
   void upload_frame_constants(float time);
   Gpu& gpu_;
@@ -56,6 +74,11 @@ class Executor {
   std::map<std::string, Allocation> allocations_;
   uint32_t frame_ = 0;
   bool scene_uploaded_ = false;
+  bool scan_enabled_ = false;
+  std::vector<ScanTarget> scan_targets_;       // execution order, slot order
+  std::vector<std::vector<size_t>> scan_of_pass_;  // per running pass: indices into scan_targets_
+  std::shared_ptr<Buffer> scan_results_;
+  StabilityReport stability_;
   float prev_view_proj_[16] = {};
 };
 

@@ -61,6 +61,38 @@ std::string describe(const ResourceDesc& d) {
   return fmt::format("{} {}{}", format_name(d.format), size, d.persistent ? " persistent" : "");
 }
 
+const char* domain_name(Domain d) {
+  switch (d) {
+    case Domain::none: return "none";
+    case Domain::finite: return "finite";
+    case Domain::non_negative: return "non_negative";
+    case Domain::unit: return "unit";
+  }
+  return "?";
+}
+
+std::string describe(const ValueDomain& v) {
+  if (!v.scanned()) return "";
+  std::string s = domain_name(v.domain);
+  auto mask = [](uint32_t m) {
+    static const char* const kNames = "rgba";
+    std::string out;
+    if (m < 16) {
+      for (uint32_t c = 0; c < 4; ++c)
+        if (m & (1u << c)) out += kNames[c];
+    } else {
+      out = fmt::format("{:#x}", m);
+    }
+    return out;
+  };
+  if (v.channels != ~0u) s += " " + mask(v.channels);
+  if (v.signed_channels) s += " signed " + mask(v.signed_channels);
+  if (v.max_value != std::numeric_limits<float>::infinity()) s += fmt::format(" <= {}", v.max_value);
+  if (v.encoding == Encoding::rgb9e5) s += " rgb9e5";
+  if (v.stride_words) s += fmt::format(" words {}+{} of {}", v.first_word, v.value_words, v.stride_words);
+  return s;
+}
+
 const char* access_name(Access a) {
   switch (a) {
     case Access::read: return "read";

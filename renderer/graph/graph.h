@@ -3,6 +3,7 @@
 // barriers go, and records why everything else was culled.
 #pragma once
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -22,15 +23,72 @@ uint32_t format_bytes_per_texel(Format f);  // 0 for buffer
 
 enum class SizeRule : uint32_t { render, half, quarter, fixed, buffer };
 
+// The values a resource may hold, declared next to its format. With the stability scan on
+// (Executor::enable_stability_scan) every resource a pass writes is checked against its domain
+// on the GPU after the pass: NaN, +Inf, -Inf, negatives where forbidden, values above the bound.
+enum class Domain : uint32_t {
+  none,          // not scanned: ids, bits, keys, counters
+  finite,        // any finite value: positions, normals, signed SH coefficients
+  non_negative,  // radiance, irradiance, moments, weights, distances, sample counts
+  unit,          // [0, 1]: albedo, roughness, depth
+};
+// How the words of an r32_uint image or of a buffer's value words decode before the check.
+enum class Encoding : uint32_t {
+  none,    // the words are float bits
+  rgb9e5,  // E5B9G9R9 in a uint word (packing.glsl gib_unpack_rgb9e5): 3 channels; finite and
+           // non-negative by construction, so only the bound can fail
+};
+inline constexpr uint32_t kChannelR = 1u, kChannelG = 2u, kChannelB = 4u, kChannelA = 8u;
+inline constexpr uint32_t kChannelsRgb = kChannelR | kChannelG | kChannelB;
+
+struct ValueDomain {
+  Domain domain = Domain::none;
+  float max_value = std::numeric_limits<float>::infinity();  // bound (+inf: none); unit: min(this, 1)
+  // Channel c is checked when bit c is set: image channels r,g,b,a (an image format's missing
+  // channels are never checked); for buffers value c of an element (RGB9E5 word k: 3k..3k+2).
+  uint32_t channels = ~0u;
+  // Channels that may be negative although the domain is non_negative / unit (e.g. SH L1 next to
+  // a non-negative L0); the bound applies to |v| there.
+  uint32_t signed_channels = 0;
+  Encoding encoding = Encoding::none;
+  // Buffers only (else not scanned): element i's value words are
+  // [i * stride_words + first_word, ... + value_words); elements = bytes / 4 / stride_words.
+  uint32_t stride_words = 0, first_word = 0, value_words = 0;
+
+  bool scanned() const { return domain != Domain::none; }
+  bool operator==(const ValueDomain&) const = default;
+  // Builders: non_negative().only(kChannelsRgb).bounded(16)
+  ValueDomain only(uint32_t mask) const { ValueDomain v = *this; v.channels = mask; return v; }
+  ValueDomain allow_negative(uint32_t mask) const { ValueDomain v = *this; v.signed_channels = mask; return v; }
+  ValueDomain bounded(float max) const { ValueDomain v = *this; v.max_value = max; return v; }
+  ValueDomain encoded(Encoding e) const { ValueDomain v = *this; v.encoding = e; return v; }
+  ValueDomain layout(uint32_t stride, uint32_t first, uint32_t words) const {
+    ValueDomain v = *this;
+    v.stride_words = stride;
+    v.first_word = first;
+    v.value_words = words;
+    return v;
+  }
+};
+inline ValueDomain finite_values() { return {Domain::finite}; }
+inline ValueDomain non_negative_values() { return {Domain::non_negative}; }
+inline ValueDomain unit_values() { return {Domain::unit}; }
+const char* domain_name(Domain d);
+std::string describe(const ValueDomain& v);  // "non_negative rgb <= 16 rgb9e5", "" when none
+
 struct ResourceDesc {
   Format format = Format::rgba32_float;
   SizeRule size = SizeRule::render;
   uint32_t width = 0, height = 0;  // SizeRule::fixed
   uint64_t bytes = 0;              // SizeRule::buffer
   bool persistent = false;         // lives across frames (history, accumulation)
+  ValueDomain values;              // metadata for the stability scan (same_desc ignores it)
+  ResourceDesc with(const ValueDomain& v) const { ResourceDesc d = *this; d.values = v; return d; }
 };
 
 // Same resource: format, size rule, extent (fixed) / bytes (buffer) and persistence agree.
+// The value domain is not compared: compile() takes it from whichever slot declares one and
+// fails when two slots declare different ones.
 bool same_desc(const ResourceDesc& a, const ResourceDesc& b);
 std::string describe(const ResourceDesc& d);  // "rgba16_float half persistent"
 
@@ -109,7 +167,8 @@ struct Plan {
 // inconsistent descs between writers of one resource; read_prev of a non-persistent resource.
 // A read_write slot whose desc is left default-constructed inherits the resource's desc; a
 // non-default one must match the writer's. Persistent resources may be produced by read_write
-// alone (they start zeroed).
+// alone (they start zeroed). The resource's value domain is the one its slots declare (writer
+// or read_write, any desc); two different declared domains are an error.
 Plan compile(const std::vector<PassDecl>& decls, const CompileOptions& options);
 
 }  // namespace gib

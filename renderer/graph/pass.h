@@ -36,6 +36,17 @@ struct RadianceCacheSettings {
   uint32_t history_format = 0;      // 0 RGB9E5 (R32_UINT), 1 RGBA16F, 2 R11G11B10F, 3 RGBA32F
   uint32_t history_max_frames = 16; // n_max of the temporal filter
   uint32_t denoise_radius = 3;      // bilateral half-width in gather pixels
+  bool multi_bounce = true;         // 0: no cache feeds back on itself (single bounce; white-furnace negative control)
+};
+
+// Robustness debugging (technique options inject_nan, inject_frame, inject_x, inject_y): the pass
+// that writes the target resource writes a NaN into it on one frame.
+struct DebugSettings {
+  uint32_t inject_nan = 0;    // 0 none, 1 gbuffer_normal texel (gbuffer), 2 radiance-cache cell radiance
+                              // (radiance_cache_shade), 3 one path-tracer sample (path_trace)
+  uint32_t inject_frame = 0;  // frame index (RecordContext::frame, 0-based) of the injection
+  uint32_t inject_x = 0, inject_y = 0;  // pixel (render resolution); target 2: the cell of that pixel's surface
+  bool injects(uint32_t target, uint32_t frame) const { return inject_nan == target && frame == inject_frame; }
 };
 
 struct Settings {
@@ -45,7 +56,18 @@ struct Settings {
   uint32_t spp_per_frame = 1;  // reference: samples per pixel added each frame
   uint32_t max_bounces = 8;    // reference: path length cap (Russian roulette after 3)
   uint32_t sky_rays = 4;       // direct: sky visibility rays per pixel
+  // >= 0: every frame renders the scene at this time (seconds): a reference of one moment of
+  // an animated scene. < 0: frame f renders at f * scene.frame_time.
+  float scene_time = -1.0f;
+  // Every pass that reads history, blends or accumulates drops/repairs non-finite values (and
+  // gib_surface/gbuffer/direct_lighting repair non-finite normals). 0 turns them all off (negative control).
+  bool nan_guards = true;
+  // Metres added to every world-space position (vertices, lights, camera position and target)
+  // when the executor uploads the scene: the far-from-origin stress case (options
+  // world_offset_x/y/z). The image is unchanged in exact arithmetic.
+  Vec3 world_offset{0, 0, 0};
   RadianceCacheSettings rc;
+  DebugSettings debug;
 };
 
 // The scene as GPU buffers, in the binding order of frame_shared.h / scene.glsl.

@@ -1,6 +1,8 @@
 #include "renderer/scene/scene.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -145,7 +147,7 @@ Camera Scene::camera_at(float time) const {
   return c;
 }
 
-FlatScene flatten(const Scene& scene, float time) {
+FlatScene flatten(const Scene& scene, float time, Vec3 world_offset) {
   FlatScene out;
   size_t vertex_total = 0, triangle_total = 0;
   for (const Instance& inst : scene.instances) {
@@ -169,8 +171,13 @@ FlatScene flatten(const Scene& scene, float time) {
     NormalMatrix nm(m);
     uint32_t base = static_cast<uint32_t>(out.vertices.size());
     for (size_t v = 0; v < mesh.positions.size(); ++v) {
-      Vec3 p = m.transform_point(mesh.positions[v]);
-      Vec3 n = v < mesh.normals.size() ? nm.apply(mesh.normals[v]) : Vec3{};
+      Vec3 p = m.transform_point(mesh.positions[v]) + world_offset;
+      Vec3 n = v < mesh.normals.size() ? mesh.normals[v] : Vec3{};
+      // A non-finite input normal stays NaN (normalize() would turn it into a zero normal and
+      // hide it from the GPU guard the degenerate-geometry case tests).
+      const bool finite_n = std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z);
+      constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+      n = finite_n ? nm.apply(n) : Vec3{kNaN, kNaN, kNaN};
       Vec2 uv = v < mesh.uvs.size() ? mesh.uvs[v] : Vec2{};
       out.vertices.push_back({p.x, p.y, p.z, uv.x, n.x, n.y, n.z, uv.y});
     }
@@ -193,7 +200,11 @@ FlatScene flatten(const Scene& scene, float time) {
   out.materials.reserve(scene.materials.size());
   for (const Material& m : scene.materials) out.materials.push_back(to_gpu(m));
   out.lights.reserve(scene.lights.size());
-  for (const LocalLight& l : scene.lights) out.lights.push_back(to_gpu(l));
+  for (const LocalLight& l : scene.lights) {
+    GpuLight g = to_gpu(l);
+    for (int k = 0; k < 3; ++k) g.position[k] += world_offset[k];
+    out.lights.push_back(g);
+  }
   return out;
 }
 

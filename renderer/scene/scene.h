@@ -154,6 +154,10 @@ struct GpuLight {  // 64 bytes
 };
 
 // World-space triangle soup at a given time: what the BVH and the passes consume.
+// Normals are unit, zero (a zero input normal, a mesh without normals, or a collapsed instance:
+// shading uses the face normal) or NaN (a non-finite input normal, passed on unrepaired: the
+// GPU's guard, Settings::nan_guards, is what repairs it, and what the degenerate-geometry case
+// tests).
 struct FlatScene {
   std::vector<GpuVertex> vertices;
   std::vector<GpuTriangle> triangles;
@@ -161,6 +165,9 @@ struct FlatScene {
   std::vector<GpuMaterial> materials;
   std::vector<GpuLight> lights;
 };
-FlatScene flatten(const Scene& scene, float time);
+// world_offset translates every position (vertices and lights) after the instance transform:
+// the far-from-origin stress cases move the whole scene (Settings::world_offset), the camera
+// with it (Executor), so the image is unchanged in exact arithmetic.
+FlatScene flatten(const Scene& scene, float time, Vec3 world_offset = {});
 
 }  // namespace gib

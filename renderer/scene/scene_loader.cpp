@@ -204,10 +204,13 @@ struct Primitive {
   uint32_t segments = 32, count = 64, seed = 1;
   bool capped = true;
   Facing facing = Facing::pos_y;
+  Mesh mesh;         // type "mesh": the triangles as written
+  std::string name;  // Mesh::name when the key is too long to read (mesh); empty: the key
 };
 
 constexpr uint32_t kMaxSegments = 4096;
 constexpr uint32_t kMaxCards = 1000000;
+constexpr size_t kMaxMeshVertices = 1u << 24;
 
 Facing get_facing(const Node& n, Facing def) {
   return get_enum<Facing>(n,
@@ -216,13 +219,64 @@ Facing get_facing(const Node& n, Facing def) {
                           def);
 }
 
+// An array with one element per mesh position (normals, uvs).
+void check_per_vertex(const Node& n, size_t count, std::string_view what) {
+  if (!n.v->is_array() || n.v->size() != count)
+    n.fail(fmt::format("array of {} {} (one per position)", count, what));
+}
+
+// Explicit triangles, kept exactly as written: zero-area triangles (a repeated index, collinear
+// vertices), duplicate vertices and zero-length or null (NaN) normals are valid input, which the
+// degenerate-geometry case feeds to the renderer. Positions, normals and UVs must be finite
+// numbers; null is the one way to write a non-finite (NaN) normal. Without normals every vertex
+// gets a zero normal, which shading replaces by the face normal (flat shading).
+Mesh parse_mesh(const Node& n) {
+  check_object(n, {"type", "positions", "indices", "normals", "uvs"});
+  Mesh m;
+  Node pos = n["positions"];
+  check_array(pos, true);
+  if (pos.v->size() > kMaxMeshVertices)
+    pos.fail(fmt::format("at most {} positions", kMaxMeshVertices), describe(*pos.v));
+  for (size_t i = 0; i < pos.v->size(); ++i) m.positions.push_back(get_vec3(pos[i], kAny, std::nullopt));
+  const uint32_t last = static_cast<uint32_t>(m.positions.size() - 1);
+
+  Node idx = n["indices"];
+  check_array(idx, true);
+  for (size_t t = 0; t < idx.v->size(); ++t) {
+    Node tri = idx[t];
+    if (!tri.v->is_array() || tri.v->size() != 3) tri.fail("array of 3 vertex indices");
+    for (size_t k = 0; k < 3; ++k) m.indices.push_back(get_uint(tri[k], 0, last, std::nullopt));
+  }
+
+  Node normals = n["normals"];
+  if (normals.present()) {
+    check_per_vertex(normals, m.positions.size(), "normals");
+    for (size_t i = 0; i < normals.v->size(); ++i) {
+      Node e = normals[i];
+      if (e.v->is_null()) {
+        const float nan = std::numeric_limits<float>::quiet_NaN();
+        m.normals.push_back({nan, nan, nan});
+        continue;
+      }
+      if (!e.v->is_array() || e.v->size() != 3) e.fail("array of 3 numbers or null");
+      m.normals.push_back(get_vec3(e, kAny, std::nullopt));
+    }
+  }
+  Node uvs = n["uvs"];
+  if (uvs.present()) {
+    check_per_vertex(uvs, m.positions.size(), "uvs");
+    for (size_t i = 0; i < uvs.v->size(); ++i) m.uvs.push_back(get_vec2(uvs[i], kAny, std::nullopt));
+  }
+  return m;
+}
+
 Primitive parse_primitive(const Node& n) {
   if (!n.present() || !n.v->is_object()) n.fail("object");
-  enum class Type { box, quad, sphere, cylinder, thin_slab, leaf_cards };
+  enum class Type { box, quad, sphere, cylinder, thin_slab, leaf_cards, mesh };
   Type type = get_enum<Type>(n["type"],
                              {{"box", Type::box}, {"quad", Type::quad}, {"sphere", Type::sphere},
                               {"cylinder", Type::cylinder}, {"thin_slab", Type::thin_slab},
-                              {"leaf_cards", Type::leaf_cards}},
+                              {"leaf_cards", Type::leaf_cards}, {"mesh", Type::mesh}},
                              std::nullopt);
   Primitive p;
   switch (type) {
@@ -275,6 +329,13 @@ Primitive parse_primitive(const Node& n) {
                           p.size3.y, p.size3.z, p.size2.x, p.size2.y, p.seed);
       p.build = [](const Primitive& q) { return make_leaf_cards(q.count, q.size3, q.size2, q.seed); };
       break;
+    case Type::mesh:
+      p.mesh = parse_mesh(n);
+      // The whole description is the key: identical meshes share one Mesh.
+      p.key = "mesh " + dump_safe(*n.v);
+      p.name = fmt::format("mesh positions={} triangles={}", p.mesh.positions.size(), p.mesh.indices.size() / 3);
+      p.build = [](const Primitive& q) { return q.mesh; };
+      break;
   }
   return p;
 }
@@ -310,7 +371,7 @@ Instance parse_object(const Node& n, size_t index, const std::map<std::string, u
   auto [it, inserted] = mesh_index.try_emplace(prim.key, static_cast<uint32_t>(meshes.size()));
   if (inserted) {
     meshes.push_back(prim.build(prim));
-    meshes.back().name = prim.key;
+    meshes.back().name = prim.name.empty() ? prim.key : prim.name;
   }
   inst.mesh = it->second;
 

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -85,18 +86,49 @@ std::string option_value_text(double v) {
 #define GIB_UINT_OPTION(field) [](Settings& s, double v) { field = static_cast<uint32_t>(v); }
 #define GIB_FLOAT_OPTION(field) [](Settings& s, double v) { field = static_cast<float>(v); }
 #define GIB_BOOL_OPTION(field) [](Settings& s, double v) { field = v != 0.0; }
+
+// Options every technique shares: the NaN guards and the NaN-injection debug switches, the
+// injection targets limited to those the technique's passes write; the world offset.
+std::vector<TechniqueOption> with_debug_options(std::vector<TechniqueOption> opts, std::vector<double> targets) {
+  opts.push_back({"nan_guards",
+                  "drop or repair non-finite values wherever history is read, blended or accumulated (0/1; 0 is "
+                  "the negative control of NaN injection)",
+                  0, 1, true, GIB_BOOL_OPTION(s.nan_guards)});
+  opts.push_back({"inject_nan",
+                  "debug: write a NaN on frame inject_frame into 0 nothing, 1 the gbuffer_normal texel at "
+                  "(inject_x, inject_y), 2 the radiance-cache cell of that pixel's surface, 3 the path tracer's "
+                  "sample at that pixel",
+                  0, 3, true, GIB_UINT_OPTION(s.debug.inject_nan), std::move(targets)});
+  opts.push_back({"inject_frame", "debug: frame index (0-based) of the NaN injection", 0, 4294967295.0, true,
+                  GIB_UINT_OPTION(s.debug.inject_frame)});
+  opts.push_back({"inject_x", "debug: pixel column of the NaN injection", 0, 65535, true,
+                  GIB_UINT_OPTION(s.debug.inject_x)});
+  opts.push_back({"inject_y", "debug: pixel row of the NaN injection", 0, 65535, true,
+                  GIB_UINT_OPTION(s.debug.inject_y)});
+  // The far-from-origin stress: the whole scene and the camera moved (Settings::world_offset).
+  opts.push_back({"world_offset_x", "metres added to every world-space x (scene, lights, camera)", -1e6, 1e6,
+                  false, GIB_FLOAT_OPTION(s.world_offset.x)});
+  opts.push_back({"world_offset_y", "metres added to every world-space y (scene, lights, camera)", -1e6, 1e6,
+                  false, GIB_FLOAT_OPTION(s.world_offset.y)});
+  opts.push_back({"world_offset_z", "metres added to every world-space z (scene, lights, camera)", -1e6, 1e6,
+                  false, GIB_FLOAT_OPTION(s.world_offset.z)});
+  return opts;
+}
 }  // namespace
 
 const std::vector<TechniqueOption>& technique_options(const Technique& t) {
-  static const std::vector<TechniqueOption> kDirect = {
-      {"sky_rays", "sky visibility rays per pixel (0: no sky light)", 0, 4294967295.0, true, GIB_UINT_OPTION(s.sky_rays)},
-  };
-  static const std::vector<TechniqueOption> kReference = {
+  static const std::vector<TechniqueOption> kDirect = with_debug_options(
+      {
+          {"sky_rays", "sky visibility rays per pixel (0: no sky light)", 0, 4294967295.0, true,
+           GIB_UINT_OPTION(s.sky_rays)},
+      },
+      {0, 1});
+  static const std::vector<TechniqueOption> kReference = with_debug_options({
       {"max_bounces", "path length cap (1: direct light only, no interreflection)", 1, 4294967295.0, true,
        GIB_UINT_OPTION(s.max_bounces)},
       {"spp_per_frame", "samples per pixel added each frame", 1, 4294967295.0, true, GIB_UINT_OPTION(s.spp_per_frame)},
-  };
-  static const std::vector<TechniqueOption> kRadianceCache = {
+  }, {0, 3});
+  static const std::vector<TechniqueOption> kRadianceCache = with_debug_options({
       {"visibility_test", "leak mitigation: Chebyshev test on probe distance moments (0/1)", 0, 1, true,
        GIB_BOOL_OPTION(s.rc.visibility_test)},
       {"normal_bias", "leak mitigation: metres along the normal before sampling probes", 0, 10, false,
@@ -120,7 +152,13 @@ const std::vector<TechniqueOption>& technique_options(const Technique& t) {
        GIB_UINT_OPTION(s.rc.cache_reuse_frames)},
       {"denoise_radius", "bilateral half-width in gather pixels (0: off)", 0, 16, true,
        GIB_UINT_OPTION(s.rc.denoise_radius)},
-  };
+      {"probe_hysteresis", "weight of last frame's probe texel when blending (0: no history)", 0, 0.999, false,
+       GIB_FLOAT_OPTION(s.rc.probe_hysteresis)},
+      {"multi_bounce",
+       "1: caches feed back on themselves (cells and volumes shade bounces from last frame's volumes, the "
+       "gather reads last frame's image); 0: single bounce (white-furnace negative control)",
+       0, 1, true, GIB_BOOL_OPTION(s.rc.multi_bounce)},
+  }, {0, 1, 2});
   static const std::vector<TechniqueOption> kNone;
   if (t.name == "direct") return kDirect;
   if (t.name == "reference") return kReference;
@@ -134,6 +172,9 @@ std::string check_option(const Technique& t, const std::string& name, double val
     if (o.name != name) continue;
     if (!std::isfinite(value) || (o.integer && value != std::floor(value)) || value < o.min || value > o.max)
       return fmt::format("expected {} in [{}, {}], got {}", o.integer ? "an integer" : "a number", o.min, o.max,
+                         option_value_text(value));
+    if (!o.allowed.empty() && std::find(o.allowed.begin(), o.allowed.end(), value) == o.allowed.end())
+      return fmt::format("expected one of [{}] for {}, got {}", fmt::join(o.allowed, ", "), t.name,
                          option_value_text(value));
     return "";
   }

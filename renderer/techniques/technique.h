@@ -35,6 +35,7 @@ struct TechniqueOption {
   double max = 4294967295.0;
   bool integer = true;
   void (*apply)(Settings&, double) = nullptr;
+  std::vector<double> allowed;  // when not empty, the only valid values (e.g. the NaN targets a technique has)
 };
 
 // The options `t` accepts, in a stable order (empty for a technique with none).

@@ -10,13 +10,14 @@ class CompositePass final : public Pass {
   PassDecl declare(const Scene&, const Settings&) const override {
     ResourceDesc color{Format::rgba32_float, SizeRule::render};
     color.persistent = true;
+    color.values = non_negative_values();
     PassDecl d;
     d.name = "composite";
     d.slots = {{"direct_light", Access::read},
                {"gbuffer_albedo", Access::read},
                {"gi_irradiance", Access::read},
                {"final_color", Access::write, color},
-               {"indirect_diffuse", Access::write, {Format::rgba32_float, SizeRule::render}}};
+               {"indirect_diffuse", Access::write, ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values())}};
     return d;
   }
 

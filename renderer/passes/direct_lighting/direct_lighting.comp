@@ -17,6 +17,7 @@ bool gib_alpha_accept(uint triangle, float u, float v) {
 #include "bvh.glsl"
 #include "lights.glsl"
 #include "surface.glsl"
+#include "finite.glsl"
 
 layout(local_size_x = kDirectGroup, local_size_y = kDirectGroup) in;
 layout(set = 0, binding = kDirectBindAlbedo, rgba16f) uniform readonly image2D gb_albedo;
@@ -47,6 +48,13 @@ void main() {
   }
   vec3 albedo = imageLoad(gb_albedo, p).rgb;
   vec3 n = imageLoad(gb_normal, p).xyz;
+  if (push.nan_guards != 0u && !(gib_finite(n) && dot(n, n) > 0.25)) {
+    // Guard: a broken normal (NaN texel in the G-buffer) is lit as if facing the camera, so the
+    // pixel stays finite; the G-buffer is rewritten every frame, so nothing carries it over.
+    vec3 o, d;
+    gib_camera_ray(vec2(p) + 0.5, o, d);
+    n = -d;
+  }
   vec4 em = imageLoad(gb_emissive, p);
   float translucency = em.w;
   vec3 x = pos.xyz;

@@ -14,14 +14,15 @@ class DirectLightingPass final : public Pass {
                {"gbuffer_normal", Access::read},
                {"gbuffer_position", Access::read},
                {"gbuffer_emissive", Access::read},
-               {"direct_light", Access::write, {Format::rgba32_float, SizeRule::render}}};
+               {"direct_light", Access::write, ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values())}};
     return d;
   }
 
   void record(RecordContext& ctx) override {
     using namespace glsl;
     SceneFeatures f = ctx.scene.features();
-    DirectPush push{ctx.settings.sky_rays, 0, 0, 0};
+    DirectPush push{ctx.settings.sky_rays, ctx.settings.nan_guards ? 1u : 0u, 0, 0};
+    static_assert(sizeof(push) == 16, "DirectPush must match direct_lighting.comp's push block");
     record_compute(ctx, {.shader = "direct_lighting.comp",
                          .images = {{kDirectBindAlbedo, "gbuffer_albedo"},
                                     {kDirectBindNormal, "gbuffer_normal"},

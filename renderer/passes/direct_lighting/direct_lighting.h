@@ -8,6 +8,7 @@
 // PCF/contact-hardening shadows are a later pass).
 // Limits: loops over all local lights (the light grid of radiance-cache will bound this);
 // specular terms are not shaded (roughness/metalness are stored but the BRDF is Lambertian).
+// NaN guard (Settings::nan_guards): a non-finite G-buffer normal is lit as if it faced the camera.
 #pragma once
 #include <memory>
 

@@ -14,8 +14,9 @@ GIB_CONST(uint, kDirectSpecSky, 1)
 GIB_CONST(uint, kDirectSpecLocal, 2)
 GIB_CONST(uint, kDirectSpecAlpha, 3)
 struct DirectPush {
-  uint sky_rays;  // cosine rays per pixel for sky visibility
-  uint pad0, pad1, pad2;
+  uint sky_rays;    // cosine rays per pixel for sky visibility
+  uint nan_guards;  // 1: a non-finite G-buffer normal is replaced by the direction to the camera
+  uint pad1, pad2;
 };
 GIB_SHARED_END
 #endif

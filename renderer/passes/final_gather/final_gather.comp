@@ -18,6 +18,7 @@ bool gib_alpha_accept(uint triangle, float u, float v) {
 #include "lights.glsl"
 #include "surface.glsl"
 #include "sh.glsl"
+#include "finite.glsl"
 
 layout(push_constant) uniform Push {
   RcParams rc;
@@ -60,6 +61,9 @@ bool screen_cache(vec3 x, vec3 n_hit, out vec3 radiance) {
   float depth = (gib_frame.prev_view_proj * vec4(prev.xyz, 1.0)).w;
   if (abs(depth - clip.w) > kGatherScreenDepthTolerance * clip.w) return false;
   radiance = imageLoad(prev_color, q).rgb;
+  // Guard: a non-finite pixel of last frame's image is a miss (the world cache answers instead),
+  // so a NaN on screen does not feed back into the gather.
+  if (rc.flags.y != 0u && !gib_finite(radiance)) return false;
   return true;
 }
 
@@ -70,7 +74,7 @@ bool screen_cache(vec3 x, vec3 n_hit, out vec3 radiance) {
 vec4 sample_sh(float radiance, vec4 basis_d, vec4 basis_n, float weight) {
   vec3 l1 = radiance * weight * basis_d.yzw;
   float l0 = (radiance - (2.0 / 3.0) * dot(l1, basis_n.yzw)) / basis_n.x;
-  return clamp(vec4(l0, l1), -kHalfMax, kHalfMax);
+  return gib_clamp_keep_nan(vec4(l0, l1), -kHalfMax, kHalfMax);
 }
 
 void write_out(ivec2 g, vec4 r, vec4 gg, vec4 b, float distance) {
@@ -92,6 +96,12 @@ void main() {
     return;
   }
   vec3 n = normalize(imageLoad(gb_normal, p).xyz);
+  if (rc.flags.y != 0u && !gib_finite(n)) {
+    // Guard: no direction to gather around (broken G-buffer normal): an empty sample, which
+    // gi_denoise and gi_upscale then skip as a tap (its normal is not finite either).
+    write_out(g, vec4(0.0), vec4(0.0), vec4(0.0), kGatherMissDistance);
+    return;
+  }
 
   // Ray direction: per pixel, an R2 low-discrepancy sequence over frames (alpha = 1/phi2,
   // 1/phi2^2 in 0.32 fixed point, so it never loses precision), started at a per-pixel hash.
@@ -109,9 +119,10 @@ void main() {
     radiance = push.sky != 0u ? gib_sky_radiance(d) : vec3(0.0);
   } else {
     distance = hit.t;
-    GibSurface s = gib_surface(hit.triangle, hit.u, hit.v);
+    GibSurface s = gib_surface(hit.triangle, hit.u, hit.v, rc.flags.y != 0u);
     vec3 n_hit = dot(s.normal, d) > 0.0 ? -s.normal : s.normal;  // the side the ray hit
-    if (push.screen_cache != 0u && screen_cache(s.position, n_hit, radiance)) {
+    // multi_bounce 0: no screen cache (last frame's image holds every bounce so far).
+    if (push.screen_cache != 0u && rc.flags.z != 0u && screen_cache(s.position, n_hit, radiance)) {
       served = kGatherStatScreen;
     } else if (rc_lookup(s.position, rc_facing_normal(hit.triangle, d), radiance)) {
       served = kGatherStatWorld;
@@ -122,8 +133,11 @@ void main() {
       served = kGatherStatVolume;
     }
   }
+  // Guard: the world cache and the volumes are RGB9E5 (always finite), but a non-finite answer
+  // from any source is treated as a miss that returns nothing.
+  if (rc.flags.y != 0u && !gib_finite(radiance)) radiance = vec3(0.0);
   atomicAdd(gather_stats[served], 1u);
-  radiance = max(radiance, vec3(0.0));
+  radiance = gib_max0_keep_nan(radiance);
   float weight = GIB_PI / max(cos_t, kGatherMinCos);
   vec4 bd = gib_sh2_basis(d), bn = gib_sh2_basis(n);
   write_out(g, sample_sh(radiance.r, bd, bn, weight), sample_sh(radiance.g, bd, bn, weight),

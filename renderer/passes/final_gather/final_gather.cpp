@@ -10,7 +10,8 @@ class FinalGatherPass final : public Pass {
  public:
   PassDecl declare(const Scene&, const Settings& s) const override {
     const SizeRule size = s.rc.gather_divisor >= 4 ? SizeRule::quarter : SizeRule::half;
-    const ResourceDesc sh{Format::rgba16_float, size};
+    const ResourceDesc sh = ResourceDesc{Format::rgba16_float, size}.with(  // x L0, yzw L1
+        non_negative_values().allow_negative(kChannelG | kChannelB | kChannelA));
     ResourceDesc stats{Format::buffer, SizeRule::buffer};
     stats.bytes = glsl::kGatherStatCount * sizeof(uint32_t);
     PassDecl d;
@@ -25,7 +26,7 @@ class FinalGatherPass final : public Pass {
                {"gather_sh_r", Access::write, sh},
                {"gather_sh_g", Access::write, sh},
                {"gather_sh_b", Access::write, sh},
-               {"gather_hit_distance", Access::write, {Format::r32_float, size}},
+               {"gather_hit_distance", Access::write, ResourceDesc{Format::r32_float, size}.with(non_negative_values())},
                {"gather_stats", Access::write, stats}};
     return d;
   }

@@ -29,6 +29,8 @@
 // slot table) is not read: albedo is applied in composite. The screen cache uses the current
 // camera position for its facing test (last frame's is not in the frame constants). Rays leave
 // along the shading normal's hemisphere; one that dips below the true face may self-hit.
+// NaN guard (RcParams.flags.y): a non-finite screen-cache sample is a miss, any other non-finite
+// answer is 0, a non-finite normal writes an empty sample. multi_bounce 0: no screen cache.
 #pragma once
 #include <memory>
 

@@ -8,6 +8,8 @@
 // Seed: doom-visibility-buffer-vrcs.txt, "Attribute interpolation" (barycentrics and their
 // derivatives from the triangle, then deferred texturing).
 // Limits: no material classification or per-material dispatch yet (one uber kernel).
+// NaN guard (Settings::nan_guards): a non-finite or non-unit shading normal falls back to the face
+// normal. Debug: inject_nan 1 writes a NaN normal at (inject_x, inject_y) on frame inject_frame.
 #pragma once
 #include <memory>
 

@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // One direction of the separable bilateral gaussian over the gather SH (see gi_denoise.h).
 #include "renderer/passes/gi_denoise/gi_denoise_shared.h"
+#include "finite.glsl"
 
 layout(local_size_x = kDenoiseGroup, local_size_y = kDenoiseGroup) in;
 layout(set = 0, binding = kDenoiseBindNormal, rgba16f) uniform readonly image2D gb_normal;
@@ -57,12 +58,17 @@ void main() {
     float dh = abs(h_q - h_c) / max(max(h_q, h_c), 1e-6);
     w *= exp(-(dh * dh) / (kDenoiseHitSigma * kDenoiseHitSigma));
     if (w <= 0.0) continue;
-    sum_r += w * imageLoad(in_r, q);
-    sum_g += w * imageLoad(in_g, q);
-    sum_b += w * imageLoad(in_b, q);
+    vec4 tr = imageLoad(in_r, q), tg = imageLoad(in_g, q), tb = imageLoad(in_b, q);
+    // Guard: skip a tap whose weight (a NaN normal) or value is not finite: weight 0 would
+    // not do, 0 x NaN is NaN.
+    if (push.nan_guards != 0u && !(gib_finite(w) && gib_finite(tr) && gib_finite(tg) && gib_finite(tb))) continue;
+    sum_r += w * tr;
+    sum_g += w * tg;
+    sum_b += w * tb;
     sum_w += w;
   }
-  // The centre's own weight is 1 (k = 0, identical geometry), so sum_w >= 1.
+  // The centre's own weight is 1 (k = 0, identical geometry), so sum_w >= 1, unless guards
+  // skipped it (then every tap may be gone and the result is 0).
   float inv = 1.0 / max(sum_w, 1e-6);
   imageStore(out_r, g, sum_r * inv);
   imageStore(out_g, g, sum_g * inv);

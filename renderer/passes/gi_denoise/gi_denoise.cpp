@@ -8,7 +8,9 @@ namespace {
 class GiDenoisePass final : public Pass {
  public:
   PassDecl declare(const Scene&, const Settings& s) const override {
-    const ResourceDesc sh{Format::rgba16_float, s.rc.gather_divisor >= 4 ? SizeRule::quarter : SizeRule::half};
+    const ResourceDesc sh =  // x L0, yzw L1
+        ResourceDesc{Format::rgba16_float, s.rc.gather_divisor >= 4 ? SizeRule::quarter : SizeRule::half}.with(
+            non_negative_values().allow_negative(kChannelG | kChannelB | kChannelA));
     PassDecl d;
     d.name = "gi_denoise";
     d.slots = {{"gather_sh_r", Access::read},      {"gather_sh_g", Access::read},
@@ -27,7 +29,8 @@ class GiDenoisePass final : public Pass {
     auto run = [&](const char* label, int ax, int ay, const char* in, const char* out) {
       const std::string ir = std::string(in) + "_r", ig = std::string(in) + "_g", ib = std::string(in) + "_b";
       const std::string o_r = std::string(out) + "_r", og = std::string(out) + "_g", ob = std::string(out) + "_b";
-      DenoisePush push{ax, ay, radius, divisor};
+      DenoisePush push{ax, ay, radius, divisor, ctx.settings.nan_guards ? 1u : 0u, 0, 0, 0};
+      static_assert(sizeof(push) == 32, "DenoisePush must match gi_denoise.comp's push block");
       ctx.cmd.begin_label(std::string("gi_denoise/") + label);
       record_compute(ctx, {.shader = "gi_denoise.comp",
                            .images = {{kDenoiseBindNormal, "gbuffer_normal"},

@@ -15,6 +15,7 @@
 // Limits: no group-shared preload (each tap reads the images; the seed preloads to LDS in FP16);
 // the vertical pass weighs hit distances of the unfiltered gather, as the horizontal one does.
 // radius 0 copies.
+// NaN guard (DenoisePush.nan_guards): taps with a non-finite weight or SH are skipped.
 #pragma once
 #include <memory>
 

@@ -26,6 +26,8 @@ struct DenoisePush {
   int axis_x, axis_y;  // (1, 0) horizontal, (0, 1) vertical
   uint radius;         // taps either side
   uint divisor;        // gather divisor (2 or 4)
+  uint nan_guards;     // 1: taps with a non-finite weight or value are skipped
+  uint pad0, pad1, pad2;
 };
 GIB_SHARED_END
 #endif

@@ -32,6 +32,9 @@ class GiUpscalePass final : public Pass {
     ResourceDesc history{gi_history_format(s.rc.history_format), SizeRule::render};
     ResourceDesc frames{Format::r32_float, SizeRule::render};
     history.persistent = frames.persistent = true;
+    history.values = non_negative_values().only(kChannelsRgb).encoded(  // irradiance / pi
+        history.format == Format::r32_uint ? Encoding::rgb9e5 : Encoding::none);
+    frames.values = non_negative_values().bounded(float(s.rc.history_max_frames));  // n of the temporal filter
     PassDecl d;
     d.name = "gi_upscale";
     d.slots = {{"gi_sh_r", Access::read},
@@ -45,7 +48,7 @@ class GiUpscalePass final : public Pass {
                {"gi_history", Access::read_prev},
                {"gi_history_frames", Access::write, frames},
                {"gi_history_frames", Access::read_prev},
-               {"gi_irradiance", Access::write, {Format::rgba32_float, SizeRule::render}}};
+               {"gi_irradiance", Access::write, ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values())}};
     return d;
   }
 
@@ -53,7 +56,8 @@ class GiUpscalePass final : public Pass {
     using namespace glsl;
     const RadianceCacheSettings& r = ctx.settings.rc;
     UpscalePush push{r.gather_divisor >= 4 ? 4u : 2u, float(r.history_max_frames), r.disocclusion ? 1u : 0u,
-                     ctx.frame > 0 ? 1u : 0u};
+                     ctx.frame > 0 ? 1u : 0u, ctx.settings.nan_guards ? 1u : 0u, 0, 0, 0};
+    static_assert(sizeof(push) == 32, "UpscalePush must match gi_upscale.glsl's push block");
     ComputePipelineDesc desc;
     desc.shader = shader_for(r.history_format);
     desc.bindings = scene_bindings();

@@ -5,6 +5,7 @@
 #include "sampling.glsl"
 #include "packing.glsl"
 #include "sh.glsl"
+#include "finite.glsl"
 
 layout(local_size_x = kUpscaleGroup, local_size_y = kUpscaleGroup) in;
 layout(set = 0, binding = kUpscaleBindNormal, rgba16f) uniform readonly image2D gb_normal;
@@ -36,7 +37,9 @@ layout(set = 0, binding = kUpscaleBindPrevHistory, rgba16f) uniform readonly ima
 layout(set = 0, binding = kUpscaleBindHistory, rgba16f) uniform writeonly image2D out_history;
 vec3 load_history(ivec2 q) { return imageLoad(prev_history, q).rgb; }
 vec3 store_history(ivec2 p, vec3 v) {
-  v = min(v, vec3(65504.0));
+  // min() keeps a NaN for the guards to decide (gib_clamp_keep_nan, finite.glsl).
+  v = vec3(gib_clamp_keep_nan(v.x, -65504.0, 65504.0), gib_clamp_keep_nan(v.y, -65504.0, 65504.0),
+           gib_clamp_keep_nan(v.z, -65504.0, 65504.0));
   vec3 h = vec3(unpackHalf2x16(packHalf2x16(v.rg)), unpackHalf2x16(packHalf2x16(vec2(v.b, 0.0))).x);
   imageStore(out_history, p, vec4(h, 1.0));
   return h;
@@ -74,7 +77,14 @@ float tap_similarity(ivec2 g, vec3 x, vec3 n, float dist) {
   vec4 gp = imageLoad(gb_position, src);
   if (gp.w == 0.0) return 0.0;
   vec3 gn = imageLoad(gb_normal, src).xyz;
-  return pow(max(0.0, dot(n, gn)), kUpscaleNormalPower) * exp(-abs(dot(n, gp.xyz - x)) / (dist * kUpscaleDepthSigma));
+  float s = pow(max(0.0, dot(n, gn)), kUpscaleNormalPower) * exp(-abs(dot(n, gp.xyz - x)) / (dist * kUpscaleDepthSigma));
+  if (push.nan_guards != 0u) {
+    // Guard: a tap with a non-finite similarity (NaN normal) or SH is not on any surface.
+    bool ok = gib_finite(s) && gib_finite(imageLoad(sh_r, g)) && gib_finite(imageLoad(sh_g, g)) &&
+              gib_finite(imageLoad(sh_b, g));
+    if (!ok) return 0.0;
+  }
+  return s;
 }
 
 // 4-tap bilateral upscale of the denoised gather SH, evaluated with the full-res normal.
@@ -97,6 +107,7 @@ bool upscale(ivec2 p, vec3 x, vec3 n, float dist, out vec3 irradiance) {
       best = similar;
       best_g = g;
     }
+    if (push.nan_guards != 0u && similar == 0.0) continue;  // 0 x NaN would still be NaN
     float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y) * similar;
     acc_r += w * imageLoad(sh_r, g);
     acc_g += w * imageLoad(sh_g, g);
@@ -127,7 +138,8 @@ bool upscale(ivec2 p, vec3 x, vec3 n, float dist, out vec3 irradiance) {
     acc_b = imageLoad(sh_b, best_g);
   }
   vec3 e = vec3(gib_sh2_irradiance(acc_r, n), gib_sh2_irradiance(acc_g, n), gib_sh2_irradiance(acc_b, n));
-  irradiance = max(e, vec3(0.0));  // gib_sh2_irradiance returns irradiance / pi
+  if (push.nan_guards != 0u && !gib_finite(e)) return false;
+  irradiance = gib_max0_keep_nan(e);  // gib_sh2_irradiance returns irradiance / pi
   return true;
 }
 
@@ -159,9 +171,14 @@ bool reproject(vec3 x, vec3 n, out vec3 prev, out float frames) {
       vec3 qn = imageLoad(prev_normal, q).xyz;
       if (abs(dot(qn, x - qp.xyz)) > kUpscaleDepthTolerance * clip.w) continue;
       if (dot(n, qn) < kUpscaleNormalCos) continue;
+      if (push.nan_guards != 0u && !gib_finite(qn)) continue;  // the NaN compares above pass
     }
-    sum += w * load_history(q);
-    sum_n += w * imageLoad(prev_frames, q).x;
+    vec3 h = load_history(q);
+    float hn = imageLoad(prev_frames, q).x;
+    // Guard: a non-finite history texel is dropped (formats 1-3 can hold NaN and Inf; RGB9E5 cannot).
+    if (push.nan_guards != 0u && !(gib_finite(h) && gib_finite(hn))) continue;
+    sum += w * h;
+    sum_n += w * hn;
     sum_w += w;
   }
   if (sum_w < 1e-2) return false;
@@ -179,9 +196,10 @@ void main() {
     return;
   }
   vec3 n = normalize(imageLoad(gb_normal, p).xyz);
-  vec3 curr, prev;
+  vec3 curr = vec3(0.0), prev;
   float frames;
-  bool have_curr = upscale(p, pos.xyz, n, pos.w, curr);
+  // Guard: no upscale around a broken (non-finite) normal; the pixel keeps its history.
+  bool have_curr = (push.nan_guards == 0u || gib_finite(n)) && upscale(p, pos.xyz, n, pos.w, curr);
   bool have_prev = reproject(pos.xyz, n, prev, frames);
   if (!have_prev) frames = 0.0;  // rejected: restart the average
   if (!have_curr) {

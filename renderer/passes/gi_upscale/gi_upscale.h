@@ -22,6 +22,8 @@
 // Limits: the seed's 4 poisson taps are the 4 bilinear neighbours here; no history clamping
 // (lighting changes fade in over n_max frames); n is interpolated with the history, so it may
 // be fractional after camera motion. One kernel per history format (gi_upscale_<format>.comp).
+// NaN guard (UpscalePush.nan_guards): non-finite taps, results and history texels are rejected
+// (a pixel whose history is all rejected restarts its frame counter).
 #pragma once
 #include <memory>
 

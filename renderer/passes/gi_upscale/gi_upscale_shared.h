@@ -30,6 +30,8 @@ struct UpscalePush {
   float max_frames;    // n_max
   uint disocclusion;   // 1: depth/normal tests reject history
   uint history_valid;  // 0 on the first frame: last frame's images were never written
+  uint nan_guards;     // 1: non-finite taps, history texels and results are rejected
+  uint pad0, pad1, pad2;
 };
 GIB_SHARED_END
 #endif

@@ -18,8 +18,14 @@ class IrradianceVolumeUpdatePass final : public Pass {
     irr.persistent = true;
     ResourceDesc vis = irr;
     vis.format = Format::rg16_float;
+    irr.values = non_negative_values().encoded(Encoding::rgb9e5);  // irradiance / pi
+    vis.values = non_negative_values();                             // distance moments
+    ResourceDesc rays{Format::buffer, SizeRule::buffer};
+    rays.bytes = uint64_t(kProbesPerCascade) * s.rc.rays_per_probe * 16;  // vec4 per ray
+    rays.values = non_negative_values().layout(4, 0, 3);                 // rgb radiance
     d.slots = {{"probe_hits", Access::read},
                {"rc_cells", Access::read},
+               {"probe_ray_radiance", Access::write, rays},
                {"probe_irradiance", Access::write, irr},
                {"probe_visibility", Access::write, vis},
                {"probe_irradiance", Access::read_prev},
@@ -29,25 +35,46 @@ class IrradianceVolumeUpdatePass final : public Pass {
 
   void record(RecordContext& ctx) override {
     using namespace glsl;
-    // Last frame's writes of the atlas (and earlier readers of this copy) before the copy.
-    ctx.cmd.barrier(kStageCompute, kStageTransfer);
-    ctx.cmd.begin_label("irradiance_volume_update/copy");
-    ctx.cmd.copy(ctx.prev_image("probe_irradiance"), ctx.image("probe_irradiance"));
-    ctx.cmd.copy(ctx.prev_image("probe_visibility"), ctx.image("probe_visibility"));
+    // Cascades not updated this frame carry over from last frame's copy; the updated one is
+    // rewritten whole by the convolve below.
+    ctx.cmd.begin_label("irradiance_volume_update/carry");
+    IvCarryPush carry{ctx.frame % ctx.settings.rc.cascades, 0, 0, 0};
+    const Image& atlas = ctx.image("probe_irradiance");
+    record_compute(ctx, {.shader = "irradiance_volume_carry.comp",
+                         .images = {{kIvBindPrevIrradiance, "probe_irradiance", true},
+                                    {kIvBindPrevVisibility, "probe_visibility", true},
+                                    {kIvBindIrradiance, "probe_irradiance"},
+                                    {kIvBindVisibility, "probe_visibility"}},
+                         .groups_x = div_up(atlas.width(), 16),
+                         .groups_y = div_up(atlas.height(), 16),
+                         .push = &carry,
+                         .push_bytes = sizeof(carry),
+                         .scene = false});
     ctx.cmd.end_label();
-    ctx.cmd.barrier(kStageTransfer, kStageCompute);
-    ctx.cmd.begin_label("irradiance_volume_update/convolve");
+    ctx.cmd.barrier(kStageCompute, kStageCompute);
     IvPush push{make_rc_params(ctx.settings, ctx.frame)};
+    ctx.cmd.begin_label("irradiance_volume_update/rays");
+    record_compute(ctx, {.shader = "irradiance_volume_rays.comp",
+                         .images = {{kIvBindPrevIrradiance, "probe_irradiance", true},
+                                    {kIvBindPrevVisibility, "probe_visibility", true}},
+                         .groups_x = div_up(kProbesPerCascade * ctx.settings.rc.rays_per_probe, kIvRaysGroup),
+                         .push = &push,
+                         .push_bytes = sizeof(push),
+                         .spec_constants = {{kIvSpecCacheFallback, 1}},
+                         .buffers = {{kIvBindHits, "probe_hits"}, {kIvBindCells, "rc_cells"},
+                                     {kIvBindRays, "probe_ray_radiance"}}});
+    ctx.cmd.end_label();
+    ctx.cmd.barrier(kStageCompute, kStageCompute);
+    ctx.cmd.begin_label("irradiance_volume_update/convolve");
     record_compute(ctx, {.shader = "irradiance_volume_update.comp",
                          .images = {{kIvBindPrevIrradiance, "probe_irradiance", true},
                                     {kIvBindPrevVisibility, "probe_visibility", true},
                                     {kIvBindIrradiance, "probe_irradiance"},
                                     {kIvBindVisibility, "probe_visibility"}},
-                         .groups_x = kProbesPerCascade,
+                         .groups_x = div_up(kProbesPerCascade * kProbeTileSize * kProbeTileSize, kIvConvolveGroup),
                          .push = &push,
                          .push_bytes = sizeof(push),
-                         .spec_constants = {{kIvSpecCacheFallback, 1}},
-                         .buffers = {{kIvBindHits, "probe_hits"}, {kIvBindCells, "rc_cells"}}});
+                         .buffers = {{kIvBindRays, "probe_ray_radiance"}}});
     ctx.cmd.end_label();
   }
 };

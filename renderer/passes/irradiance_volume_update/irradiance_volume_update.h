@@ -22,6 +22,8 @@
 // Limits: at most 256 rays per probe; a probe slot that scrolls to a new position (camera moved
 // a whole cell) blends with the tile of the probe that left (no per-probe age); the fallback for
 // dropped cells lacks direct light at the hit.
+// NaN guard (RcParams.flags.y): non-finite rays are dropped, a non-finite previous visibility
+// texel is not blended. multi_bounce 0: the dropped-cell fallback returns only emission.
 #pragma once
 #include <memory>
 

@@ -18,6 +18,7 @@ bool gib_alpha_accept(uint triangle, float u, float v) {
 #include "bvh.glsl"
 #include "lights.glsl"
 #include "surface.glsl"
+#include "finite.glsl"
 
 layout(local_size_x = kPathTraceGroup, local_size_y = kPathTraceGroup) in;
 layout(set = 0, binding = kPathTraceBindRadiance, rgba32f) uniform image2D sum_radiance;
@@ -60,6 +61,8 @@ void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(p, imageSize(sum_radiance)))) return;
   vec3 acc_radiance = vec3(0.0), acc_direct = vec3(0.0), acc_indirect = vec3(0.0);
+  bool inject = push.inject_nan != 0u && all(equal(uvec2(p), uvec2(push.inject_x, push.inject_y)));
+  uint accepted = 0u;
   for (uint s = 0u; s < push.spp; ++s) {
     GibRng rng = gib_rng(gib_seed(), push.sample_base + s, uvec2(p), 7u);
     vec3 o, d;
@@ -76,7 +79,7 @@ void main() {
         if (primary) direct += l; else indirect += l;
         break;
       }
-      GibSurface surf = gib_surface(hit.triangle, hit.u, hit.v);
+      GibSurface surf = gib_surface(hit.triangle, hit.u, hit.v, push.nan_guards != 0u);
       GpuMaterial m = gib_materials[surf.material];
       vec3 albedo = gib_material_albedo(m, surf.uv);
       vec3 n = dot(surf.normal, d) > 0.0 ? -surf.normal : surf.normal;
@@ -103,11 +106,16 @@ void main() {
         throughput /= survive;
       }
     }
+    if (inject && s == 0u) direct = indirect = vec3(gib_nan());
+    // Guard: one non-finite sample would poison the running sums for good; drop it (the count
+    // then holds only the samples added).
+    if (push.nan_guards != 0u && !(gib_finite(direct) && gib_finite(indirect))) continue;
     acc_radiance += direct + indirect;
     acc_direct += direct;
     acc_indirect += indirect;
+    ++accepted;
   }
-  float n = float(push.spp);
+  float n = float(accepted);
   imageStore(sum_radiance, p, imageLoad(sum_radiance, p) + vec4(acc_radiance, n));
   imageStore(sum_direct, p, imageLoad(sum_direct, p) + vec4(acc_direct, n));
   imageStore(sum_indirect, p, imageLoad(sum_indirect, p) + vec4(acc_indirect, n));

@@ -12,6 +12,7 @@ class PathTracePass final : public Pass {
     d.name = "path_trace";
     ResourceDesc sum{Format::rgba32_float, SizeRule::render};
     sum.persistent = true;
+    sum.values = non_negative_values();  // rgb radiance sums, a sample count
     d.slots = {{"pt_radiance_sum", Access::read_write, sum},
                {"pt_direct_sum", Access::read_write, sum},
                {"pt_indirect_sum", Access::read_write, sum}};
@@ -21,7 +22,16 @@ class PathTracePass final : public Pass {
   void record(RecordContext& ctx) override {
     using namespace glsl;
     SceneFeatures f = ctx.scene.features();
-    PathTracePush push{ctx.settings.spp_per_frame, ctx.settings.max_bounces, ctx.frame * ctx.settings.spp_per_frame, 0};
+    const DebugSettings& dbg = ctx.settings.debug;
+    PathTracePush push{ctx.settings.spp_per_frame,
+                       ctx.settings.max_bounces,
+                       ctx.frame * ctx.settings.spp_per_frame,
+                       ctx.settings.nan_guards ? 1u : 0u,
+                       dbg.injects(3, ctx.frame) ? 1u : 0u,
+                       dbg.inject_x,
+                       dbg.inject_y,
+                       0};
+    static_assert(sizeof(push) == 32, "PathTracePush must match path_trace.comp's push block");
     record_compute(ctx, {.shader = "path_trace.comp",
                          .images = {{kPathTraceBindRadiance, "pt_radiance_sum"},
                                     {kPathTraceBindDirect, "pt_direct_sum"},

@@ -15,6 +15,9 @@
 // Seed: DESIGN.md "reference".
 // Limits: Lambertian BRDF only (no specular lobes); no MIS, since no light is sampled by two
 // strategies.
+// NaN guard (Settings::nan_guards): a sample with a non-finite contribution is neither added nor
+// counted. Debug: inject_nan 3 makes the first sample of pixel (inject_x, inject_y) NaN on frame
+// inject_frame.
 #pragma once
 #include <memory>
 

@@ -14,6 +14,9 @@ struct PathTracePush {
   uint spp;          // samples added this frame
   uint max_bounces;  // path vertices after the camera hit
   uint sample_base;  // samples accumulated before this frame (decorrelates frames)
+  uint nan_guards;   // 1: a sample with a non-finite contribution is not accumulated (nor counted)
+  uint inject_nan;   // 1: the first sample of pixel (inject_x, inject_y) is NaN this frame (debug)
+  uint inject_x, inject_y;
   uint pad;
 };
 GIB_SHARED_END

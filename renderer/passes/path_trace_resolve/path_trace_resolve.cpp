@@ -15,7 +15,7 @@ class PathTraceResolvePass final : public Pass {
     d.name = "path_trace_resolve";
     for (auto [sum, out] : kAovs) {
       d.slots.push_back({sum, Access::read});
-      d.slots.push_back({out, Access::write, {Format::rgba32_float, SizeRule::render}});
+      d.slots.push_back({out, Access::write, ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values())});
     }
     return d;
   }

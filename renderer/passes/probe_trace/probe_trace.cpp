@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cstddef>
+
 #include "renderer/passes/probe_trace/probe_trace_shared.h"
 #include "renderer/techniques/radiance_cache_params.h"
 
@@ -22,6 +24,7 @@ class ProbeTracePass final : public Pass {
     d.name = "probe_trace";
     ResourceDesc hits{Format::buffer, SizeRule::buffer};
     hits.bytes = uint64_t(kProbesPerCascade) * rays * sizeof(glsl::ProbeHit);
+    hits.values = non_negative_values().layout(sizeof(glsl::ProbeHit) / 4, offsetof(glsl::ProbeHit, distance) / 4, 1);
     d.slots = {{"probe_hits", Access::write, hits}};
     return d;
   }

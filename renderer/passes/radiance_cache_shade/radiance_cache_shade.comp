@@ -17,6 +17,7 @@ bool gib_alpha_accept(uint triangle, float u, float v) {
 #include "bvh.glsl"
 #include "lights.glsl"
 #include "surface.glsl"
+#include "finite.glsl"
 
 layout(local_size_x = kRcShadeGroup) in;
 layout(std430, set = 0, binding = kRcShadeBindHits) readonly buffer HitBuffer { ProbeHit probe_hits[]; };
@@ -25,6 +26,7 @@ layout(std430, set = 0, binding = kRcShadeBindCounters) readonly buffer CounterB
 layout(push_constant) uniform Push {
   RcParams rc;
   LightGridParams lg;
+  uvec4 inject;
 };
 #include "probe_volume.glsl"
 RC_PROBE_IMAGES(kRcShadeBindProbeIrradiance, kRcShadeBindProbeVisibility)
@@ -46,7 +48,10 @@ float facing_weight(float translucency, vec3 n, vec3 wi) {
 
 // Radiance leaving the surface at a hit of a bounce ray travelling along wi.
 vec3 bounce_radiance(GibHit hit, vec3 wi, uint now) {
-  GibSurface s = gib_surface(hit.triangle, hit.u, hit.v);
+  GibSurface s = gib_surface(hit.triangle, hit.u, hit.v, rc.flags.y != 0u);
+  // Single bounce (multi_bounce 0): only what the hit emits; cached cells and the volumes both
+  // hold light that has already bounced.
+  if (rc.flags.z == 0u) return gib_materials[s.material].emissive;
   vec3 q = s.position;
   float lod;
   uint i = rc_find_cell(rc_cell_key(q, rc_facing_normal(hit.triangle, wi), lod));
@@ -59,20 +64,49 @@ vec3 bounce_radiance(GibHit hit, vec3 wi, uint now) {
   return m.emissive + gib_material_albedo(m, s.uv) * rc_sample_irradiance(q, n, -wi);
 }
 
+// Debug NaN injection target: the cell of the camera's first hit through pixel inject.yz, keyed
+// on the side facing the camera (what a gather ray arriving from the camera's side looks up);
+// 0xffffffff when that ray misses or no probe ray ever inserted the cell.
+uint injection_cell() {
+  vec3 o, d;
+  gib_camera_ray(vec2(inject.yz) + 0.5, o, d);
+  GibHit hit;
+  if (!trace_closest(o, d, 0.0, kFar, hit)) return 0xffffffffu;
+  GibSurface s = gib_surface(hit.triangle, hit.u, hit.v, rc.flags.y != 0u);
+  float lod;
+  return rc_find_cell(rc_cell_key(s.position, rc_facing_normal(hit.triangle, d), lod));
+}
+
+void store(uint cell, vec3 result, uint now) {
+  if (rc.flags.y != 0u && !gib_finite(result)) {
+    // Guard: a non-finite shade is not kept. The cell reads as never shaded (every reader
+    // misses it and falls back to the volumes) and the next probe hit on it queues it again.
+    rc_cells[cell].radiance = 0u;
+    rc_cells[cell].shaded_frame = 0u;
+    return;
+  }
+  rc_cells[cell].radiance = gib_pack_rgb9e5(result);  // RGB9E5 has no NaN: a NaN packs to 0
+  rc_cells[cell].shaded_frame = now;
+}
+
 void main() {
   uint index = gl_GlobalInvocationID.x;
+  uint now = rc.misc.x + 1u;
+  uint target = inject.x != 0u ? injection_cell() : 0xffffffffu;
+  // A target cell not queued this frame is written by thread 0 as if shaded now (its queued
+  // twin, if any, injects below; both write the same).
+  if (index == 0u && target != 0xffffffffu && rc_cells[target].shaded_frame != now) store(target, vec3(gib_nan()), now);
   if (index >= counters.active_cells) return;
   uint cell = rc_active[index];
   uint hit_id = rc_cells[cell].hit_index;
   ProbeHit h = probe_hits[hit_id];
-  uint now = rc.misc.x + 1u;
   uint rays = rc_rays_per_probe();
   uint probe = hit_id / rays, ray = hit_id - probe * rays;
   vec3 d = rc_ray_direction(ray, rays, rc_frame_rotation(rc.misc.x));
 
   uint tri = h.triangle_plus1 - 1u;
   vec2 bary = vec2(h.barycentrics & 0xffffu, h.barycentrics >> 16u) * (1.0 / 65535.0);
-  GibSurface s = gib_surface(tri, bary.x, bary.y);
+  GibSurface s = gib_surface(tri, bary.x, bary.y, rc.flags.y != 0u);
   GpuMaterial m = gib_materials[s.material];
   vec3 albedo = gib_material_albedo(m, s.uv);
   float translucency = m.translucency;
@@ -115,6 +149,6 @@ void main() {
       l = bounce_radiance(hit, wi, now);
     result += albedo * l;
   }
-  rc_cells[cell].radiance = gib_pack_rgb9e5(result);
-  rc_cells[cell].shaded_frame = now;
+  if (cell == target) result = vec3(gib_nan());
+  store(cell, result, now);
 }

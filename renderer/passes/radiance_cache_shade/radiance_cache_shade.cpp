@@ -26,8 +26,11 @@ class RadianceCacheShadePass final : public Pass {
     SceneFeatures f = ctx.scene.features();
     const bool local = f.has(Feature::local_lights);
     const RadianceCacheSettings& r = ctx.settings.rc;
+    const DebugSettings& dbg = ctx.settings.debug;
     RcShadePush push{make_rc_params(ctx.settings, ctx.frame),
-                     {r.light_grid_extent, float(r.light_grid_cascades), float(ctx.scene_gpu.light_count), 0.0f}};
+                     {r.light_grid_extent, float(r.light_grid_cascades), float(ctx.scene_gpu.light_count), 0.0f},
+                     {dbg.injects(2, ctx.frame) ? 1u : 0u, dbg.inject_x, dbg.inject_y, 0}};
+    static_assert(sizeof(push) == 112, "RcShadePush must match radiance_cache_shade.comp's push block");
     record_compute(ctx, {.shader = "radiance_cache_shade.comp",
                          // read_prev only: the plain name is last frame's copy.
                          .images = {{kRcShadeBindProbeIrradiance, "probe_irradiance"},

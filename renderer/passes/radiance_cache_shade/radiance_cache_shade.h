@@ -21,6 +21,9 @@
 // Limits: one sample per light type per shade (a cell is then reused cache_reuse_frames frames,
 // no temporal blend of cell radiance); the bounce fallback misses the direct light at q; light
 // grid cells cap at 64 lights.
+// NaN guard (RcParams.flags.y): a non-finite result leaves the cell unshaded (shaded_frame 0).
+// multi_bounce 0 (RcParams.flags.z): the bounce ray returns only the emission at its hit. Debug:
+// inject_nan 2 (RcShadePush.inject). Details: renderer/techniques/radiance_cache.md.
 #pragma once
 #include <memory>
 

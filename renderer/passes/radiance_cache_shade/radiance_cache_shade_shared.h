@@ -19,6 +19,7 @@ GIB_CONST(uint, kRcShadeSpecAlpha, 3)
 struct RcShadePush {
   RcParams rc;
   LightGridParams lg;  // x: cascade-0 extent (m), y: cascades, z: light count
+  uvec4 inject;        // debug NaN injection: x 1 on the injection frame, y, z the pixel whose surface cell gets it
 };
 GIB_SHARED_END
 #endif

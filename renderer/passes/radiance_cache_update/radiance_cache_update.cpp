@@ -1,6 +1,7 @@
 #include "renderer/passes/radiance_cache_update/radiance_cache_update.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstring>
 
 #include "renderer/passes/radiance_cache_update/radiance_cache_update_shared.h"
@@ -23,6 +24,8 @@ class RadianceCacheUpdatePass final : public Pass {
     ResourceDesc cells{Format::buffer, SizeRule::buffer};
     cells.bytes = (uint64_t(1) << s.rc.cache_log2_cells) * sizeof(glsl::RcCell);
     cells.persistent = true;
+    cells.values = non_negative_values().encoded(Encoding::rgb9e5).layout(  // cell radiance
+        sizeof(glsl::RcCell) / 4, offsetof(glsl::RcCell, radiance) / 4, 1);
     ResourceDesc active{Format::buffer, SizeRule::buffer};
     active.bytes = uint64_t(active_capacity(s)) * sizeof(uint32_t);
     ResourceDesc counters{Format::buffer, SizeRule::buffer};

@@ -10,7 +10,7 @@ class VisibilityPass final : public Pass {
     d.name = "visibility";
     d.kind = PassKind::graphics;
     d.slots = {{"vbuffer", Access::write, {Format::rg32_uint, SizeRule::render}},
-               {"depth", Access::write, {Format::d32_float, SizeRule::render}}};
+               {"depth", Access::write, ResourceDesc{Format::d32_float, SizeRule::render}.with(unit_values())}};
     return d;
   }
 

@@ -10,11 +10,12 @@ uvec2 gib_render_size() { return gib_frame.frame_info.yz; }
 uint gib_light_count() { return gib_frame.frame_info.w; }
 uint gib_seed() { return gib_frame.scene_info.z; }
 
-// World-space ray through a position in pixel units (0..width, 0..height).
+// World-space ray through a position in pixel units (0..width, 0..height). The direction comes
+// from the camera-relative inverse, so it is as precise 10 km from the origin as at it.
 void gib_camera_ray(vec2 pixel, out vec3 origin, out vec3 dir) {
   vec2 ndc = pixel / vec2(gib_render_size()) * 2.0 - 1.0;
-  vec4 far_h = gib_frame.inv_view_proj * vec4(ndc, 1.0, 1.0);
+  vec4 far_h = gib_frame.inv_view_proj_rel * vec4(ndc, 1.0, 1.0);
   origin = gib_frame.camera_pos.xyz;
-  dir = normalize(far_h.xyz / far_h.w - origin);
+  dir = normalize(far_h.xyz / far_h.w);
 }
 #endif

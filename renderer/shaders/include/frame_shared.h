@@ -13,7 +13,7 @@ GIB_CONST(uint, kBindPassFirst, 8)   // a pass's own slots start here
 
 struct GpuFrame {
   mat4 view_proj;
-  mat4 inv_view_proj;
+  mat4 inv_view_proj_rel;  // inverse of view_proj without the camera translation: NDC -> offset from camera_pos
   mat4 prev_view_proj;
   vec4 camera_pos;      // xyz, w: tan(fov_y / 2)
   vec4 sun_dir;         // xyz towards the sun, w: cos(angular radius)

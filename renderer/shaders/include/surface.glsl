@@ -1,18 +1,27 @@
 // Surface attributes at a hit (triangle + barycentrics), and self-intersection-safe ray origins.
 // Requires scene.glsl's buffers (GIB_SCENE_BUFFERS) to be declared first.
+//
+// Shading normal: the interpolated vertex normal, normalised. A zero one (a mesh without normals,
+// zero input normals) means "none": the face normal is used. A non-finite one (a NaN vertex
+// normal reaches every pixel of its triangles, since NaN * 0 is NaN) is the NaN guard's case:
+// every pass that interpolates normals calls gib_surface(tri, u, v, nan_guard) with its
+// Settings::nan_guards flag; with the guard the face normal is used, without it the NaN goes on
+// (the negative control of the degenerate-geometry case). The tests are on the float's bits
+// (finite.glsl), so no compiler can fold them away.
 #ifndef GIB_SURFACE_GLSL
 #define GIB_SURFACE_GLSL
+#include "finite.glsl"
 
 struct GibSurface {
   vec3 position;
-  vec3 normal;      // interpolated shading normal (unit; falls back to geo_normal when zero)
-  vec3 geo_normal;  // unit face normal (arbitrary side)
+  vec3 normal;      // interpolated shading normal (unit; geo_normal when zero, or non-finite under the guard)
+  vec3 geo_normal;  // unit face normal (arbitrary side; +Y for a zero-area triangle)
   vec2 uv;
   uint material;
   uint instance;
 };
 
-GibSurface gib_surface(uint tri, float u, float v) {
+GibSurface gib_surface(uint tri, float u, float v, bool nan_guard) {
   GpuTriangle t = gib_triangles[tri];
   GpuVertex a = gib_vertices[t.i0], b = gib_vertices[t.i1], c = gib_vertices[t.i2];
   float w = 1.0 - u - v;
@@ -23,12 +32,16 @@ GibSurface gib_surface(uint tri, float u, float v) {
   s.geo_normal = gl > 0.0 ? g / gl : vec3(0.0, 1.0, 0.0);
   vec3 n = a.normal * w + b.normal * u + c.normal * v;
   float nl = length(n);
-  s.normal = nl > 1e-12 ? n / nl : s.geo_normal;
+  if (!(gib_finite(n) && gib_finite(nl)))
+    s.normal = nan_guard ? s.geo_normal : n / nl;
+  else
+    s.normal = nl > 1e-12 ? n / nl : s.geo_normal;
   s.uv = vec2(a.u, a.v) * w + vec2(b.u, b.v) * u + vec2(c.u, c.v) * v;
   s.instance = t.instance;
   s.material = gib_instances[t.instance].material;
   return s;
 }
+GibSurface gib_surface(uint tri, float u, float v) { return gib_surface(tri, u, v, true); }
 
 // Offset a ray origin off a surface along its normal by a few float ulps of the position
 // (integer offset in the float's bits), so it works equally at the origin and 10 km away
