@@ -82,10 +82,10 @@ TEST_F(Render, DiffusePlaneUnderUniformSkyIsAlbedoTimesRadiance) {
   }
 }
 
-// The reference's `direct` AOV and the `direct` technique estimate the same quantity with
-// different code (path tracer vs G-buffer + shadow rays): their means must agree.
-TEST_F(Render, DirectTechniqueMatchesReferenceDirectAov) {
-  Scene scene = parse_scene(nlohmann::json::parse(R"({
+// A floor, a red box and a white sphere under a point light, viewed from above-front; `sun`
+// and `sky` JSON members are spliced in by each test.
+Scene lit_objects_scene(const std::string& sun_and_sky) {
+  return parse_scene(nlohmann::json::parse(R"({
     "materials": {"white": {"albedo": [0.7, 0.7, 0.7]}, "red": {"albedo": [0.8, 0.1, 0.1]}},
     "objects": [
       {"primitive": {"type": "quad", "size": [20, 20], "facing": "+y"}, "material": "white"},
@@ -93,10 +93,15 @@ TEST_F(Render, DirectTechniqueMatchesReferenceDirectAov) {
       {"primitive": {"type": "sphere", "radius": 0.5}, "material": "white", "transform": {"translate": [1.5, 0.5, 0.5]}}
     ],
     "lights": [{"type": "point", "position": [-1, 2, 1], "intensity": [4, 4, 4], "range": 50}],
-    "sun": {"direction": [0.3, 1, 0.2], "irradiance": [2, 2, 2]},
-    "sky": {"type": "gradient", "radiance": [0.3, 0.4, 0.8], "horizon": [0.6, 0.6, 0.6], "ground": [0.1, 0.1, 0.1]},
-    "camera": {"position": [0, 3, 5], "target": [0, 0.5, 0], "fov_y_deg": 50}
-  })"), "inline");
+    "camera": {"position": [0, 3, 5], "target": [0, 0.5, 0], "fov_y_deg": 50},)" + sun_and_sky + "}"),
+                     "inline");
+}
+
+// The reference's `direct` AOV and the `direct` technique estimate the same quantity with
+// different code (path tracer vs G-buffer + shadow rays): their means must agree.
+TEST_F(Render, DirectTechniqueMatchesReferenceDirectAov) {
+  Scene scene = lit_objects_scene(R"("sun": {"direction": [0.3, 1, 0.2], "irradiance": [2, 2, 2]},
+    "sky": {"type": "gradient", "radiance": [0.3, 0.4, 0.8], "horizon": [0.6, 0.6, 0.6], "ground": [0.1, 0.1, 0.1]})");
   Rendered ref = render(gpu(), scene, "reference", 64, 36, 4, 16, {"direct", "indirect_diffuse"});
   Rendered dir = render(gpu(), scene, "direct", 64, 36, 1, 1, {}, "ultra");
   for (uint32_t c = 0; c < 3; ++c) {
@@ -191,17 +196,7 @@ TEST_F(Render, NanAndZeroVertexNormalsRenderFinite) {
 // triangles cover the same pixels, G-buffer positions move by the offset, distances to the
 // camera and the image stay the same (within float spacing at 10 km, ~1 mm).
 TEST_F(Render, WorldOffsetMovesCameraWithScene) {
-  Scene scene = parse_scene(nlohmann::json::parse(R"({
-    "materials": {"white": {"albedo": [0.7, 0.7, 0.7]}, "red": {"albedo": [0.8, 0.1, 0.1]}},
-    "objects": [
-      {"primitive": {"type": "quad", "size": [20, 20], "facing": "+y"}, "material": "white"},
-      {"primitive": {"type": "box", "size": [1, 1, 1]}, "material": "red", "transform": {"translate": [0, 0.5, 0]}},
-      {"primitive": {"type": "sphere", "radius": 0.5}, "material": "white", "transform": {"translate": [1.5, 0.5, 0.5]}}
-    ],
-    "lights": [{"type": "point", "position": [-1, 2, 1], "intensity": [4, 4, 4], "range": 50}],
-    "sun": {"direction": [0.3, 1, 0.2], "irradiance": [2, 2, 2], "angular_radius_deg": 0},
-    "camera": {"position": [0, 3, 5], "target": [0, 0.5, 0], "fov_y_deg": 50}
-  })"), "inline");
+  Scene scene = lit_objects_scene(R"("sun": {"direction": [0.3, 1, 0.2], "irradiance": [2, 2, 2], "angular_radius_deg": 0})");
   const Vec3 offset{10000, 0, 10000};
   auto run = [&](Vec3 o) {
     const Technique& t = find_technique("direct");

@@ -1,6 +1,8 @@
 // Scene module: math, primitives, feature derivation, loader errors, flatten, sample scenes.
 #include <gtest/gtest.h>
 
+#include <functional>
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -668,38 +670,28 @@ TEST(SceneLoader, MalformedInputsNameFileAndPointer) {
   }
 }
 
-// Every value of a full scene replaced by every kind of wrong value, and every key removed:
-// the loader either accepts the document or throws a well-formed SceneError, nothing else.
-TEST(SceneLoader, MutatedScenesNeverEscapeAsOtherErrors) {
-  std::ifstream in(scene_path("features_zoo.json"));
-  json original = json::parse(in);
-  // Coarse meshes keep the thousands of parses below fast; the structure is what matters.
-  for (json& object : original["objects"]) {
-    json& prim = object["primitive"];
-    if (prim.contains("segments")) prim["segments"] = 3;
-    if (prim.contains("count")) prim["count"] = 2;
-  }
-  json flat = original.flatten();
+// Replaces every value below `root` of `original` (and `root` itself, and every ancestor up to
+// it) by each of `replacements`, and removes every key; `load` parses a document and must either
+// accept it or throw a well-formed SceneError whose message starts with `prefix`. Returns
+// {accepted, rejected}.
+std::pair<size_t, size_t> mutate_scene(const json& original, const json::json_pointer& root,
+                                       const std::vector<json>& replacements, const std::string& prefix,
+                                       const std::function<void(const json&)>& load) {
+  json flat = original[root].flatten();
   std::set<std::string> seen;
   std::vector<json::json_pointer> pointers;
-  for (auto it = flat.begin(); it != flat.end(); ++it) {
-    json::json_pointer p(it.key());
-    while (!p.empty()) {  // every ancestor too, so whole objects and arrays get replaced
-      if (seen.insert(p.to_string()).second) pointers.push_back(p);
-      p = p.parent_pointer();
-    }
-  }
-  const json replacements[] = {nullptr, true, -1, 0, 2.5, 1e39, std::nan(""), "x", json::array(),
-                               json::object(), json::array({1, 2, 3}), json::array({"a", "b", "c"})};
+  for (auto it = flat.begin(); it != flat.end(); ++it)  // every ancestor too: whole objects and arrays
+    for (json::json_pointer p(it.key()); !p.empty(); p = p.parent_pointer())
+      if (seen.insert(p.to_string()).second) pointers.push_back(root / p);
   size_t accepted = 0, rejected = 0;
   auto check = [&](const json& doc, const std::string& what) {
     try {
-      parse_scene(doc, "zoo");
+      load(doc);
       ++accepted;
     } catch (const SceneError& e) {
       ++rejected;
       std::string msg = e.what();
-      EXPECT_EQ(msg.rfind("zoo: /", 0), 0u) << what << ": " << msg;
+      EXPECT_EQ(msg.rfind(prefix, 0), 0u) << what << ": " << msg;
       EXPECT_NE(msg.find(": expected "), std::string::npos) << what << ": " << msg;
       EXPECT_NE(msg.find(", got "), std::string::npos) << what << ": " << msg;
       EXPECT_EQ(msg.find('\n'), std::string::npos) << what;
@@ -721,6 +713,25 @@ TEST(SceneLoader, MutatedScenesNeverEscapeAsOtherErrors) {
       parent.erase(static_cast<size_t>(std::stoul(p.back())));
     check(doc, "remove " + p.to_string());
   }
+  return {accepted, rejected};
+}
+
+// Every value of a full scene replaced by every kind of wrong value, and every key removed:
+// the loader either accepts the document or throws a well-formed SceneError, nothing else.
+TEST(SceneLoader, MutatedScenesNeverEscapeAsOtherErrors) {
+  std::ifstream in(scene_path("features_zoo.json"));
+  json original = json::parse(in);
+  // Coarse meshes keep the thousands of parses below fast; the structure is what matters.
+  for (json& object : original["objects"]) {
+    json& prim = object["primitive"];
+    if (prim.contains("segments")) prim["segments"] = 3;
+    if (prim.contains("count")) prim["count"] = 2;
+  }
+  auto [accepted, rejected] = mutate_scene(
+      original, json::json_pointer(""),
+      {nullptr, true, -1, 0, 2.5, 1e39, std::nan(""), "x", json::array(), json::object(), json::array({1, 2, 3}),
+       json::array({"a", "b", "c"})},
+      "zoo: /", [](const json& doc) { parse_scene(doc, "zoo"); });
   EXPECT_GT(accepted, 0u);
   EXPECT_GT(rejected, 1000u);
 }
@@ -731,44 +742,13 @@ TEST(SceneLoader, MutatedMeshesNeverEscapeAsOtherErrors) {
   original["objects"][0]["primitive"] = json::parse(R"({"type": "mesh",
     "positions": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "indices": [[0, 1, 2], [0, 0, 1]],
     "normals": [[0, 0, 1], null, [0, 0, 0]], "uvs": [[0, 0], [1, 0], [0, 1]]})");
-  const json::json_pointer root("/objects/0/primitive");
-  json flat = original[root].flatten();
-  std::set<std::string> seen;
-  std::vector<json::json_pointer> pointers;
-  for (auto it = flat.begin(); it != flat.end(); ++it)
-    for (json::json_pointer p(it.key()); !p.empty(); p = p.parent_pointer())
-      if (seen.insert(p.to_string()).second) pointers.push_back(root / p);
-  const json replacements[] = {nullptr, true, -1, 0, 3, 2.5, 1e39, std::nan(""), "x", json::array(), json::object(),
-                               json::array({1, 2, 3}), json::array({json::array({0, 1, 2})})};
-  size_t accepted = 0, rejected = 0;
-  auto check = [&](const json& doc, const std::string& what) {
-    try {
-      flatten(parse_scene(doc, "mesh"), 0.0f);  // accepted meshes must also flatten (indices in range)
-      ++accepted;
-    } catch (const SceneError& e) {
-      ++rejected;
-      std::string msg = e.what();
-      EXPECT_EQ(msg.rfind("mesh: /objects/0/primitive", 0), 0u) << what << ": " << msg;
-      EXPECT_NE(msg.find(": expected "), std::string::npos) << what << ": " << msg;
-      EXPECT_NE(msg.find(", got "), std::string::npos) << what << ": " << msg;
-    } catch (const std::exception& e) {
-      ADD_FAILURE() << what << ": escaped as " << e.what();
-    }
-  };
-  for (const json::json_pointer& p : pointers) {
-    for (const json& r : replacements) {
-      json doc = original;
-      doc[p] = r;
-      check(doc, p.to_string() + " = " + r.dump());
-    }
-    json doc = original;
-    json& parent = doc[p.parent_pointer()];
-    if (parent.is_object())
-      parent.erase(p.back());
-    else
-      parent.erase(static_cast<size_t>(std::stoul(p.back())));
-    check(doc, "remove " + p.to_string());
-  }
+  auto [accepted, rejected] = mutate_scene(
+      original, json::json_pointer("/objects/0/primitive"),
+      {nullptr, true, -1, 0, 3, 2.5, 1e39, std::nan(""), "x", json::array(), json::object(), json::array({1, 2, 3}),
+       json::array({json::array({0, 1, 2})})},
+      "mesh: /objects/0/primitive",
+      // accepted meshes must also flatten (indices in range)
+      [](const json& doc) { flatten(parse_scene(doc, "mesh"), 0.0f); });
   EXPECT_GT(accepted, 0u);
   EXPECT_GT(rejected, 100u);
 }
