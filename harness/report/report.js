@@ -574,7 +574,7 @@
 
     var header = h('header', { class: 'top ' + (failed ? 'bad' : 'good') }, [
       h('div', { class: 'top-inner' }, [
-        h('div', { class: 'brand' }, [h('h1', null, 'gibench'), h('span', { class: 'verdict' }, failed ? failed + ' failed' : 'all passed')]),
+        h('div', { class: 'brand' }, [h('h1', null, 'gibench'), h('span', { class: 'verdict' }, failed ? failed + ' failed' : total.known_failure ? 'passed (' + total.known_failure + ' known failure' + (total.known_failure === 1 ? '' : 's') + ')' : 'all passed')]),
         h('div', { class: 'device' }, [
           h('div', { class: 'dev-name' }, dev.name || 'unknown device'),
           h('div', { class: 'dev-sub' }, [dev.type, dev.driver, dev.driver_info].filter(Boolean).join(' \u00b7 ') +
@@ -583,7 +583,9 @@
         h('div', { class: 'totals' }, [
           h('div', { class: 'total pass' }, [h('b', null, String(total.pass)), h('span', null, 'passed')]),
           h('div', { class: 'total fail' + (total.fail ? '' : ' zero') }, [h('b', null, String(total.fail)), h('span', null, 'failed')]),
-          h('div', { class: 'total error' + (total.error + caseErrors.length ? '' : ' zero') }, [h('b', null, String(total.error + caseErrors.length)), h('span', null, 'errors')])
+          h('div', { class: 'total error' + (total.error + caseErrors.length ? '' : ' zero') }, [h('b', null, String(total.error + caseErrors.length)), h('span', null, 'errors')]),
+          total.known_failure ? h('div', { class: 'total known_failure', title: 'runs marked known_failure in their case: reported, not counted' },
+            [h('b', null, String(total.known_failure)), h('span', null, 'known')]) : null
         ])
       ])
     ]);
