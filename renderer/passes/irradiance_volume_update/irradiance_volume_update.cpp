@@ -53,6 +53,26 @@ class IrradianceVolumeUpdatePass final : public Pass {
     ctx.cmd.end_label();
     ctx.cmd.barrier(kStageCompute, kStageCompute);
     IvPush push{make_rc_params(ctx.settings, ctx.frame)};
+    if (!ctx.gpu.info().is_software()) {
+      // GPU: one workgroup per probe with its rays in group-shared memory.
+      ctx.cmd.begin_label("irradiance_volume_update/probe");
+      record_compute(ctx, {.shader = "irradiance_volume_probe.comp",
+                           .images = {{kIvBindPrevIrradiance, "probe_irradiance", true},
+                                      {kIvBindPrevVisibility, "probe_visibility", true},
+                                      {kIvBindIrradiance, "probe_irradiance"},
+                                      {kIvBindVisibility, "probe_visibility"}},
+                           .groups_x = kProbesPerCascade,
+                           .push = &push,
+                           .push_bytes = sizeof(push),
+                           .spec_constants = {{kIvSpecCacheFallback, 1}},
+                           .buffers = {{kIvBindHits, "probe_hits"}, {kIvBindCells, "rc_cells"}}});
+      ctx.cmd.end_label();
+      // The split path's ray buffer is unused here: zeroed so nothing (the stability scan, a
+      // dump) reads undefined memory.
+      ctx.cmd.fill(ctx.buffer("probe_ray_radiance"), 0);
+      return;
+    }
+    // CPU device: two barrier-free kernels (see irradiance_volume_probe.comp for why).
     ctx.cmd.begin_label("irradiance_volume_update/rays");
     record_compute(ctx, {.shader = "irradiance_volume_rays.comp",
                          .images = {{kIvBindPrevIrradiance, "probe_irradiance", true},

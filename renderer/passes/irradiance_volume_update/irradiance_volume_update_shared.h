@@ -4,6 +4,8 @@
 #include "frame_shared.h"
 #include "radiance_cache_shared.h"
 GIB_SHARED_BEGIN
+GIB_CONST(uint, kIvGroup, 8)                    // irradiance_volume_probe.comp: 8x8 threads per probe
+GIB_CONST(uint, kIvMaxRays, 256)                // rays per probe held in its group-shared memory
 GIB_CONST(uint, kIvRaysGroup, 64)               // irradiance_volume_rays.comp: one invocation per ray
 GIB_CONST(uint, kIvConvolveGroup, 64)           // irradiance_volume_update.comp: one per tile texel
 GIB_CONST(uint, kIvBindHits, 8)                 // readonly ProbeHit probe_hits[]
