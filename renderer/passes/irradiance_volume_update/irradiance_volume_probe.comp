@@ -25,6 +25,8 @@ layout(push_constant) uniform Push { RcParams rc; };
 RC_PROBE_IMAGES(kIvBindPrevIrradiance, kIvBindPrevVisibility)
 #include "radiance_cache.glsl"
 RC_CELL_BUFFER(kIvBindCells, readonly)
+#define IV_SHADE_RAYS
+#include "renderer/passes/irradiance_volume_update/irradiance_volume_common.glsl"
 
 const uint kTexels = kProbeTileInterior * kProbeTileInterior;
 shared vec3 s_dir[kIvMaxRays];
@@ -32,17 +34,6 @@ shared vec3 s_radiance[kIvMaxRays];
 shared float s_distance[kIvMaxRays];
 shared uint s_irradiance[kTexels];
 shared vec2 s_moments[kTexels];
-
-// Radiance arriving at the probe along ray d that hit h at p (its cell was not found).
-vec3 fallback_radiance(ProbeHit h, vec3 p, vec3 d) {
-  if (!kCacheFallback) return vec3(0.0);
-  vec2 bary = vec2(h.barycentrics & 0xffffu, h.barycentrics >> 16u) * (1.0 / 65535.0);
-  GibSurface s = gib_surface(h.triangle_plus1 - 1u, bary.x, bary.y, rc.flags.y != 0u);
-  GpuMaterial m = gib_materials[s.material];
-  if (rc.flags.z == 0u) return m.emissive;  // single bounce: the volumes hold bounced light
-  vec3 n = dot(s.normal, d) > 0.0 ? -s.normal : s.normal;
-  return m.emissive + gib_material_albedo(m, s.uv) * rc_sample_irradiance(p, n, -d);
-}
 
 void main() {
   uint probe = gl_WorkGroupID.x;
@@ -58,14 +49,8 @@ void main() {
     vec3 d = rc_ray_direction(r, rays, rotation);
     ProbeHit h = probe_hits[probe * rc_rays_per_probe() + r];
     vec3 l;
-    if (h.triangle_plus1 == 0u) {
-      l = gib_sky_radiance(d);
-    } else {
-      vec3 p = rc_hit_position(o, d, h.distance);
-      if (!rc_lookup(p, rc_facing_normal(h.triangle_plus1 - 1u, d), l)) l = fallback_radiance(h, p, d);
-    }
-    // Guard: a non-finite ray is dropped (a zero direction gives it weight 0 in every texel).
-    bool drop = rc.flags.y != 0u && !gib_finite(l);
+    // A ray the guard drops gets a zero direction: weight 0 in every texel.
+    bool drop = !iv_ray_radiance(h, o, d, l);
     s_dir[r] = drop ? vec3(0.0) : d;
     s_radiance[r] = drop ? vec3(0.0) : l;
     s_distance[r] = min(h.distance, max_distance);
@@ -93,17 +78,7 @@ void main() {
 
   uvec2 origin = rc_tile_origin(c, rc_probe_slot(c, ijk));
   ivec2 at = ivec2(origin) + texel + 1;
-  vec2 prev_moments = rc_probe_visibility_texel(at);
-  // Guard: a non-finite previous texel is not blended (the probe restarts as on its first
-  // update). The irradiance texel is RGB9E5, which cannot hold a NaN; the moments are RG16F.
-  bool prev_ok = rc.flags.y == 0u || gib_finite(prev_moments);
-  if (prev_ok && prev_moments.x > 0.0) {
-    float hysteresis = clamp(rc.bias.w, 0.0, 1.0);
-    irradiance = mix(irradiance, gib_unpack_rgb9e5(rc_probe_irradiance_texel(at)), hysteresis);
-    moments = mix(moments, prev_moments, hysteresis);
-  }
-  // A written probe never has a zero mean distance: that marks "never updated".
-  moments.x = max(moments.x, 1e-3);
+  iv_blend_with_last_frame(at, irradiance, moments);
   s_irradiance[tid] = gib_pack_rgb9e5(irradiance);
   s_moments[tid] = moments;
   barrier();

@@ -24,17 +24,8 @@ layout(push_constant) uniform Push { RcParams rc; };
 RC_PROBE_IMAGES(kIvBindPrevIrradiance, kIvBindPrevVisibility)
 #include "radiance_cache.glsl"
 RC_CELL_BUFFER(kIvBindCells, readonly)
-
-// Radiance arriving at the probe along ray d that hit h at p (its cell was not found).
-vec3 fallback_radiance(ProbeHit h, vec3 p, vec3 d) {
-  if (!kCacheFallback) return vec3(0.0);
-  vec2 bary = vec2(h.barycentrics & 0xffffu, h.barycentrics >> 16u) * (1.0 / 65535.0);
-  GibSurface s = gib_surface(h.triangle_plus1 - 1u, bary.x, bary.y, rc.flags.y != 0u);
-  GpuMaterial m = gib_materials[s.material];
-  if (rc.flags.z == 0u) return m.emissive;  // single bounce: the volumes hold bounced light
-  vec3 n = dot(s.normal, d) > 0.0 ? -s.normal : s.normal;
-  return m.emissive + gib_material_albedo(m, s.uv) * rc_sample_irradiance(p, n, -d);
-}
+#define IV_SHADE_RAYS
+#include "renderer/passes/irradiance_volume_update/irradiance_volume_common.glsl"
 
 void main() {
   uint rays = rc_rays_per_probe();
@@ -46,13 +37,7 @@ void main() {
   vec3 d = rc_ray_direction(r, rays, rc_frame_rotation(rc.misc.x));
   ProbeHit h = probe_hits[i];
   vec3 l;
-  if (h.triangle_plus1 == 0u) {
-    l = gib_sky_radiance(d);
-  } else {
-    vec3 p = rc_hit_position(o, d, h.distance);
-    if (!rc_lookup(p, rc_facing_normal(h.triangle_plus1 - 1u, d), l)) l = fallback_radiance(h, p, d);
-  }
-  // Guard: a non-finite ray is dropped (a negative distance marks it: weight 0 in every texel).
-  bool drop = rc.flags.y != 0u && !gib_finite(l);
+  // A ray the guard drops is marked by a negative distance: weight 0 in every texel.
+  bool drop = !iv_ray_radiance(h, o, d, l);
   probe_ray_radiance[i] = drop ? vec4(0.0, 0.0, 0.0, -1.0) : vec4(l, min(h.distance, rc_moment_max_distance(c)));
 }

@@ -22,6 +22,7 @@ layout(set = 0, binding = kIvBindVisibility, rg16f) uniform writeonly image2D ou
 layout(push_constant) uniform Push { RcParams rc; };
 #include "probe_volume.glsl"
 RC_PROBE_IMAGES(kIvBindPrevIrradiance, kIvBindPrevVisibility)
+#include "renderer/passes/irradiance_volume_update/irradiance_volume_common.glsl"
 
 void main() {
   const uint kTileTexels = kProbeTileSize * kProbeTileSize;
@@ -58,17 +59,7 @@ void main() {
 
   uvec2 origin = rc_tile_origin(c, rc_probe_slot(c, ijk));
   ivec2 at = ivec2(origin) + texel + 1;
-  vec2 prev_moments = rc_probe_visibility_texel(at);
-  // Guard: a non-finite previous texel is not blended (the probe restarts as on its first
-  // update). The irradiance texel is RGB9E5, which cannot hold a NaN; the moments are RG16F.
-  bool prev_ok = rc.flags.y == 0u || gib_finite(prev_moments);
-  if (prev_ok && prev_moments.x > 0.0) {
-    float hysteresis = clamp(rc.bias.w, 0.0, 1.0);
-    irradiance = mix(irradiance, gib_unpack_rgb9e5(rc_probe_irradiance_texel(at)), hysteresis);
-    moments = mix(moments, prev_moments, hysteresis);
-  }
-  // A written probe never has a zero mean distance: that marks "never updated".
-  moments.x = max(moments.x, 1e-3);
+  iv_blend_with_last_frame(at, irradiance, moments);
   imageStore(out_irradiance, ivec2(origin) + local, uvec4(gib_pack_rgb9e5(irradiance)));
   imageStore(out_visibility, ivec2(origin) + local, vec4(moments, 0.0, 0.0));
 }

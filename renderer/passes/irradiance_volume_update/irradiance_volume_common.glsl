@@ -1,0 +1,50 @@
+// irradiance_volume_update: the steps its two kernel layouts share (irradiance_volume_probe.comp
+// on GPUs, irradiance_volume_rays.comp + irradiance_volume_update.comp on CPU devices). Include
+// after the push constants `rc`, probe_volume.glsl with RC_PROBE_IMAGES, radiance_cache.glsl with
+// RC_CELL_BUFFER (ray shading only: define IV_SHADE_RAYS), surface.glsl and finite.glsl; the
+// including shader declares the spec constant kCacheFallback when it shades rays.
+#ifndef GIB_IRRADIANCE_VOLUME_COMMON_GLSL
+#define GIB_IRRADIANCE_VOLUME_COMMON_GLSL
+
+#ifdef IV_SHADE_RAYS
+// Radiance arriving at the probe along ray d that hit h at p (its cell was not found).
+vec3 iv_fallback_radiance(ProbeHit h, vec3 p, vec3 d) {
+  if (!kCacheFallback) return vec3(0.0);
+  vec2 bary = vec2(h.barycentrics & 0xffffu, h.barycentrics >> 16u) * (1.0 / 65535.0);
+  GibSurface s = gib_surface(h.triangle_plus1 - 1u, bary.x, bary.y, rc.flags.y != 0u);
+  GpuMaterial m = gib_materials[s.material];
+  if (rc.flags.z == 0u) return m.emissive;  // single bounce: the volumes hold bounced light
+  vec3 n = dot(s.normal, d) > 0.0 ? -s.normal : s.normal;
+  return m.emissive + gib_material_albedo(m, s.uv) * rc_sample_irradiance(p, n, -d);
+}
+
+// The radiance arriving at probe position o along ray direction d with hit record h: sky on a
+// miss, the cache cell at the hit, else the fallback. False when the NaN guard drops the ray.
+bool iv_ray_radiance(ProbeHit h, vec3 o, vec3 d, out vec3 l) {
+  if (h.triangle_plus1 == 0u) {
+    l = gib_sky_radiance(d);
+  } else {
+    vec3 p = rc_hit_position(o, d, h.distance);
+    if (!rc_lookup(p, rc_facing_normal(h.triangle_plus1 - 1u, d), l)) l = iv_fallback_radiance(h, p, d);
+  }
+  return rc.flags.y == 0u || gib_finite(l);
+}
+#endif
+
+// Blends a texel's new irradiance and moments with last frame's at atlas texel `at`
+// (hysteresis), then floors the mean distance: a written probe never has a zero mean distance,
+// which marks "never updated".
+void iv_blend_with_last_frame(ivec2 at, inout vec3 irradiance, inout vec2 moments) {
+  vec2 prev_moments = rc_probe_visibility_texel(at);
+  // Guard: a non-finite previous texel is not blended (the probe restarts as on its first
+  // update). The irradiance texel is RGB9E5, which cannot hold a NaN; the moments are RG16F.
+  bool prev_ok = rc.flags.y == 0u || gib_finite(prev_moments);
+  if (prev_ok && prev_moments.x > 0.0) {
+    float hysteresis = clamp(rc.bias.w, 0.0, 1.0);
+    irradiance = mix(irradiance, gib_unpack_rgb9e5(rc_probe_irradiance_texel(at)), hysteresis);
+    moments = mix(moments, prev_moments, hysteresis);
+  }
+  moments.x = max(moments.x, 1e-3);
+}
+
+#endif
