@@ -56,7 +56,8 @@ cp "$data/console-profiles.json" "$data/seed-timings.json" "$out/data/"
 
 if ((validation)); then
   mkdir -p "$out/layers"
-  layer=$(ldconfig -p | awk '/libVkLayer_khronos_validation.so/{print $NF; exit}')
+  # awk reads to the end (no early exit) so ldconfig never gets SIGPIPE under pipefail.
+  layer=$(ldconfig -p | awk '/libVkLayer_khronos_validation.so/ && !f {print $NF; f = 1}')
   [[ -n $layer ]] || layer=/usr/lib/x86_64-linux-gnu/libVkLayer_khronos_validation.so
   cp -L "$layer" "$out/layers/"
   sed 's#"library_path": *"[^"]*"#"library_path": "./libVkLayer_khronos_validation.so"#' \

@@ -510,8 +510,8 @@ const std::vector<std::string>& case_metrics() {
       "flip",      "psnr",    "relmse",         "roi_mean",         "roi_ratio",      "max_abs_error",
       "nan_count", "inf_count", "uv_shift_max", "banding",          "banding_excess", "flicker",
       "conv_error_final", "conv_error_max", "conv_drift", "conv_oscillation",
-      "scan_nan", "scan_inf", "scan_negative", "scan_above_max", "nan_frames", "nan_last_frame",
-      "nan_max_pixels"};
+      "scan_nan", "scan_inf", "scan_negative", "scan_above_max", "scan_saturated", "nan_frames",
+      "nan_last_frame", "nan_max_pixels"};
   return m;
 }
 
@@ -519,7 +519,8 @@ bool metric_uses_against(const std::string& metric) {
   static const std::set<std::string> alone = {"roi_mean", "nan_count", "inf_count", "banding", "flicker",
                                               "conv_error_final", "conv_error_max", "conv_drift",
                                               "conv_oscillation", "scan_nan", "scan_inf", "scan_negative",
-                                              "scan_above_max", "nan_frames", "nan_last_frame", "nan_max_pixels"};
+                                              "scan_above_max", "scan_saturated", "nan_frames", "nan_last_frame",
+                                              "nan_max_pixels"};
   return alone.count(metric) == 0;
 }
 

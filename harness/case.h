@@ -50,7 +50,8 @@ struct Roi {
 //   nan_max_pixels            the most NaN pixels in any one frame's output
 //   scan_nan, scan_inf,       offending texels/elements over every frame, pass and resource of
 //   scan_negative,            the GPU stability scan (renderer/graph/stability.h; needs the
-//   scan_above_max            scan on, the default of `gibench run`)
+//   scan_above_max,           scan on, the default of `gibench run`); scan_saturated: |value|
+//   scan_saturated            at the storage format's largest finite value (silent clamp)
 // `against`: "reference" (the path-traced golden), "golden" (this technique's approved
 // golden), "analytic" (a constant image of Case::analytic_value) or "variant:NAME" (the same
 // technique and preset rendered with TechniqueRun::variants[NAME] on top of its options).

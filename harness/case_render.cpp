@@ -31,13 +31,16 @@ CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const s
   s = apply_preset(t, preset, s);
   const bool reference = t.name == "reference";
   uint32_t frames = c.frames;
-  if (reference) {
+  // With reference_spp 0 (no reference image: analytic or variant-only cases) a reference row
+  // runs the case's frames at its preset's (or options') samples per frame, like any technique.
+  const bool spp_budget = reference && c.reference_spp > 0;
+  if (spp_budget) {
     s.spp_per_frame = std::min<uint32_t>(c.reference_spp, 16);
     while (c.reference_spp % s.spp_per_frame) --s.spp_per_frame;
   }
   s = apply_options(t, s, run.options);
+  if (spp_budget) frames = std::max(1u, c.reference_spp / s.spp_per_frame);
   if (reference) {
-    frames = std::max(1u, c.reference_spp / s.spp_per_frame);
     // A reference never moves while it converges: it shows one moment of the scene.
     s.scene_time = float(at_frame ? at_frame - 1 : 0) * c.scene.frame_time;
   }
@@ -58,12 +61,13 @@ CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const s
   CaseRender r;
   std::vector<uint32_t> eval = reference ? std::vector<uint32_t>{} : evaluation_frames(c);
   std::optional<metrics::Roi> curve_roi;
-  if (!reference && c.convergence) {
+  // A reference accumulating to its spp budget draws no curve; one running frames (see above) does.
+  if ((!reference || !spp_budget) && c.convergence) {
     curve_roi = metrics::Roi{};
     for (auto& roi : c.rois)
       if (roi.name == c.convergence->roi) curve_roi = metrics::Roi{roi.x0, roi.y0, roi.x1, roi.y1};
   }
-  const uint32_t keep_last = reference ? 0 : c.flicker_frames;
+  const uint32_t keep_last = spp_budget ? 0 : c.flicker_frames;
   for (uint32_t f = 1; f <= frames; ++f) {
     results.push_back(ex.run_frame());
     bool eval_here = std::find(eval.begin(), eval.end(), f) != eval.end();

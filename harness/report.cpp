@@ -125,9 +125,11 @@ nlohmann::json suite_to_json(const SuiteResult& suite) {
         uint64_t inf = t.count[size_t(StabilityCategory::pos_inf)] + t.count[size_t(StabilityCategory::neg_inf)];
         uint64_t neg = t.count[size_t(StabilityCategory::negative)];
         uint64_t above = t.count[size_t(StabilityCategory::above_max)];
-        if (!(nan || inf || neg || above)) continue;
-        nlohmann::json e{{"pass", t.pass}, {"resource", t.resource}, {"nan", nan}, {"inf", inf}, {"negative", neg},
-                         {"above_max", above}, {"max_seen", finite_or_null(t.max_seen)}};
+        uint64_t saturated = t.count[size_t(StabilityCategory::saturated)];
+        if (!(nan || inf || neg || above || saturated)) continue;
+        nlohmann::json e{{"pass", t.pass},         {"resource", t.resource}, {"nan", nan},
+                         {"inf", inf},             {"negative", neg},        {"above_max", above},
+                         {"saturated", saturated}, {"max_seen", finite_or_null(t.max_seen)}};
         const StabilityRecord* first = nullptr;
         for (auto& rec : r.stability.records)
           if (rec.pass == t.pass && rec.resource == t.resource) { first = &rec; break; }

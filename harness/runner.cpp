@@ -203,6 +203,7 @@ double compute_metric(const Case& c, const std::string& metric, const FloatImage
     if (metric == "scan_inf") return double(st.total(StabilityCategory::pos_inf) + st.total(StabilityCategory::neg_inf));
     if (metric == "scan_negative") return double(st.total(StabilityCategory::negative));
     if (metric == "scan_above_max") return double(st.total(StabilityCategory::above_max));
+    if (metric == "scan_saturated") return double(st.total(StabilityCategory::saturated));
   }
   if (metric == "nan_count") return double(metrics::count_non_finite(crop(output, roi)).nan);
   if (metric == "inf_count") return double(metrics::count_non_finite(crop(output, roi)).inf);
@@ -332,7 +333,7 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
     for (const char* m : {"nan_frames", "nan_last_frame", "nan_max_pixels"})
       row.metrics[m] = compute_metric(c, m, r.image, nullptr, nullptr, series);
   if (series.stability)
-    for (const char* m : {"scan_nan", "scan_inf", "scan_negative", "scan_above_max"})
+    for (const char* m : {"scan_nan", "scan_inf", "scan_negative", "scan_above_max", "scan_saturated"})
       row.metrics[m] = compute_metric(c, m, r.image, nullptr, nullptr, series);
   if (series.curve)
     for (const char* m : {"conv_error_final", "conv_error_max", "conv_drift", "conv_oscillation"})

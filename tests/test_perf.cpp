@@ -274,3 +274,30 @@ TEST(PerfSamples, ReadsBothFormatsAndNamesBadFields) {
 
 }  // namespace
 }  // namespace gib::perf
+
+namespace gib::perf {
+namespace {
+
+TEST(PerfVariants, ParsesLabelAndOptions) {
+  BenchVariant v = parse_variant("norays:probe_rays=0,probe_spacing=0.25");
+  EXPECT_EQ(v.label, "norays");
+  ASSERT_EQ(v.options.size(), 2u);
+  EXPECT_EQ(v.options.at("probe_rays"), 0.0);
+  EXPECT_EQ(v.options.at("probe_spacing"), 0.25);
+  EXPECT_EQ(parse_variant("x:a=1e-3").options.at("a"), 1e-3);
+}
+
+TEST(PerfVariants, MalformedVariantsNameTheFlagAndTheExpectedForm) {
+  for (const char* bad : {"norays", ":a=1", "l:", "l:a", "l:=1", "l:a=", "l:a=1x", "l:a=1,,b=2"}) {
+    try {
+      parse_variant(bad);
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const PerfError& e) {
+      std::string m = e.what();
+      EXPECT_NE(m.find("--variant"), std::string::npos) << m;
+      EXPECT_NE(m.find("expected"), std::string::npos) << m;
+    }
+  }
+}
+}  // namespace
+}  // namespace gib::perf

@@ -12,6 +12,8 @@
 #include "renderer/graph/executor.h"
 #include "renderer/passes/composite/composite.h"
 #include "renderer/passes/direct_lighting/direct_lighting.h"
+#include "renderer/passes/exposure/exposure.h"
+#include "renderer/passes/exposure/exposure_shared.h"
 #include "renderer/passes/final_gather/final_gather.h"
 #include "renderer/passes/final_gather/final_gather_shared.h"
 #include "renderer/passes/gbuffer/gbuffer.h"
@@ -94,6 +96,7 @@ std::vector<std::unique_ptr<Pass>> screen_passes() {
   p.push_back(make_gbuffer_pass());
   p.push_back(make_direct_lighting_pass());
   p.push_back(std::make_unique<StubWorldSampling>());
+  p.push_back(make_exposure_pass());
   p.push_back(make_final_gather_pass());
   p.push_back(make_gi_denoise_pass());
   p.push_back(make_gi_upscale_pass());
@@ -185,6 +188,60 @@ TEST_F(RadianceCacheScreen, ConstantSkyRoundTripsThroughSh) {
       EXPECT_EQ(stats[glsl::kGatherStatSky], 32u * 18u);
     }
   }
+}
+
+// Pre-exposure (exposure pass): the same sphere under a sky of 20000 instead of 2. The SH are
+// RGBA16F (max 65504); a constant sky L makes L0 = 2 pi Y00 L = 35400 but a grazing sample's L1
+// up to ~157 x 0.49 L = 1.5e6: without pre-exposure those clamp (the sphere's other normals see
+// the bias); with it the SH hold L x P, P = 1 / the frame's log-average luminance, and
+// gi_irradiance (divided by P) must be the sky, as at radiance 2.
+TEST_F(RadianceCacheScreen, PreExposureKeepsABrightSkyInRange) {
+  Scene sphere = parse_scene(nlohmann::json::parse(R"({
+    "materials": {"grey": {"albedo": [0.5, 0.5, 0.5]}},
+    "objects": [{"primitive": {"type": "sphere", "radius": 1}, "material": "grey"}],
+    "sky": {"type": "constant", "radiance": [20000, 20000, 20000]},
+    "camera": {"position": [0, 0.5, 3], "target": [0, 0, 0], "fov_y_deg": 50}
+  })"), "inline");
+  double mean_of[2] = {};
+  for (bool pre_exposure : {false, true}) {
+    Settings s = small_settings();
+    s.rc.pre_exposure = pre_exposure;
+    Executor ex(gpu(), sphere, s, screen_passes(), {"final_color"});
+    for (int f = 0; f < 12; ++f) ex.run_frame();
+    FloatImage gi = ex.read("gi_irradiance"), pos = ex.read("gbuffer_position"), sh = ex.read("gather_sh_r");
+    std::vector<uint8_t> raw = ex.read_buffer("exposure");
+    float p[glsl::kExposureWords];
+    std::memcpy(p, raw.data(), sizeof(p));
+    double sum = 0, sh_max = 0;
+    size_t count = 0;
+    for (uint32_t y = 0; y < gi.height; ++y)
+      for (uint32_t x = 0; x < gi.width; ++x)
+        if (pos.at(x, y, 3) != 0) {
+          sum += gi.at(x, y, 0);
+          ++count;
+        }
+    size_t saturated = 0;
+    for (float v : sh.pixels) {
+      sh_max = std::max(sh_max, double(std::abs(v)));
+      saturated += std::abs(v) >= 65504.0f;
+    }
+    ASSERT_GT(count, 300u);
+    mean_of[pre_exposure] = sum / double(count);
+    std::printf("sky 20000, pre_exposure %d: P %.4g (prev %.4g), mean gi_irradiance %.1f (%.2f%% off), gather_sh_r "
+                "max |c| %.1f, %zu coefficients at 65504\n", int(pre_exposure), p[0], p[1], mean_of[pre_exposure],
+                100 * (mean_of[pre_exposure] / 20000.0 - 1), sh_max, saturated);
+    RecordProperty(std::string("bright_sky_relative_error_pe") + (pre_exposure ? "1" : "0"),
+                   std::to_string(mean_of[pre_exposure] / 20000.0 - 1));
+    if (pre_exposure) {
+      EXPECT_NEAR(p[0], 1.0f / 20000.0f, 0.5f / 20000.0f);  // the sky and the sphere (0.5 x sky) are lit
+      EXPECT_EQ(saturated, 0u);
+      EXPECT_LT(sh_max, 65504.0 / 16);
+    } else {
+      EXPECT_EQ(p[0], 1.0f);
+      EXPECT_GT(saturated, 0u);
+    }
+  }
+  EXPECT_NEAR(mean_of[1], 20000.0, 0.03 * 20000.0);  // as the radiance-2 sky above
 }
 
 // The sky's first bounce is counted once: by the gather when direct_lighting traces no sky
@@ -430,6 +487,7 @@ TEST_F(RadianceCacheScreen, FullChainWithWorldSamplingPasses) {
   passes.push_back(make_radiance_cache_update_pass());
   passes.push_back(make_radiance_cache_shade_pass());
   passes.push_back(make_irradiance_volume_update_pass());
+  passes.push_back(make_exposure_pass());
   passes.push_back(make_final_gather_pass());
   passes.push_back(make_gi_denoise_pass());
   passes.push_back(make_gi_upscale_pass());

@@ -27,7 +27,7 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 const float kNan = std::bit_cast<float>(0x7fc00001u);
 constexpr uint32_t kNan_ = uint32_t(StabilityCategory::nan), kPosInf = uint32_t(StabilityCategory::pos_inf),
                    kNegInf = uint32_t(StabilityCategory::neg_inf), kNeg = uint32_t(StabilityCategory::negative),
-                   kAbove = uint32_t(StabilityCategory::above_max);
+                   kAbove = uint32_t(StabilityCategory::above_max), kSat = uint32_t(StabilityCategory::saturated);
 
 std::string scene_path(const char* name) { return std::string(GIB_SOURCE_DIR) + "/cases/scenes/" + name; }
 
@@ -198,19 +198,39 @@ float offender(uint32_t category, float bound) {
   }
 }
 
-class StabilityScan : public GpuTest {};
+class StabilityScan : public GpuTest {
+ protected:
+  // One frame of a FillPass writing `sources` (every one requested as an output) with the
+  // stability scan on; the executor stays alive for the test's checks.
+  Executor& scan_fill(const std::vector<FillSource>& sources) {
+    std::vector<std::unique_ptr<Pass>> passes;
+    passes.push_back(std::make_unique<FillPass>(sources));
+    std::vector<std::string> outputs;
+    for (auto& src : sources) outputs.push_back(src.name);
+    Settings settings;
+    settings.width = 16;
+    settings.height = 8;
+    fill_ex_ = std::make_unique<Executor>(gpu(), fill_scene_, settings, std::move(passes), outputs);
+    fill_ex_->enable_stability_scan();
+    fill_frame_ = fill_ex_->run_frame();
+    return *fill_ex_;
+  }
+  Scene fill_scene_ = load_scene(scene_path("sky_plane.json"));
+  std::unique_ptr<Executor> fill_ex_;
+  FrameResult fill_frame_;
+};
 
 TEST_F(StabilityScan, GpuCountsAndFirstTexelsEqualTheCpuOnEveryFormat) {
   constexpr uint32_t kW = 13, kH = 7, kN = kW * kH;
   const std::vector<FormatCase> cases{
       {"s_rgba32f", Format::rgba32_float, non_negative_values().bounded(1.5f).allow_negative(kChannelA),
        {kNan_, kPosInf, kNegInf, kNeg, kAbove}, 1.0f},
-      {"s_rgba16f", Format::rgba16_float, unit_values(), {kNan_, kPosInf, kNegInf, kNeg, kAbove}, 0.9f},
-      {"s_rg16f", Format::rg16_float, finite_values().bounded(4.0f), {kNan_, kPosInf, kNegInf, kAbove}, 2.0f},
+      {"s_rgba16f", Format::rgba16_float, unit_values(), {kNan_, kPosInf, kNegInf, kNeg, kAbove, kSat}, 0.9f},
+      {"s_rg16f", Format::rg16_float, finite_values().bounded(4.0f), {kNan_, kPosInf, kNegInf, kAbove, kSat}, 2.0f},
       {"s_r32f", Format::r32_float, non_negative_values().bounded(100.0f), {kNan_, kPosInf, kNegInf, kNeg, kAbove}, 50.0f},
-      {"s_b10g11r11", Format::b10g11r11_float, non_negative_values().bounded(10.0f), {kNan_, kPosInf, kAbove}, 5.0f},
-      {"s_e5b9g9r9", Format::e5b9g9r9_float, non_negative_values().bounded(8.0f), {kAbove}, 4.0f},
-      {"s_rgb9e5_uint", Format::r32_uint, non_negative_values().bounded(8.0f).encoded(Encoding::rgb9e5), {kAbove}, 4.0f},
+      {"s_b10g11r11", Format::b10g11r11_float, non_negative_values().bounded(10.0f), {kNan_, kPosInf, kAbove, kSat}, 5.0f},
+      {"s_e5b9g9r9", Format::e5b9g9r9_float, non_negative_values().bounded(8.0f), {kAbove, kSat}, 4.0f},
+      {"s_rgb9e5_uint", Format::r32_uint, non_negative_values().bounded(8.0f).encoded(Encoding::rgb9e5), {kAbove, kSat}, 4.0f},
       {"s_depth", Format::d32_float, unit_values(), {}, 1.0f},
       {"s_rgba8", Format::rgba8_unorm, unit_values().bounded(0.5f), {kAbove}, 0.45f},
   };
@@ -231,16 +251,25 @@ TEST_F(StabilityScan, GpuCountsAndFirstTexelsEqualTheCpuOnEveryFormat) {
     auto& inj = injected[fc.name];
     auto& first = injected_first[fc.name];
     inj.fill(0);
+    const ValueDomain eff = effective_domain(fc.format, fc.values);
     for (uint32_t c : fc.categories) {
       // Two offending texels per category, in channel c % 3 (all formats have r, g, b but
       // r32f / d32f / rg16f: channel 0).
       const uint32_t ch = (fc.format == Format::r32_float || fc.format == Format::rg16_float) ? 0 : c % 3;
-      for (uint32_t texel : {3 + 7 * c, 50 + 9 * c}) {
-        t[4 * texel + ch] = offender(c, effective_domain(fc.format, fc.values).max_value);
+      for (uint32_t texel : {3 + 7 * c, (50 + 9 * c) % kN}) {
+        if (c == kSat) {
+          // The format's largest finite value in channel ch (2 for R11G11B10F: its B's 64512);
+          // it is above every bound here too.
+          t[4 * texel + ch] = ch == 2 ? eff.format_max_b : eff.format_max;
+          ++inj[kAbove];
+        } else {
+          t[4 * texel + ch] = offender(c, eff.max_value);
+        }
         ++inj[c];
       }
-      first[c] = 3 + 7 * c;
+      first[c] = std::min(3 + 7 * c, (50 + 9 * c) % kN);
     }
+    if (inj[kSat]) first[kAbove] = std::min(first[kAbove], first[kSat]);
     if (fc.format == Format::rgba32_float) {
       t[4 * 40 + 3] = -1.25f;  // signed alpha: allowed
       t[4 * 41 + 3] = -2.0f;   // signed alpha beyond the bound: |v| > 1.5
@@ -288,6 +317,10 @@ TEST_F(StabilityScan, GpuCountsAndFirstTexelsEqualTheCpuOnEveryFormat) {
       ++inj[kAbove];
     }
     injected_first["s_buffer_rgb9e5"][kAbove] = 7;
+    w[12 * 4 + 1] = codecs::encode_rgb9e5(0.0f, 0.0f, codecs::kRgb9e5Max);  // saturated (and above 2)
+    ++inj[kAbove];
+    ++inj[kSat];
+    injected_first["s_buffer_rgb9e5"][kSat] = 12;
     FillSource s;
     s.name = "s_buffer_rgb9e5";
     s.desc = ResourceDesc{Format::buffer, SizeRule::buffer, 0, 0, w.size() * 4}.with(
@@ -297,17 +330,8 @@ TEST_F(StabilityScan, GpuCountsAndFirstTexelsEqualTheCpuOnEveryFormat) {
     sources.push_back(std::move(s));
   }
 
-  Scene scene = load_scene(scene_path("sky_plane.json"));
-  std::vector<std::unique_ptr<Pass>> passes;
-  passes.push_back(std::make_unique<FillPass>(sources));
-  std::vector<std::string> outputs;
-  for (auto& s : sources) outputs.push_back(s.name);
-  Settings settings;
-  settings.width = 16;
-  settings.height = 8;
-  Executor ex(gpu(), scene, settings, std::move(passes), outputs);
-  ex.enable_stability_scan();
-  FrameResult fr = ex.run_frame();
+  Executor& ex = scan_fill(sources);
+  const FrameResult& fr = fill_frame_;
   const StabilityReport& rep = ex.stability();
   EXPECT_EQ(rep.frames, 1u);
   EXPECT_EQ(rep.dispatches_per_frame, sources.size());
@@ -364,6 +388,188 @@ TEST_F(StabilityScan, GpuCountsAndFirstTexelsEqualTheCpuOnEveryFormat) {
   FrameResult off = ex.run_frame();
   EXPECT_EQ(off.scan_dispatches, 0u);
   EXPECT_EQ(ex.stability().frames, 1u);
+}
+
+// Silent saturation, known answers: a texel whose checked channel is exactly at the format's
+// largest finite value is counted, one at the next representable value below is not, on the
+// GPU and in the CPU mirror alike. Values are exact in each format, so the bytes hold them as is.
+TEST(StabilityCpu, FormatMaximaPerFormat) {
+  auto max_of = [](Format f, Encoding e = Encoding::none) {
+    const ValueDomain v = effective_domain(f, finite_values().encoded(e));
+    return std::pair<float, float>{v.format_max, v.format_max_b};
+  };
+  EXPECT_EQ(max_of(Format::rgba16_float), std::make_pair(65504.0f, 65504.0f));
+  EXPECT_EQ(max_of(Format::rg16_float), std::make_pair(65504.0f, 65504.0f));
+  EXPECT_EQ(max_of(Format::b10g11r11_float), std::make_pair(65024.0f, 64512.0f));
+  EXPECT_EQ(max_of(Format::e5b9g9r9_float), std::make_pair(65408.0f, 65408.0f));
+  EXPECT_EQ(max_of(Format::r32_uint, Encoding::rgb9e5), std::make_pair(65408.0f, 65408.0f));
+  EXPECT_EQ(effective_domain(Format::buffer, finite_values().encoded(Encoding::rgb9e5).layout(1, 0, 1)).format_max,
+            65408.0f);
+  for (Format f : {Format::r32_uint, Format::r32_float, Format::rgba32_float, Format::rgba8_unorm, Format::d32_float,
+                   Format::buffer})
+    EXPECT_EQ(max_of(f), std::make_pair(kInf, kInf)) << format_name(f);
+  // A declared domain never carries them.
+  EXPECT_EQ(non_negative_values().format_max, kInf);
+  // Saturated is independent of the domain: a signed channel at -max, an unbounded one at max.
+  const ValueDomain h = effective_domain(Format::rgba16_float, finite_values());
+  EXPECT_EQ(classify({65504.0f, 0, 0, 0}, h), 1u << kSat);
+  EXPECT_EQ(classify({0, 0, 0, -65504.0f}, h), 1u << kSat);
+  EXPECT_EQ(classify({65472.0f, -65472.0f, 0, 0}, h), 0u);
+  EXPECT_EQ(classify({kInf, 0, 0, 0}, h), 1u << kPosInf) << "Inf is not a finite value at the maximum";
+  EXPECT_EQ(classify({65504.0f}, effective_domain(Format::r32_float, finite_values())), 0u);
+}
+
+TEST_F(StabilityScan, SaturationAtFormatMaximumKnownAnswers) {
+  struct Known {
+    const char* name;
+    Format format;
+    ValueDomain values;
+    std::vector<std::array<float, 4>> texels;
+    std::vector<bool> saturated;
+  };
+  const float h = codecs::kHalfMax, h_below = 65472.0f;                 // half: ulp 32 at 2^15
+  const float r11 = codecs::kR11Max, r11_below = 64512.0f;              // 6 mantissa bits: ulp 512
+  const float b10 = codecs::kB10Max, b10_below = 63488.0f;              // 5 mantissa bits: ulp 1024
+  const float e9 = codecs::kRgb9e5Max, e9_below = 65280.0f;             // 9 bits at 2^7: ulp 128
+  const std::vector<Known> known{
+      {"k_rgba16f", Format::rgba16_float, finite_values(),
+       {{h, 0, 0, 0}, {h_below, 0, 0, 0}, {0, 0, 0, -h}, {0, 0, -h_below, 0}, {0, 0, 0, h}, {1, 2, 3, 4},
+        {h_below, -h_below, h_below, -h_below}},
+       {true, false, true, false, true, false, false}},
+      {"k_rg16f", Format::rg16_float, non_negative_values(),
+       {{0, h, 0, 0}, {h_below, h_below, 0, 0}, {h, 0, 0, 0}, {0.25f, 64, 0, 0}},
+       {true, false, true, false}},
+      // R and G saturate at 65024; B (10 bits) at 64512, which R and G hold below their maximum.
+      {"k_b10g11r11", Format::b10g11r11_float, non_negative_values(),
+       {{r11, 0, 0, 0}, {r11_below, 0, 0, 0}, {0, r11, 0, 0}, {0, r11_below, 0, 0}, {0, 0, b10, 0},
+        {0, 0, b10_below, 0}, {r11_below, r11_below, b10_below, 0}},
+       {true, false, true, false, true, false, false}},
+      {"k_rgb9e5_uint", Format::r32_uint, non_negative_values().encoded(Encoding::rgb9e5),
+       {{e9, 0, 0, 0}, {e9_below, 0, 0, 0}, {0, 0, e9, 0}, {0, e9_below, 0, 0}, {e9_below, e9_below, e9_below, 0}},
+       {true, false, true, false, false}},
+  };
+  std::vector<FillSource> sources;
+  for (const Known& k : known) {
+    std::vector<float> t;
+    for (auto& texel : k.texels) t.insert(t.end(), texel.begin(), texel.end());
+    FillSource s;
+    s.name = k.name;
+    const uint32_t w = uint32_t(k.texels.size());
+    s.desc = ResourceDesc{k.format, SizeRule::fixed, w, 1}.with(k.values);
+    s.bytes = encode(k.format, t);
+    s.image = gpu().create_image(k.format, w, 1, std::string("stability_test.") + k.name);
+    gpu().upload(*s.image, s.bytes.data(), s.bytes.size());
+    sources.push_back(std::move(s));
+  }
+  Executor& ex = scan_fill(sources);
+  const StabilityReport& rep = ex.stability();
+  ASSERT_EQ(rep.targets.size(), known.size());
+  for (size_t i = 0; i < known.size(); ++i) {
+    const Known& k = known[i];
+    SCOPED_TRACE(k.name);
+    const uint32_t w = uint32_t(k.texels.size());
+    std::vector<uint8_t> raw = gpu().download(*sources[i].image);
+    ASSERT_EQ(raw, sources[i].bytes);
+    // The bytes hold the values exactly (so "just below" is the next value down).
+    const ValueDomain eff = effective_domain(k.format, k.values);
+    if (k.format != Format::r32_uint) {
+      const FloatImage img = decode_texels(k.format, w, 1, raw);
+      for (uint32_t x = 0; x < w; ++x)
+        for (uint32_t c = 0; c < img.channels; ++c) EXPECT_EQ(img.at(x, 0, c), k.texels[x][c]) << x << " " << c;
+    } else {
+      for (uint32_t x = 0; x < w; ++x) {
+        uint32_t word;
+        std::memcpy(&word, raw.data() + 4 * x, 4);
+        float rgb[3];
+        codecs::decode_rgb9e5(word, rgb);
+        for (uint32_t c = 0; c < 3; ++c) EXPECT_EQ(rgb[c], k.texels[x][c]) << x << " " << c;
+      }
+    }
+    uint64_t expected = 0, expected_first = ~0ull;
+    for (uint32_t x = 0; x < w; ++x) {
+      // Per texel: the CPU classification agrees with the expected answer.
+      std::vector<float> one(k.texels[x].begin(), k.texels[x].end());
+      const uint32_t channels = k.format == Format::rg16_float ? 2 : k.format == Format::rgba16_float ? 4 : 3;
+      const bool sat = stability_classify(one.data(), channels, eff) & (1u << kSat);
+      EXPECT_EQ(sat, bool(k.saturated[x])) << "texel " << x;
+      if (k.saturated[x]) {
+        ++expected;
+        expected_first = std::min<uint64_t>(expected_first, x);
+      }
+    }
+    const StabilityCounts cpu = stability_scan_texels(k.format, w, 1, raw, k.values);
+    EXPECT_EQ(cpu.count[kSat], expected);
+    EXPECT_EQ(cpu.first[kSat], expected_first);
+    const StabilityTarget& target = rep.targets[i];
+    EXPECT_EQ(target.resource, k.name);
+    EXPECT_EQ(target.count, cpu.count) << "GPU vs CPU, every category";
+    EXPECT_EQ(target.max_seen, cpu.max_abs);
+    const StabilityRecord* r = rep.find("stability_fill", k.name, StabilityCategory::saturated);
+    ASSERT_NE(r, nullptr);
+    EXPECT_EQ(r->count, expected);
+    EXPECT_EQ(r->first_x, expected_first);
+    EXPECT_EQ(r->first_y, 0u);
+  }
+  // The first-offender line names the category.
+  const StabilityRecord* first = rep.first(StabilityCategory::saturated);
+  ASSERT_NE(first, nullptr);
+  EXPECT_EQ(describe(*first),
+            "Value at format maximum first produced by stability_fill writing k_rgba16f at frame 0, pixel (0, 0) "
+            "(3 texels)");
+}
+
+// The probe_visibility atlas's shape (RG16F, 2560 x 160 x 3 cascades: more texels than the 16 x
+// 16 tiles of 16 x 16 cover, so the scan's grid-stride loop wraps in x and y): a floor of 0.001
+// (the moments' clamp) everywhere and the large values at texels far from the origin; the
+// scan's max_seen, counts and first offenders must equal the CPU mirror's.
+TEST_F(StabilityScan, LargeRg16fAtlasMaxSeenAndCountsEqualTheCpu) {
+  constexpr uint32_t kW = 2560, kH = 480;
+  std::vector<float> t(size_t(4) * kW * kH, 0.0f);
+  for (size_t i = 0; i < size_t(kW) * kH; ++i) {
+    t[4 * i] = 0.001f;
+    t[4 * i + 1] = 1e-6f;
+  }
+  auto at = [&](uint32_t x, uint32_t y) { return &t[4 * (size_t(y) * kW + x)]; };
+  at(2301, 431)[0] = 8.0f;   // mean distance
+  at(2301, 431)[1] = 64.0f;  // its square: the largest value, above the bound of 6
+  at(1700, 300)[0] = 5.0f;   // below the bound
+  at(2559, 479)[1] = 7.5f;   // above the bound: the last texel
+  at(300, 260)[1] = 6.5f;    // above the bound: the first of the three in linear order
+  at(17, 259)[0] = -0.5f;    // negative: in the second row of the grid-stride loop
+  FillSource s;
+  s.name = "s_probe_visibility";
+  s.desc = ResourceDesc{Format::rg16_float, SizeRule::fixed, kW, kH}.with(non_negative_values().bounded(6.0f));
+  s.bytes = encode(Format::rg16_float, t);
+  s.image = gpu().create_image(Format::rg16_float, kW, kH, "stability_test.s_probe_visibility");
+  gpu().upload(*s.image, s.bytes.data(), s.bytes.size());
+  std::vector<FillSource> sources;
+  sources.push_back(std::move(s));
+
+  Executor& ex = scan_fill(sources);
+  const StabilityReport& rep = ex.stability();
+  ASSERT_EQ(rep.targets.size(), 1u);
+  std::vector<uint8_t> raw = gpu().download(*sources[0].image);
+  ASSERT_EQ(raw, sources[0].bytes);
+  const StabilityCounts cpu = stability_scan_texels(Format::rg16_float, kW, kH, raw, sources[0].desc.values);
+  EXPECT_EQ(cpu.max_abs, 64.0f);
+  EXPECT_EQ(cpu.count[kAbove], 3u);  // 64, 7.5, 6.5 (8 in the same texel as 64)
+  EXPECT_EQ(cpu.first[kAbove], 260ull * kW + 300);
+  EXPECT_EQ(cpu.count[kNeg], 1u);
+  EXPECT_EQ(cpu.first[kNeg], 259ull * kW + 17);
+  const StabilityTarget& target = rep.targets[0];
+  EXPECT_EQ(target.max_seen, cpu.max_abs) << "the scan's largest |value| over the whole atlas";
+  for (uint32_t c = 0; c < kStabilityCategoryCount; ++c) {
+    SCOPED_TRACE(stability_category_name(StabilityCategory(c)));
+    EXPECT_EQ(target.count[c], cpu.count[c]);
+    const StabilityRecord* r = rep.find("stability_fill", "s_probe_visibility", StabilityCategory(c));
+    if (cpu.count[c] == 0) {
+      EXPECT_EQ(r, nullptr);
+      continue;
+    }
+    ASSERT_NE(r, nullptr);
+    EXPECT_EQ(r->first_index, cpu.first[c]);
+    EXPECT_EQ(r->max_seen, cpu.max_abs);
+  }
 }
 
 // ---------------------------------------------------------------- executor: first offender

@@ -21,6 +21,9 @@ inline void add_perf_commands(CLI::App& app, PerfCli& c) {
   b->add_option("--technique", c.bench.techniques, "only this technique (repeatable; default: all)");
   b->add_option("--case", c.bench.case_name, "case or scene name (cases/, cases/scenes/) or JSON path");
   b->add_option("--preset", c.bench.preset, "low | medium | high | ultra");
+  b->add_option("--variant", c.bench.variants,
+                "LABEL:NAME=VALUE[,NAME=VALUE...]: also time each technique with these options, side by side with "
+                "the plain run, and print the per-pass change (repeatable)");
   b->add_option("--frames", c.bench.frames, "timed frames per repeat (default 5 on a CPU device, 30 on a GPU)");
   b->add_option("--repeats", c.bench.repeats, "repeats with a fresh executor (>= 2 for the noise floor)");
   b->add_option("--warmup", c.bench.warmup, "frames before timing (default 1 on a CPU device, 5 on a GPU)");

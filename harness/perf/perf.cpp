@@ -7,7 +7,9 @@
 #include <cmath>
 #include <ctime>
 #include <filesystem>
+#include <cstdlib>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -121,6 +123,8 @@ struct PassRun {
 
 struct TechniqueRun {
   const Technique* technique = nullptr;
+  std::string name;     // the technique's name, "+LABEL" for a --variant
+  int base = -1;        // a variant: index of the plain run it is compared with
   Workload workload;
   Settings settings_run, settings_full;
   Plan plan_run, plan_full;
@@ -235,15 +239,31 @@ int cmd_bench(const BenchOptions& o) {
                scale_text(scale), scale_text(scale * scale));
 
   // Runs: repeat-major, so the two halves of the noise floor are apart in time.
+  // --variant: parsed (and checked against each technique's options below) up front.
+  std::vector<BenchVariant> variants;
+  for (const auto& v : o.variants) variants.push_back(parse_variant(v));
+
   std::vector<TechniqueRun> runs;
   for (auto* t : techs)
-    for (auto& w : workloads) {
+    for (auto& w : workloads)
+      for (size_t vi = 0; vi <= variants.size(); ++vi) {
       TechniqueRun r;
       r.technique = t;
       r.workload = w;
+      r.name = t->name;
       Settings s;
       s = apply_preset(*t, o.preset, s);
       s.spp_per_frame = 1;
+      if (vi > 0) {
+        const auto& [label, opts] = variants[vi - 1];  // BenchVariant
+        try {
+          s = apply_options(*t, s, opts);
+        } catch (const std::invalid_argument& e) {
+          throw PerfError(fmt::format("--variant {}: {}: {}", label, t->name, e.what()));
+        }
+        r.name = t->name + "+" + label;
+        r.base = int(runs.size() - vi);
+      }
       r.settings_full = s;
       r.settings_full.width = w.width;
       r.settings_full.height = w.height;
@@ -252,7 +272,7 @@ int cmd_bench(const BenchOptions& o) {
       r.settings_run.height = w.run_height;
       r.plan_full = compile_for(*t, scene, r.settings_full);
       runs.push_back(std::move(r));
-    }
+      }
   auto t_start = std::chrono::steady_clock::now();
   for (uint32_t rep = 0; rep < repeats; ++rep)
     for (auto& r : runs) {
@@ -283,7 +303,7 @@ int cmd_bench(const BenchOptions& o) {
         r.frame_ms.push_back(fr.total_ms);
         r.frame_repeat.push_back(rep);
       }
-      fmt::print("  [{}/{}] {} @ {} ({}): frame median {:.3f} ms\n", rep + 1, repeats, r.technique->name,
+      fmt::print("  [{}/{}] {} @ {} ({}): frame median {:.3f} ms\n", rep + 1, repeats, r.name,
                  r.workload.name(), r.workload.run_name(), median_of(r.frame_ms));
       std::fflush(stdout);
     }
@@ -313,7 +333,7 @@ int cmd_bench(const BenchOptions& o) {
 
   for (auto& r : runs) {
     const Workload& w = r.workload;
-    fmt::print("\n== {} @ {} (profiles: ", r.technique->name, w.name());
+    fmt::print("\n== {} @ {} (profiles: ", r.name, w.name());
     for (size_t i = 0; i < w.profiles.size(); ++i) fmt::print("{}{}", i ? ", " : "", w.profiles[i]->name);
     fmt::print(")");
     if (scale != 1) fmt::print(" measured at {} (scale {}), pass times scaled to {} by work x", w.run_name(), scale_text(scale), w.name());
@@ -324,13 +344,13 @@ int cmd_bench(const BenchOptions& o) {
       if (p->probes_per_frame && has_probe_pass)
         fmt::print("note: {} targets {} probes/frame; {} has no probes-per-frame setting, so it ran at its own "
                    "(16^3 probes of one cascade per frame)\n",
-                   p->name, *p->probes_per_frame, r.technique->name);
+                   p->name, *p->probes_per_frame, r.name);
     std::string header = fmt::format("{:<26} {:>10} {:>21} {:>7} {:>10} {:>9} {:>9} {:>9} |", "pass", "meas ms",
                                      "IQR [q1, q3]", "work x", "ms @full", "MB moved", "mem ms", "comp ms");
     for (auto* p : w.profiles) header += fmt::format(" {:>13}", p->name);
     fmt::print("{}\n", header);
 
-    nlohmann::json jr{{"technique", r.technique->name},
+    nlohmann::json jr{{"technique", r.name},
                       {"workload", {{"width", w.width}, {"height", w.height}}},
                       {"run", {{"width", w.run_width}, {"height", w.run_height}}},
                       {"profiles", nlohmann::json::array()}};
@@ -363,7 +383,7 @@ int cmd_bench(const BenchOptions& o) {
       bytes_total += double(pr.bytes_full.total());
       mem_total += split.memory_ms;
       comp_total += split.compute_ms;
-      const std::string key = fmt::format("{}/{}/{}", r.technique->name, pr.name, w.run_name());
+      const std::string key = fmt::format("{}/{}/{}", r.name, pr.name, w.run_name());
       medians[key] = s.median;
 
       // Noise floor: the same configuration timed twice in this run (even vs odd repeats, or
@@ -419,7 +439,7 @@ int cmd_bench(const BenchOptions& o) {
     Summary fs = summarize_samples(r.frame_ms);
     fmt::print("frame measured end to end: median {} ms, IQR [{}, {}] at {}\n", fmt_ms(fs.median), fmt_ms(fs.q1),
                fmt_ms(fs.q3), w.run_name());
-    const std::string fkey = fmt::format("{}/frame/{}", r.technique->name, w.run_name());
+    const std::string fkey = fmt::format("{}/frame/{}", r.name, w.run_name());
     medians[fkey] = fs.median;
     jr["frame"] = {{"key", fkey}, {"samples_ms", r.frame_ms}, {"sample_repeat", r.frame_repeat},
                    {"median_ms", fs.median}, {"sum_of_pass_medians_ms", meas_total},
@@ -433,7 +453,7 @@ int cmd_bench(const BenchOptions& o) {
       for (auto& [k, ours] : seed_ours[p->name]) {
         auto it = sp->ms.find(k);
         if (it == sp->ms.end()) continue;
-        jseed.push_back({{"technique", r.technique->name}, {"profile", p->name}, {"seed_key", k},
+        jseed.push_back({{"technique", r.name}, {"profile", p->name}, {"seed_key", k},
                          {"passes", seed_passes[k]}, {"ours_ms", ours}, {"seed_ms", it->second},
                          {"ratio", it->second > 0 ? ours / it->second : 0.0},
                          {"seed_resolution", {sp->width, sp->height}}});
@@ -492,6 +512,44 @@ int cmd_bench(const BenchOptions& o) {
                             {"worst_key", worst_key}, {"min_change", o.min_change}};
   }
 
+  // Variants against their plain run: the same repeats, interleaved, so machine drift hits both.
+  auto& jvar = out["variants"] = nlohmann::json::array();
+  for (auto& r : runs) {
+    if (r.base < 0) continue;
+    const TechniqueRun& b = runs[size_t(r.base)];
+    fmt::print("\n== variant {} vs {} @ {} (measured side by side; change = variant / plain - 1, Hodges-Lehmann "
+               "with 95% CI) ==\n",
+               r.name, b.name, r.workload.run_name());
+    fmt::print("{:<26} {:>10} {:>10} {:>9} {:>21} {:>8}  {}\n", "pass", "plain ms", "variant ms", "change", "95% CI",
+               "p", "verdict");
+    auto row = [&](const std::string& pass, const std::vector<double>& base, const std::vector<double>& next) {
+      if (base.empty() || next.empty()) {
+        fmt::print("{:<26} {:>10} {:>10}  {}\n", pass, base.empty() ? "-" : fmt_ms(median_of(base)),
+                   next.empty() ? "-" : fmt_ms(median_of(next)), base.empty() ? "only in the variant" : "culled in the variant");
+        jvar.push_back({{"variant", r.name}, {"base", b.name}, {"pass", pass}});
+        return;
+      }
+      RankTest t = mann_whitney(base, next);
+      Verdict v = judge(t, o.min_change);
+      fmt::print("{:<26} {:>10} {:>10} {:>9} {:>21} {:>8.3f}  {}\n", pass, fmt_ms(median_of(base)),
+                 fmt_ms(median_of(next)), fmt_pct(t.change),
+                 t.ci_valid ? fmt::format("[{}, {}]", fmt_pct(t.ci_low), fmt_pct(t.ci_high)) : "-", t.p,
+                 verdict_name(v));
+      jvar.push_back({{"variant", r.name}, {"base", b.name}, {"pass", pass}, {"base_median_ms", median_of(base)},
+                      {"variant_median_ms", median_of(next)}, {"change", t.change}, {"ci", {t.ci_low, t.ci_high}},
+                      {"p", t.p}, {"verdict", verdict_name(v)}});
+    };
+    std::set<std::string> done;
+    for (auto& bp : b.passes) {
+      auto it = std::find_if(r.passes.begin(), r.passes.end(), [&](const PassRun& x) { return x.name == bp.name; });
+      row(bp.name, bp.samples, it == r.passes.end() ? std::vector<double>{} : it->samples);
+      done.insert(bp.name);
+    }
+    for (auto& vp : r.passes)
+      if (!done.count(vp.name)) row(vp.name, {}, vp.samples);
+    row("frame", b.frame_ms, r.frame_ms);
+  }
+
   if (!o.json.empty()) {
     std::ofstream(o.json) << out.dump(1) << "\n";
     fmt::print("wrote {}\n", o.json);
@@ -514,6 +572,27 @@ int cmd_bench(const BenchOptions& o) {
     fmt::print("appended a line to {}\n", hist);
   }
   return 0;
+}
+
+BenchVariant parse_variant(const std::string& v) {
+  auto colon = v.find(':');
+  if (colon == std::string::npos || colon == 0)
+    throw PerfError(fmt::format("--variant \"{}\": expected LABEL:NAME=VALUE[,NAME=VALUE...]", v));
+  BenchVariant out{v.substr(0, colon), {}};
+  std::string rest = v.substr(colon + 1);
+  for (size_t at = 0; at <= rest.size();) {
+    size_t end = rest.find(',', at);
+    if (end == std::string::npos) end = rest.size();
+    std::string kv = rest.substr(at, end - at);
+    auto eq = kv.find('=');
+    char* stop = nullptr;
+    double value = eq == std::string::npos ? 0 : std::strtod(kv.c_str() + eq + 1, &stop);
+    if (eq == std::string::npos || eq == 0 || stop == kv.c_str() + eq + 1 || *stop != '\0')
+      throw PerfError(fmt::format("--variant \"{}\": expected NAME=VALUE, got \"{}\"", v, kv));
+    out.options[kv.substr(0, eq)] = value;
+    at = end + 1;
+  }
+  return out;
 }
 
 // ---------------------------------------------------------------- perf-diff

@@ -21,6 +21,9 @@ namespace gib::perf {
 struct BenchOptions {
   std::string profiles = "all";
   std::vector<std::string> techniques;  // empty: every technique
+  // "LABEL:NAME=VALUE[,NAME=VALUE...]": every technique is also timed with these technique
+  // options, interleaved with the plain run in each repeat, and compared with it per pass.
+  std::vector<std::string> variants;
   std::string case_name = "cornell";    // a case (cases/<name>.json), a scene, or a path
   std::string preset = "medium";
   uint32_t frames = 0;        // timed frames per repeat (0: 5 on a CPU device, 30 on a GPU)
@@ -36,6 +39,14 @@ struct BenchOptions {
   double min_change = 0.02;
 };
 int cmd_bench(const BenchOptions& o);
+
+// One --variant: "LABEL:NAME=VALUE[,NAME=VALUE...]"; PerfError names the flag and what was
+// expected (option names are checked against each technique when the runs are built).
+struct BenchVariant {
+  std::string label;
+  std::map<std::string, double> options;
+};
+BenchVariant parse_variant(const std::string& text);
 
 struct DiffOptions {
   std::string base, next;

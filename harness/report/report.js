@@ -377,7 +377,7 @@
       'aria-label': 'ROI mean / target per frame' }, kids);
   }
 
-  // Per resource scan counts (NaN/Inf/negative/above bound) and the first offenders.
+  // Per resource scan counts (NaN/Inf/negative/above bound/at format max) and the first offenders.
   function stabilitySection(row) {
     var st = row.stability;
     var plot = convergencePlot(row);
@@ -397,10 +397,10 @@
       (st.first_offenders || []).forEach(function (f) { out.push(h('p', { class: 'offender' }, f)); });
       if (recs.length) {
         out.push(h('table', { class: 'stability' }, [
-          h('thead', null, h('tr', null, ['pass', 'resource', 'NaN', 'Inf', 'negative', 'above bound', 'first frame', 'first at']
+          h('thead', null, h('tr', null, ['pass', 'resource', 'NaN', 'Inf', 'negative', 'above bound', 'at format max', 'first frame', 'first at']
             .map(function (t) { return h('th', null, t); }))),
           h('tbody', null, recs.map(function (r) {
-            return h('tr', null, [r.pass, r.resource, r.nan, r.inf, r.negative, r.above_max, r.first_frame, r.first_at]
+            return h('tr', null, [r.pass, r.resource, r.nan, r.inf, r.negative, r.above_max, r.saturated, r.first_frame, r.first_at]
               .map(function (v) { return h('td', null, v === undefined || v === null ? '' : String(v)); }));
           }))
         ]));

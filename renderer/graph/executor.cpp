@@ -206,6 +206,8 @@ void Executor::plan_stability_scan() {
       t.push.first_word = v.first_word;
       t.push.words = v.value_words;
       t.push.height = t.height;
+      t.push.format_max = v.format_max;
+      t.push.format_max_b = v.format_max_b;
       if (buffer) {
         t.groups_x = uint32_t(std::min<uint64_t>((count + glsl::kStabilityScanGroup - 1) / glsl::kStabilityScanGroup,
                                                  glsl::kStabilityScanMaxGroups));
@@ -224,6 +226,9 @@ void Executor::plan_stability_scan() {
       stability_.targets.push_back(st);
     }
   }
+  static_assert(kStabilityCategoryCount == glsl::kStabilityCategories &&
+                uint32_t(StabilityCategory::saturated) == glsl::kStabilitySaturated &&
+                uint32_t(StabilityCategory::above_max) == glsl::kStabilityAboveMax);
   static_assert(uint32_t(Domain::finite) == glsl::kStabilityDomainFinite &&
                 uint32_t(Domain::non_negative) == glsl::kStabilityDomainNonNegative &&
                 uint32_t(Domain::unit) == glsl::kStabilityDomainUnit);

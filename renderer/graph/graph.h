@@ -54,6 +54,12 @@ struct ValueDomain {
   // Buffers only (else not scanned): element i's value words are
   // [i * stride_words + first_word, ... + value_words); elements = bytes / 4 / stride_words.
   uint32_t stride_words = 0, first_word = 0, value_words = 0;
+  // Not declared (leave them +inf): effective_domain sets them from the storage format. A checked
+  // channel whose |value| >= its format maximum is counted as saturated, since the store clamps
+  // there silently: format_max for every channel, format_max_b for channel 2 (R11G11B10F's
+  // 10-bit B; equal to format_max elsewhere). +inf: the format has no silent saturation.
+  float format_max = std::numeric_limits<float>::infinity();
+  float format_max_b = std::numeric_limits<float>::infinity();
 
   bool scanned() const { return domain != Domain::none; }
   bool operator==(const ValueDomain&) const = default;

@@ -31,12 +31,14 @@ struct RadianceCacheSettings {
   bool visibility_test = true;      // leak mitigation: Chebyshev test on RG16F probe moments
   float normal_bias = 0.1f;         // leak mitigation: metres along the normal before sampling probes
   float view_bias = 0.1f;           // leak mitigation: metres towards the viewer
+  bool probe_rays = true;           // leak mitigation: a shadow ray from the sampled point to each of its 8 probes; blocked ones get no weight
   bool cache_side_key = true;       // leak mitigation: cache cells keyed by surface side, so the two faces of a thin wall differ
   bool disocclusion = true;         // temporal filter rejects history failing depth/normal tests
   uint32_t history_format = 0;      // 0 RGB9E5 (R32_UINT), 1 RGBA16F, 2 R11G11B10F, 3 RGBA32F
   uint32_t history_max_frames = 16; // n_max of the temporal filter
   uint32_t denoise_radius = 3;      // bilateral half-width in gather pixels
   bool multi_bounce = true;         // 0: no cache feeds back on itself (single bounce; white-furnace negative control)
+  bool pre_exposure = true;         // screen-space GI works on radiance x P (exposure pass); 0: P = 1 (negative control)
 };
 
 // Robustness debugging (technique options inject_nan, inject_frame, inject_x, inject_y): the pass

@@ -6,8 +6,12 @@
 #include <algorithm>
 #include <bit>
 #include <cstring>
+#include <limits>
 
+#include "renderer/codecs/half.h"
 #include "renderer/codecs/packed_float.h"
+#include "renderer/codecs/r11g11b10.h"
+#include "renderer/codecs/rgb9e5.h"
 #include "renderer/graph/executor.h"
 
 namespace gib {
@@ -19,6 +23,7 @@ const char* stability_category_name(StabilityCategory c) {
     case StabilityCategory::neg_inf: return "-Inf";
     case StabilityCategory::negative: return "Negative value";
     case StabilityCategory::above_max: return "Value above bound";
+    case StabilityCategory::saturated: return "Value at format maximum";
   }
   return "?";
 }
@@ -38,6 +43,23 @@ uint32_t format_channel_mask(Format f, Encoding e) {
   return 0u;
 }
 
+// The largest finite value a store to `f` (words decoded as `e`) keeps, where the store clamps
+// silently; channel 2's in *b. +inf: none (32-bit float, integer, unorm, depth formats).
+float format_max(Format f, Encoding e, float* b) {
+  float m = std::numeric_limits<float>::infinity();
+  switch (f) {
+    case Format::r32_uint: case Format::buffer:
+      if (e == Encoding::rgb9e5) m = codecs::kRgb9e5Max;
+      break;
+    case Format::e5b9g9r9_float: m = codecs::kRgb9e5Max; break;
+    case Format::rgba16_float: case Format::rg16_float: m = codecs::kHalfMax; break;
+    case Format::b10g11r11_float: *b = codecs::kB10Max; return codecs::kR11Max;
+    default: break;
+  }
+  *b = m;
+  return m;
+}
+
 }  // namespace
 
 ValueDomain effective_domain(Format format, const ValueDomain& v) {
@@ -52,6 +74,7 @@ ValueDomain effective_domain(Format format, const ValueDomain& v) {
   e.channels &= mask;
   e.signed_channels &= e.channels;
   if (v.domain == Domain::unit) e.max_value = std::min(v.max_value, 1.0f);
+  e.format_max = format_max(format, v.encoding, &e.format_max_b);
   return e;
 }
 
@@ -76,6 +99,9 @@ uint32_t stability_classify(const float* values, uint32_t count, const ValueDoma
     if (neg && !is_signed && (v.domain == Domain::non_negative || v.domain == Domain::unit))
       flags |= 1u << uint32_t(StabilityCategory::negative);
     if ((is_signed || !neg) && a > v.max_value) flags |= 1u << uint32_t(StabilityCategory::above_max);
+    // On bits, as the GPU: a finite magnitude's bits order like its value; +inf is above all.
+    if (mag >= std::bit_cast<uint32_t>(c == 2 ? v.format_max_b : v.format_max))
+      flags |= 1u << uint32_t(StabilityCategory::saturated);
   }
   return flags;
 }

@@ -1,6 +1,6 @@
 // Numerical-stability scan results: which pass first produced a NaN, an Inf, a negative value
-// where the resource's domain forbids it, or a value above its declared bound, at which frame
-// and texel / element. The scan itself runs on the GPU (stability_scan*.comp, dispatched by
+// where the resource's domain forbids it, a value above its declared bound, or a value at its
+// storage format's largest finite value (silent saturation), at which frame and texel / element. The scan itself runs on the GPU (stability_scan*.comp, dispatched by
 // the Executor after every pass over each resource it writes whose ResourceDesc::values has a
 // domain); this header holds the report and the CPU mirror of the classification.
 #pragma once
@@ -13,13 +13,19 @@
 
 namespace gib {
 
-enum class StabilityCategory : uint32_t { nan, pos_inf, neg_inf, negative, above_max };
-inline constexpr uint32_t kStabilityCategoryCount = 5;
-const char* stability_category_name(StabilityCategory c);  // "NaN", "+Inf", "-Inf", "Negative value", "Value above bound"
+// saturated: a checked channel's finite |value| >= the largest finite value of the resource's
+// storage encoding (RGB9E5 words / E5B9G9R9 65408; R11G11B10F 65024, its B 64512; RGBA16F /
+// RG16F 65504), where a store clamps silently; never for 32-bit float, integer or unorm formats.
+// Counted for every scanned resource, whatever its declared domain.
+enum class StabilityCategory : uint32_t { nan, pos_inf, neg_inf, negative, above_max, saturated };
+inline constexpr uint32_t kStabilityCategoryCount = 6;
+// "NaN", "+Inf", "-Inf", "Negative value", "Value above bound", "Value at format maximum"
+const char* stability_category_name(StabilityCategory c);
 
 // ---- CPU mirror of the GPU scan (tests, tools)
 // The domain as the scan applies it to a resource of `format`: channels limited to those the
-// format has (images; RGB9E5 words decode to 3), the bound min(max_value, 1) for unit.
+// format has (images; RGB9E5 words decode to 3), the bound min(max_value, 1) for unit, and
+// format_max / format_max_b set to the format's (or RGB9E5 encoding's) largest finite value.
 ValueDomain effective_domain(Format format, const ValueDomain& v);
 // Categories (bit c = StabilityCategory c) of one element whose checked channel values are
 // values[0..count), with `v` already effective. Raises *max_abs to the largest finite |value|.

@@ -35,6 +35,8 @@ void scan_value(float v, uint channel) {
   f |= mag == 0x7f800000u ? (1u << (neg ? kStabilityNegInf : kStabilityPosInf)) : 0u;
   f |= finite && neg && !may_be_negative && pc.domain >= kStabilityDomainNonNegative ? (1u << kStabilityNegative) : 0u;
   f |= finite && (may_be_negative || !neg) && uintBitsToFloat(mag) > pc.max_value ? (1u << kStabilityAboveMax) : 0u;
+  const uint format_max_bits = floatBitsToUint(channel == 2u ? pc.format_max_b : pc.format_max);
+  f |= finite && mag >= format_max_bits ? (1u << kStabilitySaturated) : 0u;
   t_flags |= f;
   t_max_bits = max(t_max_bits, finite ? mag : 0u);
 }

@@ -20,14 +20,15 @@ GIB_CONST(uint, kStabilityPosInf, 1)
 GIB_CONST(uint, kStabilityNegInf, 2)
 GIB_CONST(uint, kStabilityNegative, 3)  // finite and < 0 where the domain forbids it
 GIB_CONST(uint, kStabilityAboveMax, 4)  // finite and > the bound (|v| for signed channels)
-GIB_CONST(uint, kStabilityCategories, 5)
+GIB_CONST(uint, kStabilitySaturated, 5)  // finite and |v| >= the storage format's largest finite value
+GIB_CONST(uint, kStabilityCategories, 6)
 
-// One record: words [0,5) counts per category, [5,10) first offender per category stored as
-// ~linear_index with atomicMax (0: none, so a zero-filled buffer is a reset one), word 10 the
+// One record: words [0,6) counts per category, [6,12) first offender per category stored as
+// ~linear_index with atomicMax (0: none, so a zero-filled buffer is a reset one), word 12 the
 // largest finite |value| seen (float bits, atomicMax), the rest padding.
 GIB_CONST(uint, kStabilityRecordWords, 16)
-GIB_CONST(uint, kStabilityRecordFirst, 5)
-GIB_CONST(uint, kStabilityRecordMaxAbs, 10)
+GIB_CONST(uint, kStabilityRecordFirst, 6)
+GIB_CONST(uint, kStabilityRecordMaxAbs, 12)
 
 // Domain codes (Domain in graph.h): 1 finite, 2 non-negative, 3 unit ([0, 1]).
 GIB_CONST(uint, kStabilityDomainFinite, 1)
@@ -49,6 +50,8 @@ struct StabilityScanPush {
   uint first_word;       // buffers: first value word of an element
   uint words;            // buffers: consecutive value words per element
   uint height;           // images
+  float format_max;      // saturated: |v| >= this (bits compared; +inf: never), every channel but 2
+  float format_max_b;    // the same for channel 2 (R11G11B10F's 10-bit B)
 };
 
 GIB_SHARED_END

@@ -7,6 +7,7 @@
 
 #include "renderer/passes/composite/composite.h"
 #include "renderer/passes/direct_lighting/direct_lighting.h"
+#include "renderer/passes/exposure/exposure.h"
 #include "renderer/passes/final_gather/final_gather.h"
 #include "renderer/passes/gbuffer/gbuffer.h"
 #include "renderer/passes/gi_denoise/gi_denoise.h"
@@ -34,6 +35,7 @@ const std::vector<std::pair<std::string, std::function<std::unique_ptr<Pass>()>>
       {"radiance_cache_update", make_radiance_cache_update_pass},
       {"radiance_cache_shade", make_radiance_cache_shade_pass},
       {"irradiance_volume_update", make_irradiance_volume_update_pass},
+      {"exposure", make_exposure_pass},
       {"final_gather", make_final_gather_pass},
       {"gi_denoise", make_gi_denoise_pass},
       {"gi_upscale", make_gi_upscale_pass},

@@ -22,7 +22,7 @@ const std::vector<Technique>& techniques() {
        "idTech 8 GI: light grid, cascaded irradiance volumes, world radiance cache, 1/2-1/4 res final gather, "
        "bilateral denoise, upscale + temporal filter (renderer/techniques/radiance_cache.md)",
        {"visibility", "gbuffer", "direct_lighting", "light_grid", "probe_trace", "radiance_cache_update",
-        "radiance_cache_shade", "irradiance_volume_update", "final_gather", "gi_denoise", "gi_upscale", "composite"},
+        "radiance_cache_shade", "irradiance_volume_update", "exposure", "final_gather", "gi_denoise", "gi_upscale", "composite"},
        "final_color",
        {"indirect_diffuse", "gi_irradiance", "direct_light", "probe_irradiance", "probe_visibility", "gather_sh_r",
         "gbuffer_albedo", "gbuffer_normal", "gbuffer_position"},
@@ -135,6 +135,10 @@ const std::vector<TechniqueOption>& technique_options(const Technique& t) {
        GIB_FLOAT_OPTION(s.rc.normal_bias)},
       {"view_bias", "leak mitigation: metres towards the viewer before sampling probes", 0, 10, false,
        GIB_FLOAT_OPTION(s.rc.view_bias)},
+      {"probe_rays",
+       "leak mitigation: a shadow ray from each point that samples the volumes to each of its 8 probes; "
+       "blocked probes get no weight (0/1)",
+       0, 1, true, GIB_BOOL_OPTION(s.rc.probe_rays)},
       {"cache_side_key", "leak mitigation: radiance-cache cells keyed by surface side (0/1)", 0, 1, true,
        GIB_BOOL_OPTION(s.rc.cache_side_key)},
       {"disocclusion", "temporal filter rejects history failing depth/normal tests (0/1)", 0, 1, true,
@@ -158,6 +162,10 @@ const std::vector<TechniqueOption>& technique_options(const Technique& t) {
        "1: caches feed back on themselves (cells and volumes shade bounces from last frame's volumes, the "
        "gather reads last frame's image); 0: single bounce (white-furnace negative control)",
        0, 1, true, GIB_BOOL_OPTION(s.rc.multi_bounce)},
+      {"pre_exposure",
+       "1: the gather, denoise and upscale work on radiance x P, P = 1 / log-average luminance of the frame "
+       "(exposure pass), so RGBA16F SH and the history do not clamp under bright light; 0: P = 1 (negative control)",
+       0, 1, true, GIB_BOOL_OPTION(s.rc.pre_exposure)},
   }, {0, 1, 2});
   static const std::vector<TechniqueOption> kNone;
   if (t.name == "direct") return kDirect;

@@ -9,12 +9,8 @@ GIB_SCENE_BUFFERS(0, kBindSceneFirst)
 layout(constant_id = kDirectSpecSun) const bool kHasSun = true;
 layout(constant_id = kDirectSpecSky) const bool kHasSky = true;
 layout(constant_id = kDirectSpecLocal) const bool kHasLocal = true;
-layout(constant_id = kDirectSpecAlpha) const bool kHasAlpha = true;
-#define GIB_ALPHA_TEST
-bool gib_alpha_accept(uint triangle, float u, float v) {
-  return !kHasAlpha || gib_alpha_accept_default(triangle, u, v, gib_pcg(triangle ^ gib_frame_index()));
-}
-#include "bvh.glsl"
+#define GIB_ALPHA_SPEC kDirectSpecAlpha
+#include "bvh_alpha.glsl"
 #include "lights.glsl"
 #include "surface.glsl"
 #include "finite.glsl"

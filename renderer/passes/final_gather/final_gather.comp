@@ -9,12 +9,8 @@
 GIB_SCENE_BUFFERS(0, kBindSceneFirst)
 #include "hash.glsl"
 #include "material.glsl"
-layout(constant_id = kGatherSpecAlpha) const bool kHasAlpha = true;
-#define GIB_ALPHA_TEST
-bool gib_alpha_accept(uint triangle, float u, float v) {
-  return !kHasAlpha || gib_alpha_accept_default(triangle, u, v, gib_pcg(triangle ^ gib_frame_index()));
-}
-#include "bvh.glsl"
+#define GIB_ALPHA_SPEC kGatherSpecAlpha
+#include "bvh_alpha.glsl"
 #include "lights.glsl"
 #include "surface.glsl"
 #include "sh.glsl"
@@ -24,6 +20,7 @@ layout(push_constant) uniform Push {
   RcParams rc;
   GatherPush push;
 };
+#define RC_PROBE_RAYS
 #include "probe_volume.glsl"
 RC_PROBE_IMAGES(kGatherBindProbeIrradiance, kGatherBindProbeVisibility)
 #include "radiance_cache.glsl"
@@ -39,9 +36,14 @@ layout(set = 0, binding = kGatherBindShR, rgba16f) uniform writeonly image2D out
 layout(set = 0, binding = kGatherBindShG, rgba16f) uniform writeonly image2D out_sh_g;
 layout(set = 0, binding = kGatherBindShB, rgba16f) uniform writeonly image2D out_sh_b;
 layout(set = 0, binding = kGatherBindHitDistance, r32f) uniform writeonly image2D out_hit;
+// Pre-exposure (exposure pass): float[4], P this frame at kGatherExposureNow.
+layout(set = 0, binding = kGatherBindExposure, std430) readonly buffer Exposure { float exposure[4]; };
 
 const float kFar = 3.4e38;
-const float kHalfMax = 65000.0;  // keep SH coefficients inside RGBA16F's range
+// RGBA16F's largest finite value: SH coefficients are clamped to it so they stay finite in the
+// store, and a clamped one is exactly the format's maximum, which the stability scan counts as
+// 'Value at format maximum' (a clamp just below it would hide the saturation).
+const float kHalfMax = 65504.0;
 
 // Screen cache: last frame's shaded colour at the hit, if the hit was on screen and visible.
 // Visibility: the hit's view depth under prev_view_proj (clip w) matches, within a relative
@@ -137,7 +139,9 @@ void main() {
   // from any source is treated as a miss that returns nothing.
   if (rc.flags.y != 0u && !gib_finite(radiance)) radiance = vec3(0.0);
   atomicAdd(gather_stats[served], 1u);
-  radiance = gib_max0_keep_nan(radiance);
+  // Pre-exposure: the SH (RGBA16F) hold radiance x P, P ~ 1 / the frame's typical luminance,
+  // so bright skies do not clamp at the format's maximum; gi_upscale divides it out.
+  radiance = gib_max0_keep_nan(radiance * exposure[kGatherExposureNow]);
   float weight = GIB_PI / max(cos_t, kGatherMinCos);
   vec4 bd = gib_sh2_basis(d), bn = gib_sh2_basis(n);
   write_out(g, sample_sh(radiance.r, bd, bn, weight), sample_sh(radiance.g, bd, bn, weight),

@@ -23,6 +23,7 @@ class FinalGatherPass final : public Pass {
                {"rc_cells", Access::read},
                {"probe_irradiance", Access::read},
                {"probe_visibility", Access::read},
+               {"exposure", Access::read},
                {"gather_sh_r", Access::write, sh},
                {"gather_sh_g", Access::write, sh},
                {"gather_sh_b", Access::write, sh},
@@ -62,6 +63,7 @@ class FinalGatherPass final : public Pass {
     image(kGatherBindProbeVisibility, ctx.image("probe_visibility"));
     buffer(kGatherBindCells, ctx.buffer("rc_cells"));
     buffer(kGatherBindStats, ctx.buffer("gather_stats"));
+    buffer(kGatherBindExposure, ctx.buffer("exposure"));
     image(kGatherBindShR, ctx.image("gather_sh_r"));
     image(kGatherBindShG, ctx.image("gather_sh_g"));
     image(kGatherBindShB, ctx.image("gather_sh_b"));

@@ -18,7 +18,7 @@
 // makes L0 = 2 pi Y00 L). The plain projection's L0 = L Y00 pi / cos has infinite variance (a
 // grazing ray weighs up to 50x); this one is exact at the gather normal (a flat pixel under a
 // constant sky is noise-free), and the L1 band carries the direction for other normals.
-// Slots: reads gbuffer_normal, gbuffer_position, rc_cells, probe_irradiance, probe_visibility,
+// Slots: reads gbuffer_normal, gbuffer_position, rc_cells, probe_irradiance, probe_visibility, exposure,
 // read_prev gbuffer_position, read_prev final_color; writes gather_sh_r/g/b (RGBA16F: L0, L1),
 // gather_hit_distance (R32F: metres, 1000 on a miss, 0 for a sky gather pixel) and
 // gather_stats (buffer, uint[4]: rays served by screen, world, volume, sky this frame; cleared
@@ -29,6 +29,8 @@
 // slot table) is not read: albedo is applied in composite. The screen cache uses the current
 // camera position for its facing test (last frame's is not in the frame constants). Rays leave
 // along the shading normal's hemisphere; one that dips below the true face may self-hit.
+// Pre-exposure: every sample's radiance (sky, screen, world, volumes) is multiplied by P_now,
+// word 0 of the `exposure` buffer (exposure.h), before the projection: the SH hold radiance x P.
 // NaN guard (RcParams.flags.y): a non-finite screen-cache sample is a miss, any other non-finite
 // answer is 0, a non-finite normal writes an empty sample. multi_bounce 0: no screen cache.
 #pragma once

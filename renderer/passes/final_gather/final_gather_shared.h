@@ -20,6 +20,8 @@ GIB_CONST(uint, kGatherBindShR, 16)          // gather_sh_r/g/b (rgba16f: L0, L1
 GIB_CONST(uint, kGatherBindShG, 17)
 GIB_CONST(uint, kGatherBindShB, 18)
 GIB_CONST(uint, kGatherBindHitDistance, 19)  // gather_hit_distance (r32f)
+GIB_CONST(uint, kGatherBindExposure, 20)     // exposure (float[4], exposure_shared.h: P_now at 0)
+GIB_CONST(uint, kGatherExposureNow, 0)
 GIB_CONST(uint, kGatherSpecAlpha, 0)
 
 // gather_stats: which cache answered each ray this frame.

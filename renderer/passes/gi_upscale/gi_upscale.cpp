@@ -48,6 +48,7 @@ class GiUpscalePass final : public Pass {
                {"gi_history", Access::read_prev},
                {"gi_history_frames", Access::write, frames},
                {"gi_history_frames", Access::read_prev},
+               {"exposure", Access::read},
                {"gi_irradiance", Access::write, ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values())}};
     return d;
   }
@@ -79,6 +80,8 @@ class GiUpscalePass final : public Pass {
     image(kUpscaleBindHistory, ctx.image("gi_history"));
     image(kUpscaleBindFrames, ctx.image("gi_history_frames"));
     image(kUpscaleBindIrradiance, ctx.image("gi_irradiance"));
+    desc.bindings.push_back({kUpscaleBindExposure, DescriptorKind::storage_buffer});
+    binds.push_back({kUpscaleBindExposure, &ctx.buffer("exposure"), nullptr});
     auto pipeline = ctx.gpu.compute_pipeline(desc);
     ctx.cmd.bind(*pipeline, binds, &push, sizeof(push));
     ctx.cmd.dispatch(div_up(ctx.width("gi_irradiance"), kUpscaleGroup),

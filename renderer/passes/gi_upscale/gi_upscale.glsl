@@ -19,6 +19,9 @@ layout(set = 0, binding = kUpscaleBindPrevFrames, r32f) uniform readonly image2D
 layout(set = 0, binding = kUpscaleBindFrames, r32f) uniform writeonly image2D out_frames;
 layout(set = 0, binding = kUpscaleBindIrradiance, rgba32f) uniform writeonly image2D out_irradiance;
 layout(push_constant) uniform Push { UpscalePush push; };
+// Pre-exposure (exposure pass): the gather SH and the history hold irradiance / pi x P; P_now
+// is this frame's P, P_prev the one last frame's history was stored with.
+layout(set = 0, binding = kUpscaleBindExposure, std430) readonly buffer Exposure { float exposure[4]; };
 
 // History storage. store_history returns exactly what a later load returns: values are
 // quantised here with a known rounding (the codec's or packHalf2x16), so the image's own
@@ -63,10 +66,11 @@ vec3 store_history(ivec2 p, vec3 v) {
 }
 #endif
 
+// value is pre-exposed (x P_now) and stored so; gi_irradiance is in absolute units.
 void write_out(ivec2 p, vec3 value, float frames) {
   vec3 stored = store_history(p, value);
   imageStore(out_frames, p, vec4(frames, 0.0, 0.0, 0.0));
-  imageStore(out_irradiance, p, vec4(stored, 1.0));
+  imageStore(out_irradiance, p, vec4(stored / exposure[kUpscaleExposureNow], 1.0));
 }
 
 // How much gather sample g (a gather-res pixel) lies on the surface at x with normal n: normal
@@ -78,13 +82,19 @@ float tap_similarity(ivec2 g, vec3 x, vec3 n, float dist) {
   if (gp.w == 0.0) return 0.0;
   vec3 gn = imageLoad(gb_normal, src).xyz;
   float s = pow(max(0.0, dot(n, gn)), kUpscaleNormalPower) * exp(-abs(dot(n, gp.xyz - x)) / (dist * kUpscaleDepthSigma));
-  if (push.nan_guards != 0u) {
-    // Guard: a tap with a non-finite similarity (NaN normal) or SH is not on any surface.
-    bool ok = gib_finite(s) && gib_finite(imageLoad(sh_r, g)) && gib_finite(imageLoad(sh_g, g)) &&
-              gib_finite(imageLoad(sh_b, g));
-    if (!ok) return 0.0;
-  }
+  // Guard: a tap with a non-finite similarity (NaN normal) is not on any surface. (Its SH are
+  // checked where they are loaded anyway: loading them here too cost gi_upscale +27% on an H100.)
+  if (push.nan_guards != 0u && !gib_finite(s)) return 0.0;
   return s;
+}
+
+// Gather sample g's SH (r, g, b); false when the guards are on and one is not finite (such a
+// tap is not on any surface).
+bool tap_sh(ivec2 g, out vec4 r, out vec4 gg, out vec4 b) {
+  r = imageLoad(sh_r, g);
+  gg = imageLoad(sh_g, g);
+  b = imageLoad(sh_b, g);
+  return push.nan_guards == 0u || (gib_finite(r) && gib_finite(gg) && gib_finite(b));
 }
 
 // 4-tap bilateral upscale of the denoised gather SH, evaluated with the full-res normal.
@@ -103,15 +113,17 @@ bool upscale(ivec2 p, vec3 x, vec3 n, float dist, out vec3 irradiance) {
     ivec2 o = ivec2(i & 1, i >> 1);
     ivec2 g = clamp(g0 + o, ivec2(0), gsize - 1);
     float similar = tap_similarity(g, x, n, dist);
+    if (push.nan_guards != 0u && similar == 0.0) continue;  // 0 x NaN would still be NaN
+    vec4 r, gg, b;
+    if (!tap_sh(g, r, gg, b)) continue;
     if (similar > best) {
       best = similar;
       best_g = g;
     }
-    if (push.nan_guards != 0u && similar == 0.0) continue;  // 0 x NaN would still be NaN
     float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y) * similar;
-    acc_r += w * imageLoad(sh_r, g);
-    acc_g += w * imageLoad(sh_g, g);
-    acc_b += w * imageLoad(sh_b, g);
+    acc_r += w * r;
+    acc_g += w * gg;
+    acc_b += w * b;
     acc_w += w;
   }
   if (acc_w > 1e-4) {
@@ -132,10 +144,7 @@ bool upscale(ivec2 p, vec3 x, vec3 n, float dist, out vec3 irradiance) {
             best_g = g;
           }
         }
-    if (best <= 1e-3) return false;
-    acc_r = imageLoad(sh_r, best_g);
-    acc_g = imageLoad(sh_g, best_g);
-    acc_b = imageLoad(sh_b, best_g);
+    if (best <= 1e-3 || !tap_sh(best_g, acc_r, acc_g, acc_b)) return false;
   }
   vec3 e = vec3(gib_sh2_irradiance(acc_r, n), gib_sh2_irradiance(acc_g, n), gib_sh2_irradiance(acc_b, n));
   if (push.nan_guards != 0u && !gib_finite(e)) return false;
@@ -182,7 +191,8 @@ bool reproject(vec3 x, vec3 n, out vec3 prev, out float frames) {
     sum_w += w;
   }
   if (sum_w < 1e-2) return false;
-  prev = sum / sum_w;
+  // Last frame's history was stored x P_prev: bring it to this frame's P_now.
+  prev = sum / sum_w * (exposure[kUpscaleExposureNow] / exposure[kUpscaleExposurePrev]);
   frames = sum_n / sum_w;
   return true;
 }

@@ -9,10 +9,14 @@
 // texels is dropped when `disocclusion` is on and its last-frame G-buffer sample fails the
 // depth test (distance of p from that sample's tangent plane > 5% of p's depth in last frame's
 // view) or the normal test (dot < 0.9); n restarts at 0 when none is left, the reprojection is
-// off screen, or on the first frame. gi_irradiance is the stored (quantised) history, so every
-// history_format shows its own precision.
+// off screen, or on the first frame. gi_irradiance is the stored (quantised) history / P_now, so
+// every history_format shows its own precision.
+// Pre-exposure (exposure.h): the gather SH and the history hold irradiance / pi x P. Prev is
+// rescaled by P_now / P_prev (word 0 and 1 of the `exposure` buffer) before the blend, the
+// history is stored x P_now, and gi_irradiance is divided by P_now (absolute units). Every
+// threshold here is on weights or geometry, none on values, so P changes none of them.
 // Slots: reads gi_sh_r/g/b, gbuffer_normal, gbuffer_position, read_prev gbuffer_position,
-// read_prev gbuffer_normal, read_prev gi_history, read_prev gi_history_frames; writes
+// read_prev gbuffer_normal, read_prev gi_history, read_prev gi_history_frames, exposure; writes
 // gi_history (persistent ping-pong; history_format 0 RGB9E5 in R32_UINT, 1 RGBA16F,
 // 2 R11G11B10F (b10g11r11_float), 3 RGBA32F), gi_history_frames (R32F n, persistent ping-pong)
 // and gi_irradiance (RGBA32F, irradiance / pi; 0 on sky pixels).

@@ -15,6 +15,9 @@ GIB_CONST(uint, kUpscaleBindPrevFrames, 16)   // last frame's gi_history_frames
 GIB_CONST(uint, kUpscaleBindHistory, 17)      // gi_history (format: history_format)
 GIB_CONST(uint, kUpscaleBindFrames, 18)       // gi_history_frames (r32f: n)
 GIB_CONST(uint, kUpscaleBindIrradiance, 19)   // gi_irradiance (rgba32f: irradiance / pi)
+GIB_CONST(uint, kUpscaleBindExposure, 20)     // exposure (float[4], exposure_shared.h: P_now, P_prev)
+GIB_CONST(uint, kUpscaleExposureNow, 0)
+GIB_CONST(uint, kUpscaleExposurePrev, 1)
 // Upscale weights of gather sample g for full-res pixel p (normal n_p, position x_p, view
 // distance d_p): bilinear x pow(max(0, dot(n_p, n_g)), kUpscaleNormalPower) x
 // exp(-|dot(n_p, x_g - x_p)| / (d_p * kUpscaleDepthSigma)).

@@ -14,6 +14,9 @@ GIB_SCENE_BUFFERS(0, kBindSceneFirst)
 #include "lights.glsl"
 #include "surface.glsl"
 #include "finite.glsl"
+#include "hash.glsl"
+#define GIB_ALPHA_SPEC kIvSpecAlpha
+#include "bvh_alpha.glsl"
 layout(constant_id = kIvSpecCacheFallback) const bool kCacheFallback = true;
 
 layout(local_size_x = kIvGroup, local_size_y = kIvGroup) in;
@@ -21,6 +24,7 @@ layout(std430, set = 0, binding = kIvBindHits) readonly buffer HitBuffer { Probe
 layout(set = 0, binding = kIvBindIrradiance, r32ui) uniform writeonly uimage2D out_irradiance;
 layout(set = 0, binding = kIvBindVisibility, rg16f) uniform writeonly image2D out_visibility;
 layout(push_constant) uniform Push { RcParams rc; };
+#define RC_PROBE_RAYS
 #include "probe_volume.glsl"
 RC_PROBE_IMAGES(kIvBindPrevIrradiance, kIvBindPrevVisibility)
 #include "radiance_cache.glsl"

@@ -14,12 +14,16 @@ GIB_SCENE_BUFFERS(0, kBindSceneFirst)
 #include "lights.glsl"
 #include "surface.glsl"
 #include "finite.glsl"
+#include "hash.glsl"
+#define GIB_ALPHA_SPEC kIvSpecAlpha
+#include "bvh_alpha.glsl"
 layout(constant_id = kIvSpecCacheFallback) const bool kCacheFallback = true;
 
 layout(local_size_x = kIvRaysGroup) in;
 layout(std430, set = 0, binding = kIvBindHits) readonly buffer HitBuffer { ProbeHit probe_hits[]; };
 layout(std430, set = 0, binding = kIvBindRays) writeonly buffer RayBuffer { vec4 probe_ray_radiance[]; };
 layout(push_constant) uniform Push { RcParams rc; };
+#define RC_PROBE_RAYS
 #include "probe_volume.glsl"
 RC_PROBE_IMAGES(kIvBindPrevIrradiance, kIvBindPrevVisibility)
 #include "radiance_cache.glsl"

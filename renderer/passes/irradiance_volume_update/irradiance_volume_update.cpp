@@ -35,6 +35,7 @@ class IrradianceVolumeUpdatePass final : public Pass {
 
   void record(RecordContext& ctx) override {
     using namespace glsl;
+    const uint32_t alpha = ctx.scene.features().has(Feature::alpha_tested) ? 1u : 0u;
     // Cascades not updated this frame carry over from last frame's copy; the updated one is
     // rewritten whole by the convolve below.
     ctx.cmd.begin_label("irradiance_volume_update/carry");
@@ -64,7 +65,7 @@ class IrradianceVolumeUpdatePass final : public Pass {
                            .groups_x = kProbesPerCascade,
                            .push = &push,
                            .push_bytes = sizeof(push),
-                           .spec_constants = {{kIvSpecCacheFallback, 1}},
+                           .spec_constants = {{kIvSpecCacheFallback, 1}, {kIvSpecAlpha, alpha}},
                            .buffers = {{kIvBindHits, "probe_hits"}, {kIvBindCells, "rc_cells"}}});
       ctx.cmd.end_label();
       // The split path's ray buffer is unused here: zeroed so nothing (the stability scan, a
@@ -80,7 +81,7 @@ class IrradianceVolumeUpdatePass final : public Pass {
                          .groups_x = div_up(kProbesPerCascade * ctx.settings.rc.rays_per_probe, kIvRaysGroup),
                          .push = &push,
                          .push_bytes = sizeof(push),
-                         .spec_constants = {{kIvSpecCacheFallback, 1}},
+                         .spec_constants = {{kIvSpecCacheFallback, 1}, {kIvSpecAlpha, alpha}},
                          .buffers = {{kIvBindHits, "probe_hits"}, {kIvBindCells, "rc_cells"},
                                      {kIvBindRays, "probe_ray_radiance"}}});
     ctx.cmd.end_label();

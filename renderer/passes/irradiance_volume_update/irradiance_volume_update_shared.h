@@ -16,6 +16,7 @@ GIB_CONST(uint, kIvBindIrradiance, 12)          // this frame's probe_irradiance
 GIB_CONST(uint, kIvBindVisibility, 13)          // this frame's probe_visibility
 GIB_CONST(uint, kIvBindRays, 14)                // probe_ray_radiance: vec4 (rgb, distance) per ray
 GIB_CONST(uint, kIvSpecCacheFallback, 0)        // 1: hits without a shaded cell use last frame's volumes
+GIB_CONST(uint, kIvSpecAlpha, 1)                // 1: the scene has alpha-tested materials (probe rays test them)
 // Exponent k of the max(0, n.d)^k weight of the distance moments.
 GIB_CONST(float, kIvDistanceSharpness, 16.0)
 struct IvPush {

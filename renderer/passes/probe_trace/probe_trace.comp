@@ -6,12 +6,8 @@
 GIB_SCENE_BUFFERS(0, kBindSceneFirst)
 #include "hash.glsl"
 #include "material.glsl"
-layout(constant_id = kProbeTraceSpecAlpha) const bool kHasAlpha = true;
-#define GIB_ALPHA_TEST
-bool gib_alpha_accept(uint triangle, float u, float v) {
-  return !kHasAlpha || gib_alpha_accept_default(triangle, u, v, gib_pcg(triangle ^ gib_frame_index()));
-}
-#include "bvh.glsl"
+#define GIB_ALPHA_SPEC kProbeTraceSpecAlpha
+#include "bvh_alpha.glsl"
 
 layout(local_size_x = kProbeTraceGroup) in;
 layout(std430, set = 0, binding = kProbeTraceBindHits) writeonly buffer HitBuffer { ProbeHit probe_hits[]; };

@@ -9,12 +9,8 @@ GIB_SCENE_BUFFERS(0, kBindSceneFirst)
 layout(constant_id = kRcShadeSpecSun) const bool kHasSun = true;
 layout(constant_id = kRcShadeSpecSky) const bool kHasSky = true;
 layout(constant_id = kRcShadeSpecLocal) const bool kHasLocal = true;
-layout(constant_id = kRcShadeSpecAlpha) const bool kHasAlpha = true;
-#define GIB_ALPHA_TEST
-bool gib_alpha_accept(uint triangle, float u, float v) {
-  return !kHasAlpha || gib_alpha_accept_default(triangle, u, v, gib_pcg(triangle ^ gib_frame_index()));
-}
-#include "bvh.glsl"
+#define GIB_ALPHA_SPEC kRcShadeSpecAlpha
+#include "bvh_alpha.glsl"
 #include "lights.glsl"
 #include "surface.glsl"
 #include "finite.glsl"
@@ -28,6 +24,7 @@ layout(push_constant) uniform Push {
   LightGridParams lg;
   uvec4 inject;
 };
+#define RC_PROBE_RAYS
 #include "probe_volume.glsl"
 RC_PROBE_IMAGES(kRcShadeBindProbeIrradiance, kRcShadeBindProbeVisibility)
 #include "radiance_cache.glsl"

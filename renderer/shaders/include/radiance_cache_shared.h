@@ -58,7 +58,8 @@ struct RcParams {
   vec4 bias;    // x: normal bias (m), y: view bias (m), z: visibility test (0/1), w: probe hysteresis
   uvec4 misc;   // x: frame, y: cache reuse frames, z: gather divisor, w: light-grid cascades
   uvec4 flags;  // x: cache cells keyed by surface side (leak mitigation), y: NaN guards (Settings::nan_guards),
-                //    z: multi-bounce (RadianceCacheSettings::multi_bounce), w: unused
+                //    z: multi-bounce (RadianceCacheSettings::multi_bounce), w: probe rays (leak mitigation:
+                //    a shadow ray from the sampled point to each probe; blocked probes get no weight)
 };
 struct LightGridParams {
   vec4 extent;  // x: cascade-0 extent (m), y: cascades, z: light count, w: unused
