@@ -62,7 +62,7 @@ CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const s
   std::vector<uint32_t> eval = reference ? std::vector<uint32_t>{} : evaluation_frames(c);
   std::optional<metrics::Roi> curve_roi;
   // A reference accumulating to its spp budget draws no curve; one running frames (see above) does.
-  if ((!reference || !spp_budget) && c.convergence) {
+  if (!spp_budget && c.convergence) {
     curve_roi = metrics::Roi{};
     for (auto& roi : c.rois)
       if (roi.name == c.convergence->roi) curve_roi = metrics::Roi{roi.x0, roi.y0, roi.x1, roi.y1};

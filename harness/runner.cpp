@@ -97,6 +97,18 @@ FloatImage crop(const FloatImage& img, const Roi* r) {
 
 std::string fmt_value(double v) { return std::isinf(v) ? "inf" : fmt::format("{:.4g}", v); }
 
+
+// The stability scan's case metrics, each the sum of its categories over every frame, pass and
+// resource (compute_metric and the per-row scan_* metrics both read this).
+const std::vector<std::pair<std::string, std::vector<StabilityCategory>>>& scan_metrics() {
+  static const std::vector<std::pair<std::string, std::vector<StabilityCategory>>> m = {
+      {"scan_nan", {StabilityCategory::nan}},
+      {"scan_inf", {StabilityCategory::pos_inf, StabilityCategory::neg_inf}},
+      {"scan_negative", {StabilityCategory::negative}},
+      {"scan_above_max", {StabilityCategory::above_max}},
+      {"scan_saturated", {StabilityCategory::saturated}}};
+  return m;
+}
 }  // namespace
 
 double convergence_metric(const std::string& metric, const std::vector<double>& m, double target,
@@ -198,12 +210,12 @@ double compute_metric(const Case& c, const std::string& metric, const FloatImage
     if (!series.stability)
       throw CaseError(fmt::format("{}: metric '{}' needs the stability scan (gibench run without --no-stability-scan)",
                                   c.file, metric));
-    const StabilityReport& st = *series.stability;
-    if (metric == "scan_nan") return double(st.total(StabilityCategory::nan));
-    if (metric == "scan_inf") return double(st.total(StabilityCategory::pos_inf) + st.total(StabilityCategory::neg_inf));
-    if (metric == "scan_negative") return double(st.total(StabilityCategory::negative));
-    if (metric == "scan_above_max") return double(st.total(StabilityCategory::above_max));
-    if (metric == "scan_saturated") return double(st.total(StabilityCategory::saturated));
+    for (const auto& [name, categories] : scan_metrics())
+      if (metric == name) {
+        uint64_t n = 0;
+        for (StabilityCategory cat : categories) n += series.stability->total(cat);
+        return double(n);
+      }
   }
   if (metric == "nan_count") return double(metrics::count_non_finite(crop(output, roi)).nan);
   if (metric == "inf_count") return double(metrics::count_non_finite(crop(output, roi)).inf);
@@ -333,7 +345,7 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
     for (const char* m : {"nan_frames", "nan_last_frame", "nan_max_pixels"})
       row.metrics[m] = compute_metric(c, m, r.image, nullptr, nullptr, series);
   if (series.stability)
-    for (const char* m : {"scan_nan", "scan_inf", "scan_negative", "scan_above_max", "scan_saturated"})
+    for (const auto& [m, categories] : scan_metrics())
       row.metrics[m] = compute_metric(c, m, r.image, nullptr, nullptr, series);
   if (series.curve)
     for (const char* m : {"conv_error_final", "conv_error_max", "conv_drift", "conv_oscillation"})

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
-#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <regex>
@@ -238,40 +238,41 @@ int cmd_bench(const BenchOptions& o) {
                "ratio for passes whose resources follow the render size, 1 for fixed-size passes)\n",
                scale_text(scale), scale_text(scale * scale));
 
-  // Runs: repeat-major, so the two halves of the noise floor are apart in time.
-  // --variant: parsed (and checked against each technique's options below) up front.
+  // --variant: parsed up front (option names are checked against each technique below).
   std::vector<BenchVariant> variants;
   for (const auto& v : o.variants) variants.push_back(parse_variant(v));
 
+  // Runs: each technique and workload, then its variants (base = the plain run's index);
+  // timed repeat-major below, so the two halves of the noise floor are apart in time.
   std::vector<TechniqueRun> runs;
   for (auto* t : techs)
     for (auto& w : workloads)
       for (size_t vi = 0; vi <= variants.size(); ++vi) {
-      TechniqueRun r;
-      r.technique = t;
-      r.workload = w;
-      r.name = t->name;
-      Settings s;
-      s = apply_preset(*t, o.preset, s);
-      s.spp_per_frame = 1;
-      if (vi > 0) {
-        const auto& [label, opts] = variants[vi - 1];  // BenchVariant
-        try {
-          s = apply_options(*t, s, opts);
-        } catch (const std::invalid_argument& e) {
-          throw PerfError(fmt::format("--variant {}: {}: {}", label, t->name, e.what()));
+        TechniqueRun r;
+        r.technique = t;
+        r.workload = w;
+        r.name = t->name;
+        Settings s;
+        s = apply_preset(*t, o.preset, s);
+        s.spp_per_frame = 1;
+        if (vi > 0) {
+          const auto& [label, opts] = variants[vi - 1];
+          try {
+            s = apply_options(*t, s, opts);
+          } catch (const std::invalid_argument& e) {
+            throw PerfError(fmt::format("--variant {}: {}: {}", label, t->name, e.what()));
+          }
+          r.name = t->name + "+" + label;
+          r.base = int(runs.size() - vi);
         }
-        r.name = t->name + "+" + label;
-        r.base = int(runs.size() - vi);
-      }
-      r.settings_full = s;
-      r.settings_full.width = w.width;
-      r.settings_full.height = w.height;
-      r.settings_run = s;
-      r.settings_run.width = w.run_width;
-      r.settings_run.height = w.run_height;
-      r.plan_full = compile_for(*t, scene, r.settings_full);
-      runs.push_back(std::move(r));
+        r.settings_full = s;
+        r.settings_full.width = w.width;
+        r.settings_full.height = w.height;
+        r.settings_run = s;
+        r.settings_run.width = w.run_width;
+        r.settings_run.height = w.run_height;
+        r.plan_full = compile_for(*t, scene, r.settings_full);
+        runs.push_back(std::move(r));
       }
   auto t_start = std::chrono::steady_clock::now();
   for (uint32_t rep = 0; rep < repeats; ++rep)

@@ -5,6 +5,7 @@
 // writes {P_now, P_prev, average, lit}.
 #include "renderer/passes/exposure/exposure_shared.h"
 #include "finite.glsl"
+#include "sampling.glsl"
 
 layout(local_size_x = kExposureGroup) in;
 layout(set = 0, binding = kExposureBindDirect, rgba32f) uniform readonly image2D direct_light;
@@ -15,10 +16,10 @@ layout(push_constant) uniform Push { ExposurePush push; };
 shared float s_sum[kExposureGroup];
 shared uint s_count[kExposureGroup];
 
-// Rec.709 luminance; a non-finite or negative one counts as unlit (0), whatever nan_guards
-// says: P feeds every gather sample, so it must stay finite.
+// Rec.709 luminance (gib_luminance); a non-finite or negative one counts as unlit (0), whatever
+// nan_guards says: P feeds every gather sample, so it must stay finite.
 float luminance(vec3 c) {
-  float y = dot(c, vec3(0.2126, 0.7152, 0.0722));
+  float y = gib_luminance(c);
   return gib_finite(y) && y > 0.0 ? y : 0.0;
 }
 

@@ -35,7 +35,9 @@ class IrradianceVolumeUpdatePass final : public Pass {
 
   void record(RecordContext& ctx) override {
     using namespace glsl;
-    const uint32_t alpha = ctx.scene.features().has(Feature::alpha_tested) ? 1u : 0u;
+    // Both ray-shading kernels: cache fallback on; alpha testing (probe rays) when the scene has it.
+    const std::vector<SpecConstant> ray_specs = {
+        {kIvSpecCacheFallback, 1}, {kIvSpecAlpha, ctx.scene.features().has(Feature::alpha_tested) ? 1u : 0u}};
     // Cascades not updated this frame carry over from last frame's copy; the updated one is
     // rewritten whole by the convolve below.
     ctx.cmd.begin_label("irradiance_volume_update/carry");
@@ -65,7 +67,7 @@ class IrradianceVolumeUpdatePass final : public Pass {
                            .groups_x = kProbesPerCascade,
                            .push = &push,
                            .push_bytes = sizeof(push),
-                           .spec_constants = {{kIvSpecCacheFallback, 1}, {kIvSpecAlpha, alpha}},
+                           .spec_constants = ray_specs,
                            .buffers = {{kIvBindHits, "probe_hits"}, {kIvBindCells, "rc_cells"}}});
       ctx.cmd.end_label();
       // The split path's ray buffer is unused here: zeroed so nothing (the stability scan, a
@@ -81,7 +83,7 @@ class IrradianceVolumeUpdatePass final : public Pass {
                          .groups_x = div_up(kProbesPerCascade * ctx.settings.rc.rays_per_probe, kIvRaysGroup),
                          .push = &push,
                          .push_bytes = sizeof(push),
-                         .spec_constants = {{kIvSpecCacheFallback, 1}, {kIvSpecAlpha, alpha}},
+                         .spec_constants = ray_specs,
                          .buffers = {{kIvBindHits, "probe_hits"}, {kIvBindCells, "rc_cells"},
                                      {kIvBindRays, "probe_ray_radiance"}}});
     ctx.cmd.end_label();
