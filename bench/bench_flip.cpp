@@ -15,7 +15,7 @@
 #include <sched.h>
 #endif
 
-#include "harness/metrics/flip.h"
+#include "metrics/flip.h"
 
 namespace gib {
 namespace {

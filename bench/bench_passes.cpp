@@ -1,6 +1,6 @@
 // Pass-cost benchmarks: one Google Benchmark per (technique, pass, workload), named
 // pass/<technique>/<pass>/<W>x<H>. Workloads are the distinct target resolutions of the console
-// profiles (../shared/data/console-profiles.json, or GIB_DATA_DIR). Each iteration runs one
+// profiles (data/console-profiles.json, or GIB_DATA_DIR). Each iteration runs one
 // frame of the technique and reports that pass's GPU time (timestamps; host clock per pass on
 // a CPU device, see Executor::run_frame) through UseManualTime, after warm-up frames.
 // Environment: GIB_BENCH_SCALE (fraction of the workload's resolution actually rendered;
@@ -13,8 +13,8 @@
 #include <cstdlib>
 #include <memory>
 
-#include "harness/perf/perf.h"
-#include "harness/perf/profiles.h"
+#include "perf/perf.h"
+#include "perf/profiles.h"
 #include "bench/bench_common.h"
 #include "renderer/graph/executor.h"
 #include "renderer/scene/scene_loader.h"
@@ -44,8 +44,7 @@ double run_scale() {
 
 Settings settings_for(const Technique& t, uint32_t w, uint32_t h) {
   Settings s;
-  s = apply_preset(t, "medium", s);
-  s.spp_per_frame = 1;
+  s = apply_preset(t, "medium", s);  // the reference: 1 sample per pixel per frame (its default)
   s.width = w;
   s.height = h;
   return s;
@@ -98,20 +97,7 @@ void bm_pass(benchmark::State& state, const Technique& t, const std::string& pas
   state.counters["bytes_written"] = double(b.written);
   state.counters["bytes_moved"] = double(b.total());
   state.counters["GB/s"] = benchmark::Counter(double(b.total()) * state.iterations() * 1e-9, benchmark::Counter::kIsRate);
-  const Settings& s = l.ex->settings();
-  if (pass == "path_trace") state.counters["samples"] = double(rw) * rh * s.spp_per_frame;
-  if (pass == "direct_lighting") state.counters["sky_rays"] = double(rw) * rh * s.sky_rays;
-  if (pass == "probe_trace") {
-    state.counters["probes"] = 4096;
-    state.counters["rays"] = 4096.0 * s.rc.rays_per_probe;
-  }
-  if (pass == "irradiance_volume_update") state.counters["probes"] = 4096;
-  if (pass == "radiance_cache_update" || pass == "radiance_cache_shade")
-    state.counters["cache_cells"] = std::ldexp(1.0, int(s.rc.cache_log2_cells));
-  if (pass == "final_gather") {
-    double g = std::max(1u, s.rc.gather_divisor);
-    state.counters["rays"] = std::ceil(rw / g) * std::ceil(rh / g);
-  }
+  for (const WorkCounter& w : pp->work) state.counters[w.name] = w.per_frame;
   state.SetLabel(scale == 1 ? fmt::format("{}x{}", rw, rh)
                             : fmt::format("ran at {}x{} (scale {:g} of {}x{}; time not rescaled)", rw, rh, scale, w, h));
 }

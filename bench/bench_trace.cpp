@@ -16,6 +16,7 @@
 #include "renderer/graph/executor.h"
 #include "renderer/scene/bvh.h"
 #include "renderer/scene/scene_loader.h"
+#include "renderer/techniques/reference/reference.h"
 #include "renderer/techniques/technique.h"
 
 namespace gib {
@@ -144,11 +145,11 @@ void bm_path_trace(benchmark::State& state, const std::string& scene_name) {
   Gpu& gpu = bench_gpu();
   auto [w, h] = bench_size();
   Scene scene = load_scene(scene_file(scene_name));
-  Settings s;
+  const Technique& ref = find_technique("reference");
+  Settings s = apply_options(ref, Settings{}, {});  // the reference's defaults: 1 spp per frame, 8 bounces
   s.width = w;
   s.height = h;
-  s.spp_per_frame = 1;
-  Executor ex(gpu, scene, s, make_passes(find_technique("reference")), {"radiance"});
+  Executor ex(gpu, scene, s, make_passes(ref), {"radiance"});
   ex.run_frame();  // warm-up: pipeline creation and lavapipe's lazy shader compile
   double total_s = 0;
   for (auto _ : state) {
@@ -158,7 +159,7 @@ void bm_path_trace(benchmark::State& state, const std::string& scene_name) {
     state.SetIterationTime(sec);
   }
   state.counters["Msamples_per_s"] = double(w) * h * state.iterations() / total_s * 1e-6;
-  state.SetLabel(fmt::format("{}x{} 1spp/iter, {} bounces max", w, h, s.max_bounces));
+  state.SetLabel(fmt::format("{}x{} 1spp/iter, {} bounces max", w, h, s.params<ReferenceSettings>().max_bounces));
 }
 
 void bm_bvh_build(benchmark::State& state, const std::string& scene_name) {

@@ -1,5 +1,5 @@
 // Shared by the calibration kernels (bench/calibrate_fma.comp, bench/calibrate_copy.comp) and
-// harness/perf/calibration.cpp: the device's achieved FP32 FMA rate and copy bandwidth, which
+// perf/calibration.cpp: the device's achieved FP32 FMA rate and copy bandwidth, which
 // the console-scaling model divides pass costs by (bench/README.md).
 #ifndef GIB_CALIBRATION_SHARED_H
 #define GIB_CALIBRATION_SHARED_H

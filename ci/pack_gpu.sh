@@ -51,7 +51,7 @@ for b in "${bins[@]}"; do
   done < <(ldd "$build/$b" | awk '/=> \//{print $3} /^[ \t]*\/.*ld-linux/{print $1}')
 done
 
-data=${GIB_DATA_DIR:-../shared/data}
+data=${GIB_DATA_DIR:-data}
 cp "$data/console-profiles.json" "$data/seed-timings.json" "$out/data/"
 
 if ((validation)); then

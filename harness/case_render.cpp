@@ -8,7 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/goldens.h"
-#include "harness/metrics/image_metrics.h"
+#include "metrics/image_metrics.h"
+#include "renderer/techniques/reference/reference.h"
 #include "renderer/techniques/technique.h"
 
 namespace gib {
@@ -35,11 +36,12 @@ CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const s
   // runs the case's frames at its preset's (or options') samples per frame, like any technique.
   const bool spp_budget = reference && c.reference_spp > 0;
   if (spp_budget) {
-    s.spp_per_frame = std::min<uint32_t>(c.reference_spp, 16);
-    while (c.reference_spp % s.spp_per_frame) --s.spp_per_frame;
+    uint32_t& spp = s.params<ReferenceSettings>().spp_per_frame;
+    spp = std::min<uint32_t>(c.reference_spp, 16);
+    while (c.reference_spp % spp) --spp;
   }
   s = apply_options(t, s, run.options);
-  if (spp_budget) frames = std::max(1u, c.reference_spp / s.spp_per_frame);
+  if (spp_budget) frames = std::max(1u, c.reference_spp / s.params<ReferenceSettings>().spp_per_frame);
   if (reference) {
     // A reference never moves while it converges: it shows one moment of the scene.
     s.scene_time = float(at_frame ? at_frame - 1 : 0) * c.scene.frame_time;
@@ -101,7 +103,7 @@ CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const s
   std::sort(totals.begin(), totals.end());
   r.frame_median_ms = totals.empty() ? 0 : totals[totals.size() / 2];
   r.frames = frames;
-  r.spp = reference ? frames * s.spp_per_frame : 0;
+  r.spp = reference ? frames * s.params<ReferenceSettings>().spp_per_frame : 0;
   r.image = ex.read(out_name);
   r.scanned = scan;
   if (scan) r.stability = ex.stability();

@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/image_io.h"
-#include "harness/metrics/flip.h"
-#include "harness/metrics/image_metrics.h"
+#include "metrics/flip.h"
+#include "metrics/image_metrics.h"
 #include "harness/report.h"
 
 namespace gib {

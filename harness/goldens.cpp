@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 #include "harness/image_io.h"
-#include "harness/revision.h"
+#include "revision.h"
 
 namespace fs = std::filesystem;
 

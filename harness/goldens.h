@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "renderer/graph/float_image.h"
+#include "renderer/image/float_image.h"
 
 namespace gib {
 

@@ -5,7 +5,7 @@
 #include <exception>
 
 #include "harness/compare.h"
-#include "harness/perf/cli.h"
+#include "perf/cli.h"
 #include "harness/render.h"
 #include "harness/runner.h"
 #include "harness/sweep.h"

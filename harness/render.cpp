@@ -11,6 +11,7 @@
 
 #include "harness/image_io.h"
 #include "renderer/scene/scene_loader.h"
+#include "renderer/techniques/reference/reference.h"
 #include "renderer/techniques/technique.h"
 
 namespace gib {
@@ -53,6 +54,11 @@ NonFinite count_non_finite(const FloatImage& img) {
 }
 
 // Samples per frame: the largest of 16, 8, 4, 2, 1 that divides the total.
+// Samples per pixel each frame adds: the reference's setting; 1 for every other technique.
+uint32_t spp_per_frame(const Settings& s) {
+  return s.has_params<ReferenceSettings>() ? s.params<ReferenceSettings>().spp_per_frame : 1;
+}
+
 uint32_t samples_per_frame(uint32_t spp) {
   for (uint32_t c : {16u, 8u, 4u, 2u})
     if (spp % c == 0) return c;
@@ -111,8 +117,9 @@ RenderRun render(const RenderOptions& o) {
   uint32_t frames = o.frames ? o.frames : 1;
   if (t.name == "reference") {
     uint32_t spp = o.spp ? o.spp : 64;
-    settings.spp_per_frame = samples_per_frame(spp);
-    if (!o.frames) frames = spp / settings.spp_per_frame;
+    uint32_t& per_frame = settings.params<ReferenceSettings>().spp_per_frame;
+    per_frame = samples_per_frame(spp);
+    if (!o.frames) frames = spp / per_frame;
   }
   auto gpu = Gpu::create({o.device, o.validate});
   Executor ex(*gpu, scene, settings, make_passes(t), requested_outputs(o, t));
@@ -162,7 +169,7 @@ int cmd_render(const RenderOptions& o) {
   fmt::print("device: {} ({}, {} {})\n", run.device.name, run.device.type, run.device.driver_name,
              run.device.driver_info);
   fmt::print("technique: {} preset {}  size {}x{}  frames {}  spp/frame {}\n", t.name, run.settings.preset,
-             run.settings.width, run.settings.height, run.frames, run.settings.spp_per_frame);
+             run.settings.width, run.settings.height, run.frames, spp_per_frame(run.settings));
   fmt::print("{:<22} {:>7} {:>10} {:>10} {:>10}  {}\n", "pass", "status", "median ms", "min ms", "max ms", "reason");
   for (auto& p : run.passes)
     fmt::print("{:<22} {:>7} {:>10.3f} {:>10.3f} {:>10.3f}\n", p.name, "ran", p.median_ms, p.min_ms, p.max_ms);
@@ -185,7 +192,7 @@ int cmd_render(const RenderOptions& o) {
     j["preset"] = run.settings.preset;
     j["size"] = {run.settings.width, run.settings.height};
     j["frames"] = run.frames;
-    j["spp"] = run.frames * run.settings.spp_per_frame;
+    j["spp"] = run.frames * spp_per_frame(run.settings);
     j["frame_median_ms"] = run.frame_median_ms;
     j["resource_bytes"] = run.plan.total_bytes();
     j["options"] = parse_render_options(t, o.options);

@@ -8,8 +8,8 @@
 #include <set>
 
 #include "harness/image_io.h"
-#include "harness/metrics/colormap.h"
-#include "harness/metrics/image_metrics.h"
+#include "metrics/colormap.h"
+#include "metrics/image_metrics.h"
 #include "harness/report_assets.h"
 
 namespace fs = std::filesystem;
@@ -99,7 +99,7 @@ nlohmann::json suite_to_json(const SuiteResult& suite) {
     nlohmann::json checks = nlohmann::json::array();
     for (auto& c : r.checks) {
       nlohmann::json cj{{"metric", c.metric}, {"against", c.against}, {"roi", c.roi}, {"value", finite_or_null(c.value)},
-                        {"pass", c.pass}, {"message", c.message}};
+                        {"pass", c.pass}, {"skipped", c.skipped}, {"message", c.message}};
       if (c.max) cj["max"] = *c.max;
       if (c.min) cj["min"] = *c.min;
       checks.push_back(cj);
@@ -172,8 +172,8 @@ void write_suite_outputs(const std::string& out_dir, const SuiteResult& suite, c
       std::string name = r.kind == "negative_control" ? "negative:" + r.control_name : r.technique + "." + r.preset;
       body += fmt::format("    <testcase classname=\"{}\" name=\"{}\" time=\"{:.3f}\">", xml_escape(c.name),
                           xml_escape(name), r.gpu_ms / 1000.0);
-      if (r.status == "known_failure") {
-        body += fmt::format("<skipped message=\"{}\"/>", xml_escape(r.messages.empty() ? "known failure" : r.messages[0]));
+      if (r.status == "known_failure" || r.status == "skipped") {
+        body += fmt::format("<skipped message=\"{}\"/>", xml_escape(r.messages.empty() ? r.status : r.messages[0]));
       } else if (r.status != "pass") {
         ++fails;
         std::string msg;

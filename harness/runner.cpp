@@ -11,8 +11,8 @@
 #include "harness/case_render.h"
 #include "harness/goldens.h"
 #include "harness/image_io.h"
-#include "harness/metrics/flip.h"
-#include "harness/metrics/image_metrics.h"
+#include "metrics/flip.h"
+#include "metrics/image_metrics.h"
 #include "harness/report.h"
 #include "renderer/techniques/technique.h"
 
@@ -22,7 +22,7 @@ namespace gib {
 
 int SuiteResult::failures() const {
   int n = static_cast<int>(case_errors.size());
-  for (auto& r : rows) n += r.status != "pass" && r.status != "known_failure";
+  for (auto& r : rows) n += r.status != "pass" && r.status != "known_failure" && r.status != "skipped";
   return n;
 }
 
@@ -327,7 +327,8 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
   const std::vector<uint32_t> frames = evaluation_frames(c);
   row.eval_frames = frames;
   const uint32_t last = frames.back();
-  row.reference_id = fmt::format("{}__reference.{}", c.name, aov);
+  // Only cases with a path-traced reference have its image (variant-only and analytic cases do not).
+  row.reference_id = c.reference_spp ? fmt::format("{}__reference.{}", c.name, aov) : "";
   bool failed = false;
   const FloatImage& final_image = image_at(r, last, c);
   // Always-on metrics, recorded whether or not a threshold uses them (cases without a
@@ -381,6 +382,13 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
     return variants[name] = render_case(gpu, c, v, preset);
   };
   for (auto& t : run.thresholds) {
+    if (t.metric.rfind("scan_", 0) == 0 && !series.stability) {
+      CheckResult skipped{t.metric, t.against, t.roi, 0, t.max, t.min, true, true,
+                          fmt::format("{} skipped: the stability scan did not run (--no-stability-scan)", t.metric)};
+      row.messages.push_back(skipped.message);
+      row.checks.push_back(std::move(skipped));
+      continue;
+    }
     const Roi* roi = t.roi.empty() ? nullptr : find_roi(c, t.roi);
     // Series metrics and the golden are measured once; image metrics at every evaluation frame.
     bool once = t.metric == "flicker" || t.metric.rfind("conv_", 0) == 0 || t.metric.rfind("scan_", 0) == 0 ||
@@ -486,8 +494,14 @@ int cmd_run(const SuiteOptions& o) {
         row.control_name = nc.name;
         row.control_why = nc.why;
         bool caught = std::any_of(row.checks.begin(), row.checks.end(), [](auto& cr) { return !cr.pass; });
+        std::vector<std::string> skipped;
+        for (auto& cr : row.checks)
+          if (cr.skipped) skipped.push_back(cr.message);
         row.messages.clear();
-        if (caught) {
+        if (!caught && !skipped.empty()) {  // what could have caught it did not run
+          row.status = "skipped";
+          row.messages = skipped;
+        } else if (caught) {
           row.status = "pass";
           for (auto& cr : row.checks)
             if (!cr.pass) row.messages.push_back("caught as expected: " + cr.message);
@@ -520,9 +534,13 @@ int cmd_run(const SuiteOptions& o) {
   write_suite_outputs(o.out, suite, cases);
   print_suite_table(suite);
   int fails = suite.failures();
-  int known = int(std::count_if(suite.rows.begin(), suite.rows.end(), [](auto& r) { return r.status == "known_failure"; }));
-  fmt::print("{} passed, {} failed{}\n", int(suite.rows.size()) + int(suite.case_errors.size()) - fails - known, fails,
-             known ? fmt::format(", {} known failures (not counted)", known) : "");
+  auto count = [&](const char* status) {
+    return int(std::count_if(suite.rows.begin(), suite.rows.end(), [&](auto& r) { return r.status == status; }));
+  };
+  int known = count("known_failure"), skipped = count("skipped");
+  fmt::print("{} passed, {} failed{}{}\n", int(suite.rows.size()) + int(suite.case_errors.size()) - fails - known - skipped,
+             fails, known ? fmt::format(", {} known failures (not counted)", known) : "",
+             skipped ? fmt::format(", {} negative controls skipped (their thresholds need the stability scan)", skipped) : "");
   fmt::print("report: {}\n", (fs::path(o.out) / "index.html").string());
   return fails ? 1 : 0;
 }

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "harness/case.h"
-#include "renderer/graph/float_image.h"
+#include "renderer/image/float_image.h"
 #include "harness/render.h"
 #include "renderer/graph/stability.h"
 #include <nlohmann/json.hpp>
@@ -32,6 +32,9 @@ struct CheckResult {
   double value = 0;
   std::optional<double> max, min;
   bool pass = true;
+  // Not evaluated: the metric needs what this run did not produce (scan_* under
+  // --no-stability-scan). Neither passes nor fails the row; listed in its messages.
+  bool skipped = false;
   std::string message;  // "flip vs reference 0.21 > max 0.15 (by 0.06)"
 };
 
@@ -39,7 +42,9 @@ struct ResultRow {
   std::string case_name, technique, preset, kind;  // kind: "technique" | "negative_control"
   std::string control_name, control_why;
   std::map<std::string, double> options;
-  std::string status;  // pass | fail | error | known_failure (TechniqueRun::known_failure, failing as known)
+  // pass | fail | error | known_failure (TechniqueRun::known_failure, failing as known) | skipped (a
+  // negative control whose every threshold was skipped: nothing could catch it)
+  std::string status;
   std::vector<std::string> messages;
   std::map<std::string, double> metrics;
   std::vector<CheckResult> checks;

@@ -9,7 +9,7 @@
 
 #include "harness/case_render.h"
 #include "harness/goldens.h"
-#include "harness/metrics/flip.h"
+#include "metrics/flip.h"
 #include "renderer/techniques/technique.h"
 
 namespace fs = std::filesystem;

@@ -8,7 +8,7 @@
 
 #include "harness/case_render.h"
 #include "harness/goldens.h"
-#include "harness/metrics/flip.h"
+#include "metrics/flip.h"
 #include "harness/runner.h"
 
 namespace gib {

@@ -12,8 +12,8 @@ layout(set = 0, binding = kRcTestBindIrradiance, r32ui) uniform readonly uimage2
 layout(set = 0, binding = kRcTestBindVisibility, rg16f) uniform readonly image2D atlas_visibility;
 layout(set = 0, binding = kRcTestBindDecoded, rgba32f) uniform writeonly image2D decoded;
 layout(push_constant) uniform Push { RcParams rc; };
-#include "probe_volume.glsl"
-#include "radiance_cache.glsl"
+#include "renderer/techniques/radiance_cache/include/probe_volume.glsl"
+#include "renderer/techniques/radiance_cache/include/radiance_cache.glsl"
 
 void main() {
   uint id = gl_GlobalInvocationID.x;

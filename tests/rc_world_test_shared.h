@@ -3,7 +3,7 @@
 #ifndef GIB_RC_WORLD_TEST_SHARED_H
 #define GIB_RC_WORLD_TEST_SHARED_H
 #include "frame_shared.h"
-#include "radiance_cache_shared.h"
+#include "renderer/techniques/radiance_cache/include/radiance_cache_shared.h"
 GIB_SHARED_BEGIN
 GIB_CONST(uint, kRcTestGroup, 64)
 GIB_CONST(uint, kRcTestBindHits, 8)

@@ -16,6 +16,7 @@
 #include "harness/case.h"
 #include "harness/runner.h"
 #include "renderer/techniques/technique.h"
+#include "tests/technique_settings.h"
 
 #ifndef GIB_SOURCE_DIR
 #error "GIB_SOURCE_DIR must point at the source tree"
@@ -138,7 +139,7 @@ TEST(CaseLoad, Cornell) {
   EXPECT_EQ(nc.thresholds[0].max, flip_max) << "the control must be held to the positive's bound";
   Settings s = apply_options(find_technique(nc.technique), apply_preset(find_technique("direct"), nc.presets[0], {}),
                              nc.options);
-  EXPECT_EQ(s.sky_rays, 0u);
+  EXPECT_EQ(sky_rays(s), 0u);
 }
 
 TEST(CaseLoad, WhiteFurnace) {
@@ -172,7 +173,7 @@ TEST(CaseLoad, WhiteFurnace) {
   EXPECT_EQ(nc.thresholds[0].metric, "max_abs_error");
   EXPECT_EQ(nc.thresholds[0].max, 0.01);
   const Technique& t = find_technique("reference");
-  EXPECT_EQ(apply_options(t, apply_preset(t, "ultra", {}), nc.options).max_bounces, 1u);
+  EXPECT_EQ(apply_options(t, apply_preset(t, "ultra", {}), nc.options).params<ReferenceSettings>().max_bounces, 1u);
 }
 
 TEST(CaseLoad, DefaultsAndInlineScene) {
@@ -415,16 +416,48 @@ TEST(CaseErrors, FileLevel) {
 
 // ---------------------------------------------------------------- technique options
 
+// A pass reads its technique's settings typed; the wrong technique (or none) is one clear error.
+TEST(TechniqueSettings, WrongOrMissingSettingsNameBothTypes) {
+  auto message = [](const Settings& s) -> std::string {
+    try {
+      (void)s.params<RadianceCacheSettings>();
+    } catch (const GraphError& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  EXPECT_EQ(message(Settings{}),
+            "settings: a pass expected RadianceCacheSettings, but the technique settings are not set (no technique)");
+  EXPECT_EQ(message(defaults_of("reference")),
+            "settings: a pass expected RadianceCacheSettings, but the technique settings are ReferenceSettings");
+  EXPECT_EQ(message(defaults_of("radiance-cache")), "no error");
+  // Copies own their settings: changing one leaves the other.
+  Settings a = defaults_of("radiance-cache");
+  Settings b = a;
+  rc(b).cascades = 7;
+  EXPECT_NE(rc(a).cascades, 7u);
+  // Every technique's presets and options apply to its own struct.
+  for (const Technique& t : techniques())
+    for (const std::string& p : t.presets) {
+      Settings s = apply_preset(t, p, {});
+      EXPECT_EQ(s.technique, t.name);
+      for (const TechniqueOption& o : t.options) EXPECT_NO_THROW(apply_options(t, s, {{o.name, o.min}})) << o.name;
+    }
+}
+
 TEST(CaseOptions, ApplyOptions) {
   const Technique& direct = find_technique("direct");
-  const Technique& ref = find_technique("reference");
-  Settings base;
-  EXPECT_EQ(apply_options(direct, base, {{"sky_rays", 0}}).sky_rays, 0u);
-  EXPECT_EQ(apply_options(direct, base, {}).sky_rays, base.sky_rays);
-  Settings r = apply_options(ref, base, {{"max_bounces", 1}, {"spp_per_frame", 16}});
-  EXPECT_EQ(r.max_bounces, 1u);
-  EXPECT_EQ(r.spp_per_frame, 16u);
-  EXPECT_EQ(r.sky_rays, base.sky_rays);
+  const Technique& reference = find_technique("reference");
+  Settings base = apply_preset(direct, "medium", {});
+  base.width = 77;
+  EXPECT_EQ(sky_rays(apply_options(direct, base, {{"sky_rays", 0}})), 0u);
+  EXPECT_EQ(sky_rays(apply_options(direct, base, {})), sky_rays(base));
+  // Another technique's options: its own settings struct (defaults + options), common settings kept.
+  Settings r = apply_options(reference, base, {{"max_bounces", 1}, {"spp_per_frame", 16}});
+  EXPECT_EQ(r.params<ReferenceSettings>().max_bounces, 1u);
+  EXPECT_EQ(r.params<ReferenceSettings>().spp_per_frame, 16u);
+  EXPECT_EQ(r.width, 77u);
+  EXPECT_FALSE(r.has_params<DirectLightingParams>());  // the reference runs no direct_lighting
 
   auto message = [](const Technique& t, const std::map<std::string, double>& o) -> std::string {
     try {
@@ -437,10 +470,10 @@ TEST(CaseOptions, ApplyOptions) {
   std::string m = message(direct, {{"sky_rayz", 1}});
   EXPECT_NE(m.find("\"sky_rayz\""), std::string::npos) << m;
   EXPECT_NE(m.find("(sky_rays, nan_guards, inject_nan, inject_frame, inject_x, inject_y"), std::string::npos) << m;
-  m = message(ref, {{"sky_rays", 1}});
+  m = message(reference, {{"sky_rays", 1}});
   EXPECT_NE(m.find("max_bounces, spp_per_frame"), std::string::npos) << m;
-  EXPECT_NE(message(ref, {{"max_bounces", 0}}).find("integer in [1, 4294967295], got 0"), std::string::npos);
-  EXPECT_NE(message(ref, {{"spp_per_frame", 0}}).find("\"spp_per_frame\""), std::string::npos);
+  EXPECT_NE(message(reference, {{"max_bounces", 0}}).find("integer in [1, 4294967295], got 0"), std::string::npos);
+  EXPECT_NE(message(reference, {{"spp_per_frame", 0}}).find("\"spp_per_frame\""), std::string::npos);
   EXPECT_NE(message(direct, {{"sky_rays", 1.5}}).find("got 1.5"), std::string::npos);
   EXPECT_NE(message(direct, {{"sky_rays", -1}}).find("got -1"), std::string::npos);
   EXPECT_NE(message(direct, {{"sky_rays", 4294967296.0}}).find("got 4294967296"), std::string::npos);
@@ -449,9 +482,9 @@ TEST(CaseOptions, ApplyOptions) {
   EXPECT_EQ(check_option(direct, "sky_rays", 64), "");
   // Their own options (1 and 2), then the same shared ones (nan_guards, inject_*, ...).
   EXPECT_EQ(technique_options(direct)[0].name, "sky_rays");
-  EXPECT_EQ(technique_options(ref)[1].name, "spp_per_frame");
+  EXPECT_EQ(technique_options(reference)[1].name, "spp_per_frame");
   EXPECT_EQ(technique_options(direct)[1].name, "nan_guards");
-  EXPECT_EQ(technique_options(direct).size() + 1, technique_options(ref).size());
+  EXPECT_EQ(technique_options(direct).size() + 1, technique_options(reference).size());
 }
 
 // ---------------------------------------------------------------- directories

@@ -1,4 +1,4 @@
-// The radiance-cache pre-exposure (renderer/passes/exposure/exposure.h): known answers of the
+// The radiance-cache pre-exposure (renderer/techniques/radiance_cache/exposure/exposure.h): known answers of the
 // CPU mirror, and the GPU pass against the mirror on a small rendered image (lavapipe).
 #include <gtest/gtest.h>
 
@@ -9,12 +9,13 @@
 
 #include "renderer/graph/executor.h"
 #include "renderer/passes/direct_lighting/direct_lighting.h"
-#include "renderer/passes/exposure/exposure.h"
-#include "renderer/passes/exposure/exposure_shared.h"
+#include "renderer/techniques/radiance_cache/exposure/exposure.h"
+#include "renderer/techniques/radiance_cache/exposure/exposure_shared.h"
 #include "renderer/passes/gbuffer/gbuffer.h"
 #include "renderer/passes/visibility/visibility.h"
 #include "renderer/scene/scene_loader.h"
 #include "tests/gpu_fixture.h"
+#include "tests/technique_settings.h"
 
 namespace gib {
 namespace {
@@ -123,11 +124,11 @@ TEST_F(PreExposureGpu, BufferMatchesCpuMirror) {
     "camera": {"position": [0, 3, 5], "target": [0, 0.5, 0], "fov_y_deg": 50}
   })"), "inline");
   for (bool enabled : {true, false}) {
-    Settings s;
+    Settings s = defaults_of("radiance-cache");
     s.width = 40;
     s.height = 24;
-    s.sky_rays = 4;
-    s.rc.pre_exposure = enabled;
+    sky_rays(s) = 4;
+    rc(s).pre_exposure = enabled;
     std::vector<std::unique_ptr<Pass>> passes;
     passes.push_back(make_visibility_pass());
     passes.push_back(make_gbuffer_pass());

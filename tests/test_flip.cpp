@@ -1,4 +1,4 @@
-// FLIP: reproduces the reference tool's results on shared/flip-vectors (every run of every
+// FLIP: reproduces the reference tool's results on data/flip-vectors (every run of every
 // pair), plus known-answer and sanity tests, and the magma colour map.
 #include <gtest/gtest.h>
 
@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/metrics/colormap.h"
-#include "harness/metrics/flip.h"
+#include "metrics/colormap.h"
+#include "metrics/flip.h"
 
 #ifndef GIB_SOURCE_DIR
 #error "GIB_SOURCE_DIR must point at the source tree"
@@ -26,7 +26,7 @@ namespace {
 
 using json = nlohmann::json;
 
-const std::string kVectorDir = std::string(GIB_SOURCE_DIR) + "/../shared/flip-vectors";
+const std::string kVectorDir = std::string(GIB_SOURCE_DIR) + "/data/flip-vectors";
 
 // PNG: 8-bit, first three channels, decoded as the tool does. EXR: float, first three.
 FloatImage load_image(const std::string& path) {

@@ -10,9 +10,10 @@
 #include <random>
 
 #include "renderer/graph/executor.h"
-#include "renderer/passes/light_grid/light_grid.h"
+#include "renderer/techniques/radiance_cache/light_grid/light_grid.h"
 #include "renderer/scene/scene_loader.h"
 #include "tests/gpu_fixture.h"
+#include "tests/technique_settings.h"
 
 namespace gib {
 namespace {
@@ -138,7 +139,7 @@ class LightGrid : public GpuTest {
     add_lights(doc, rng, n_spread, kCamera, 120.0f, 0.5f, 24.0f);
     add_lights(doc, rng, n_cluster, Vec3{6, 1, -3}, 4.0f, 6.0f, 12.0f);
     Scene scene = parse_scene(doc, "light_grid_test");
-    Settings s;
+    Settings s = defaults_of("radiance-cache");
     glsl::LightGridParams p = make_light_grid_params(s, uint32_t(scene.lights.size()));
     auto lights = gpu_lights(scene);
     for (bool cone : {false, true}) {
@@ -197,7 +198,7 @@ TEST_F(LightGrid, ConeCullingRemovesSpotCells) {
   json doc = base_scene(kCamera);
   add_lights(doc, rng, 60, kCamera, 40.0f, 8.0f, 24.0f);
   Scene scene = parse_scene(doc, "light_grid_cones");
-  Settings s;
+  Settings s = defaults_of("radiance-cache");
   glsl::LightGridParams p = make_light_grid_params(s, uint32_t(scene.lights.size()));
   GridRun sphere = run_grid(gpu(), scene, s, LightGridOptions{false});
   GridRun cone = run_grid(gpu(), scene, s, LightGridOptions{true});
@@ -212,12 +213,12 @@ TEST_F(LightGrid, ConeCullingRemovesSpotCells) {
 
 TEST_F(LightGrid, SceneWithoutLocalLightsCullsThePass) {
   Scene scene = parse_scene(base_scene(kCamera), "no_lights");
-  GridRun r = run_grid(gpu(), scene, Settings{}, {});
+  GridRun r = run_grid(gpu(), scene, defaults_of("radiance-cache"), {});
   ASSERT_EQ(r.plan.passes.size(), 1u);
   EXPECT_FALSE(r.plan.passes[0].runs);
   EXPECT_EQ(r.plan.passes[0].reason, "scene lacks local_lights");
   EXPECT_TRUE(r.words.empty());
-  glsl::LightGridParams p = make_light_grid_params(Settings{}, 0);
+  glsl::LightGridParams p = make_light_grid_params(defaults_of("radiance-cache"), 0);
   const uint32_t local[3] = {8, 8, 8};
   EXPECT_TRUE(lights_for_cell({}, p, 0, local, kCamera, true).empty());
 }
@@ -231,7 +232,7 @@ TEST_F(LightGrid, CameraMotionInsideACellKeepsTheGrid) {
     json doc = lights;
     doc["camera"] = base_scene(cam)["camera"];
     Scene scene = parse_scene(doc, "snap");
-    return run_grid(gpu(), scene, Settings{}, {}).words;
+    return run_grid(gpu(), scene, defaults_of("radiance-cache"), {}).words;
   };
   // Cascade-0 cells are 2 m; cells of coarser cascades are unions of them.
   auto a = grid_at({0.25f, 1.5f, -0.75f});
@@ -258,7 +259,7 @@ TEST_F(LightGrid, CameraMotionInsideACellKeepsTheGrid) {
 }
 
 TEST(LightGridCpu, CellOfPicksTheFinestCascadeContainingThePoint) {
-  Settings s;  // 4 cascades, 32 m: cells 2, 4, 8, 16 m
+  Settings s = defaults_of("radiance-cache");  // 4 cascades, 32 m: cells 2, 4, 8, 16 m
   glsl::LightGridParams p = make_light_grid_params(s, 1);
   Vec3 cam{0.25f, 1.5f, -0.75f};
   std::mt19937 rng(3);

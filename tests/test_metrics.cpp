@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "harness/metrics/image_metrics.h"
+#include "metrics/image_metrics.h"
 
 namespace gib::metrics {
 namespace {

@@ -1,4 +1,4 @@
-// NaN injection and NaN guards (DESIGN.md "Numerical stability"), on lavapipe at small sizes:
+// NaN injection and NaN guards (docs/architecture.md "Determinism and numerical stability"), on lavapipe at small sizes:
 // a NaN written into one resource on one frame (Settings::debug, options inject_*) must never
 // reach an output while Settings::nan_guards is on (measured: 0 frames, 0 pixels, for every
 // technique and target), and must persist with the guards off (so the injection is known to
@@ -18,8 +18,9 @@
 #include "renderer/graph/executor.h"
 #include "renderer/scene/scene_loader.h"
 #include "renderer/techniques/technique.h"
-#include "radiance_cache_shared.h"
+#include "renderer/techniques/radiance_cache/include/radiance_cache_shared.h"
 #include "tests/gpu_fixture.h"
+#include "tests/technique_settings.h"
 
 namespace gib {
 namespace {
@@ -110,7 +111,7 @@ NanTrace run_injection(Gpu& gpu, const Scene& scene, const std::string& techniqu
   s = apply_options(t, s, options);
   // Near the centre, on the representative pixel of a gather pixel (g * divisor + divisor / 2),
   // so that the radiance-cache gather, denoise and upscale all read an injected normal.
-  const uint32_t div = s.rc.gather_divisor >= 4 ? 4 : 2;
+  const uint32_t div = s.has_params<RadianceCacheSettings>() && rc(s).gather_divisor >= 4 ? 4 : 2;
   s.debug.inject_x = s.width / 2 / div * div + div / 2;
   s.debug.inject_y = s.height / 2 / div * div + div / 2;
   NanTrace trace;
@@ -172,15 +173,15 @@ TEST(NanOptions, SharedDebugOptionsAndTargets) {
   Settings s = apply_options(rc, Settings{}, {{"nan_guards", 0}, {"multi_bounce", 0}, {"inject_nan", 2},
                                               {"inject_frame", 7}, {"inject_x", 3}, {"inject_y", 4}});
   EXPECT_FALSE(s.nan_guards);
-  EXPECT_FALSE(s.rc.multi_bounce);
+  EXPECT_FALSE(s.params<RadianceCacheSettings>().multi_bounce);
   EXPECT_TRUE(s.debug.injects(2, 7));
   EXPECT_FALSE(s.debug.injects(2, 6));
   EXPECT_FALSE(s.debug.injects(1, 7));
   EXPECT_EQ(s.debug.inject_x, 3u);
   EXPECT_EQ(s.debug.inject_y, 4u);
-  Settings d;
+  Settings d = defaults_of("radiance-cache");
   EXPECT_TRUE(d.nan_guards);
-  EXPECT_TRUE(d.rc.multi_bounce);
+  EXPECT_TRUE(d.params<RadianceCacheSettings>().multi_bounce);
   EXPECT_EQ(d.debug.inject_nan, 0u);
 }
 
@@ -197,7 +198,7 @@ TEST_F(NanGuards, ReferenceSampleIsDroppedWithGuardsAndPersistsWithout) {
     Executor ex(gpu(), scene, on.settings, make_passes(t), {"radiance"});
     for (uint32_t f = 0; f <= kInjectFrame; ++f) ex.run_frame();
     FloatImage sum = ex.read("pt_radiance_sum");
-    const float all = float((kInjectFrame + 1) * on.settings.spp_per_frame);
+    const float all = float((kInjectFrame + 1) * ref(on.settings).spp_per_frame);
     const uint32_t x = on.settings.debug.inject_x, y = on.settings.debug.inject_y;
     EXPECT_EQ(sum.at(x, y, 3), all - 1.0f);
     EXPECT_EQ(sum.at(x + 1, y, 3), all);

@@ -8,9 +8,13 @@
 #include <functional>
 #include <random>
 
-#include "harness/perf/perf.h"
-#include "harness/perf/profiles.h"
-#include "harness/perf/stats.h"
+#include "perf/perf.h"
+#include "perf/profiles.h"
+#include "perf/stats.h"
+
+#ifndef GIB_SOURCE_DIR
+#error "GIB_SOURCE_DIR must point at the source tree"
+#endif
 
 namespace gib::perf {
 namespace {
@@ -225,13 +229,13 @@ TEST(PerfProfiles, ErrorsNameTheFileAndField) {
   EXPECT_NE(e.find("s.json: /idtech8_gi_hotspot/platforms/ps5/upscale"), std::string::npos) << e;
 }
 
-TEST(PerfProfiles, SharedDataLoads) {
-  std::string dir;
-  try {
-    dir = find_data_dir("");
-  } catch (const PerfError&) {
-    GTEST_SKIP() << "no ../shared/data beside the checkout";
-  }
+// The repository ships its own data/ (console profiles, seed timings): a missing or unreadable
+// file there is a failure, not a skip.
+TEST(PerfProfiles, RepoDataLoads) {
+  const std::string dir = std::string(GIB_SOURCE_DIR) + "/data";
+  for (const char* f : {"console-profiles.json", "seed-timings.json"})
+    ASSERT_TRUE(std::filesystem::exists(dir + "/" + f)) << dir << "/" << f << " is missing";
+  EXPECT_EQ(find_data_dir(dir), dir);
   auto profiles = load_profiles(dir + "/console-profiles.json");
   ASSERT_GE(profiles.size(), 1u);
   auto ps5 = select_profiles(profiles, "ps5");

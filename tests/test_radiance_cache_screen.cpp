@@ -12,21 +12,22 @@
 #include "renderer/graph/executor.h"
 #include "renderer/passes/composite/composite.h"
 #include "renderer/passes/direct_lighting/direct_lighting.h"
-#include "renderer/passes/exposure/exposure.h"
-#include "renderer/passes/exposure/exposure_shared.h"
-#include "renderer/passes/final_gather/final_gather.h"
-#include "renderer/passes/final_gather/final_gather_shared.h"
+#include "renderer/techniques/radiance_cache/exposure/exposure.h"
+#include "renderer/techniques/radiance_cache/exposure/exposure_shared.h"
+#include "renderer/techniques/radiance_cache/final_gather/final_gather.h"
+#include "renderer/techniques/radiance_cache/final_gather/final_gather_shared.h"
 #include "renderer/passes/gbuffer/gbuffer.h"
-#include "renderer/passes/gi_denoise/gi_denoise.h"
-#include "renderer/passes/gi_upscale/gi_upscale.h"
-#include "renderer/passes/irradiance_volume_update/irradiance_volume_update.h"
-#include "renderer/passes/probe_trace/probe_trace.h"
-#include "renderer/passes/radiance_cache_shade/radiance_cache_shade.h"
-#include "renderer/passes/radiance_cache_update/radiance_cache_update.h"
+#include "renderer/techniques/radiance_cache/gi_denoise/gi_denoise.h"
+#include "renderer/techniques/radiance_cache/gi_upscale/gi_upscale.h"
+#include "renderer/techniques/radiance_cache/irradiance_volume_update/irradiance_volume_update.h"
+#include "renderer/techniques/radiance_cache/probe_trace/probe_trace.h"
+#include "renderer/techniques/radiance_cache/radiance_cache_shade/radiance_cache_shade.h"
+#include "renderer/techniques/radiance_cache/radiance_cache_update/radiance_cache_update.h"
 #include "renderer/passes/visibility/visibility.h"
 #include "renderer/scene/scene_loader.h"
 #include "tests/gpu_fixture.h"
 #include "tests/rc_screen_synth_gather_shared.h"
+#include "tests/technique_settings.h"
 
 namespace gib {
 namespace {
@@ -38,10 +39,10 @@ class StubWorldSampling final : public Pass {
  public:
   PassDecl declare(const Scene&, const Settings& s) const override {
     ResourceDesc cells{Format::buffer, SizeRule::buffer};
-    cells.bytes = uint64_t(sizeof(glsl::RcCell)) << s.rc.cache_log2_cells;
+    cells.bytes = uint64_t(sizeof(glsl::RcCell)) << rc(s).cache_log2_cells;
     cells.persistent = true;
     ResourceDesc irr{Format::r32_uint, SizeRule::fixed, glsl::kProbeAtlasWidth,
-                     glsl::kProbeAtlasRowsPerCascade * s.rc.cascades};
+                     glsl::kProbeAtlasRowsPerCascade * rc(s).cascades};
     ResourceDesc vis = irr;
     vis.format = Format::rg16_float;
     irr.persistent = vis.persistent = true;
@@ -105,14 +106,14 @@ std::vector<std::unique_ptr<Pass>> screen_passes() {
 }
 
 Settings small_settings(uint32_t w = 64, uint32_t h = 36) {
-  Settings s;
+  Settings s = defaults_of("radiance-cache");
   s.width = w;
   s.height = h;
   // The sky's first bounce comes from the gather (its misses), not from direct_lighting.
-  s.sky_rays = 0;
-  s.rc.cache_log2_cells = 10;
-  s.rc.cascades = 1;
-  s.rc.history_max_frames = 8;
+  sky_rays(s) = 0;
+  rc(s).cache_log2_cells = 10;
+  rc(s).cascades = 1;
+  rc(s).history_max_frames = 8;
   return s;
 }
 
@@ -205,7 +206,7 @@ TEST_F(RadianceCacheScreen, PreExposureKeepsABrightSkyInRange) {
   double mean_of[2] = {};
   for (bool pre_exposure : {false, true}) {
     Settings s = small_settings();
-    s.rc.pre_exposure = pre_exposure;
+    rc(s).pre_exposure = pre_exposure;
     Executor ex(gpu(), sphere, s, screen_passes(), {"final_color"});
     for (int f = 0; f < 12; ++f) ex.run_frame();
     FloatImage gi = ex.read("gi_irradiance"), pos = ex.read("gbuffer_position"), sh = ex.read("gather_sh_r");
@@ -248,9 +249,9 @@ TEST_F(RadianceCacheScreen, PreExposureKeepsABrightSkyInRange) {
 // rays, else by direct_lighting alone. A plane of albedo a under sky L is a L both ways.
 TEST_F(RadianceCacheScreen, SkyIsCountedOnceWhicheverPassTracesIt) {
   Scene scene = load_scene(std::string(GIB_SOURCE_DIR) + "/cases/scenes/sky_plane.json");  // albedo 0.5, sky 2
-  for (uint32_t sky_rays : {0u, 4u}) {
+  for (uint32_t rays : {0u, 4u}) {
     Settings s = small_settings();
-    s.sky_rays = sky_rays;
+    sky_rays(s) = rays;
     Executor ex(gpu(), scene, s, screen_passes(), {"final_color"});
     for (int f = 0; f < 3; ++f) ex.run_frame();
     FloatImage out = ex.read("final_color"), gi = ex.read("gi_irradiance");
@@ -261,9 +262,9 @@ TEST_F(RadianceCacheScreen, SkyIsCountedOnceWhicheverPassTracesIt) {
           worst = std::max(worst, std::abs(double(out.at(x, y, c)) - 1.0));
           gi_max = std::max(gi_max, double(gi.at(x, y, c)));
         }
-    std::printf("sky_rays %u: max |final_color - a L| = %.2g, max gi_irradiance %.3g\n", sky_rays, worst, gi_max);
-    EXPECT_LT(worst, 5e-3) << "sky_rays " << sky_rays;
-    if (sky_rays > 0) {
+    std::printf("sky_rays %u: max |final_color - a L| = %.2g, max gi_irradiance %.3g\n", rays, worst, gi_max);
+    EXPECT_LT(worst, 5e-3) << "sky_rays " << rays;
+    if (rays > 0) {
       EXPECT_EQ(gi_max, 0.0);
     }
   }
@@ -275,8 +276,8 @@ TEST_F(RadianceCacheScreen, SkyIsCountedOnceWhicheverPassTracesIt) {
 TEST_F(RadianceCacheScreen, TemporalFilterAccumulatesToNMax) {
   Scene scene = box_scene();
   Settings s = small_settings();
-  s.rc.history_format = 3;
-  const uint32_t n_max = s.rc.history_max_frames;
+  rc(s).history_format = 3;
+  const uint32_t n_max = rc(s).history_max_frames;
   Executor ex(gpu(), scene, s, screen_passes(), {"final_color"});
   FloatImage prev;
   double first_change = 0, last_change = 0;
@@ -319,8 +320,8 @@ TEST_F(RadianceCacheScreen, DisocclusionResetsOnlyWhereTheSurfaceChanged) {
                                            {"time": 11, "translate": [1, 0.5, 0]}],)");
   for (bool disocclusion : {true, false}) {
     Settings s = small_settings();
-    s.rc.disocclusion = disocclusion;
-    const float n_max = float(s.rc.history_max_frames);
+    rc(s).disocclusion = disocclusion;
+    const float n_max = float(rc(s).history_max_frames);
     Executor ex(gpu(), scene, s, screen_passes(), {"final_color"});
     for (int f = 0; f <= 10; ++f) ex.run_frame();
     FloatImage p0 = ex.read("gbuffer_position");
@@ -387,7 +388,7 @@ TEST_F(RadianceCacheScreen, DenoiseDoesNotBlurAcrossADepthEdge) {
     "camera": {"position": [0, 10, 0], "target": [0, 0, 0], "up": [0, 0, -1], "fov_y_deg": 60}
   })"), "inline");
   Settings s = small_settings();
-  s.rc.denoise_radius = 3;
+  rc(s).denoise_radius = 3;
   const float low = 1, high = 4, noise = 0.5f;
   std::vector<std::unique_ptr<Pass>> passes;
   passes.push_back(make_visibility_pass());
@@ -412,10 +413,10 @@ TEST_F(RadianceCacheScreen, DenoiseDoesNotBlurAcrossADepthEdge) {
           nearest_other = std::min(nearest_other, std::abs(int(x2) - int(x)));
       }
       double err = std::abs(out.at(x, y, 0) - expect);
-      if (nearest_other <= int(s.rc.denoise_radius)) {
+      if (nearest_other <= int(rc(s).denoise_radius)) {
         ++edge;
         worst_edge = std::max(worst_edge, err);
-      } else if (nearest_other > 2 * int(s.rc.denoise_radius) && y > 3 && y + 3 < out.height) {
+      } else if (nearest_other > 2 * int(rc(s).denoise_radius) && y > 3 && y + 3 < out.height) {
         ++interior;
         var_in += std::pow(raw.at(x, y, 0) - expect, 2);
         var_out += std::pow(out.at(x, y, 0) - expect, 2);
@@ -437,7 +438,7 @@ TEST_F(RadianceCacheScreen, HistoryFormatsAgreeWithinTheirPrecision) {
   std::vector<FloatImage> results;
   for (uint32_t format = 0; format < 4; ++format) {
     Settings s = small_settings();
-    s.rc.history_format = format;
+    rc(s).history_format = format;
     Executor ex(gpu(), scene, s, screen_passes(), {"final_color"});
     EXPECT_EQ(ex.plan().find("gi_history")->desc.format, gi_history_format(format));
     for (int f = 0; f < 12; ++f) ex.run_frame();
@@ -445,7 +446,7 @@ TEST_F(RadianceCacheScreen, HistoryFormatsAgreeWithinTheirPrecision) {
     EXPECT_TRUE(finite_nonneg(results.back())) << "format " << format;
     EXPECT_TRUE(finite_nonneg(ex.read("final_color"))) << "format " << format;
   }
-  const double n_max = small_settings().rc.history_max_frames;
+  const double n_max = rc(small_settings()).history_max_frames;
   // Relative precision of one rounding, relative to the pixel's largest channel: RGB9E5 shares
   // the exponent (9-bit mantissa, round to nearest: 2^-9 of the max at worst); half rounds by
   // the device's rule (lavapipe truncates: 2^-10); R11G11B10F truncates (blue: 5 bits, 2^-5).
@@ -519,7 +520,7 @@ TEST_F(RadianceCacheScreen, FullChainWithWorldSamplingPasses) {
 TEST_F(RadianceCacheScreen, PassTimesAt128x72) {
   Scene scene = box_scene();
   Settings s = small_settings(128, 72);
-  s.rc.history_max_frames = 16;
+  rc(s).history_max_frames = 16;
   Executor ex(gpu(), scene, s, screen_passes(), {"final_color"});
   ex.run_frame();  // pipelines compiled
   std::map<std::string, double> ms;

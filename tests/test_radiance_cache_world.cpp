@@ -14,15 +14,16 @@
 #include "renderer/codecs/octahedral.h"
 #include "renderer/codecs/packed_float.h"
 #include "renderer/graph/executor.h"
-#include "renderer/passes/irradiance_volume_update/irradiance_volume_update.h"
-#include "renderer/passes/light_grid/light_grid.h"
-#include "renderer/passes/probe_trace/probe_trace.h"
-#include "renderer/passes/radiance_cache_shade/radiance_cache_shade.h"
-#include "renderer/passes/radiance_cache_update/radiance_cache_update.h"
+#include "renderer/techniques/radiance_cache/irradiance_volume_update/irradiance_volume_update.h"
+#include "renderer/techniques/radiance_cache/light_grid/light_grid.h"
+#include "renderer/techniques/radiance_cache/probe_trace/probe_trace.h"
+#include "renderer/techniques/radiance_cache/radiance_cache_shade/radiance_cache_shade.h"
+#include "renderer/techniques/radiance_cache/radiance_cache_update/radiance_cache_update.h"
 #include "renderer/scene/scene_loader.h"
-#include "renderer/techniques/radiance_cache_params.h"
+#include "renderer/techniques/radiance_cache/radiance_cache_params.h"
 #include "tests/gpu_fixture.h"
 #include "tests/rc_world_test_shared.h"
+#include "tests/technique_settings.h"
 
 namespace gib {
 namespace {
@@ -37,9 +38,9 @@ class RcWorldProbePass final : public Pass {
     PassDecl d;
     d.name = "rc_world_test";
     ResourceDesc keys{Format::buffer, SizeRule::buffer};
-    keys.bytes = uint64_t(kProbes) * s.rc.rays_per_probe * sizeof(glsl::RcTestKey);
+    keys.bytes = uint64_t(kProbes) * rc(s).rays_per_probe * sizeof(glsl::RcTestKey);
     ResourceDesc decoded{Format::rgba32_float, SizeRule::fixed, glsl::kProbeAtlasWidth,
-                         glsl::kProbeAtlasRowsPerCascade * s.rc.cascades};
+                         glsl::kProbeAtlasRowsPerCascade * rc(s).cascades};
     d.slots = {{"probe_hits", Access::read},
                {"probe_irradiance", Access::read},
                {"probe_visibility", Access::read},
@@ -51,7 +52,7 @@ class RcWorldProbePass final : public Pass {
     using namespace glsl;
     RcParams push = make_rc_params(ctx.settings, ctx.frame);
     for (uint32_t mode = 0; mode < 2; ++mode) {
-      uint32_t threads = mode == 0 ? kProbes * ctx.settings.rc.rays_per_probe
+      uint32_t threads = mode == 0 ? kProbes * rc(ctx.settings).rays_per_probe
                                    : ctx.width("rc_test_atlas") * ctx.height("rc_test_atlas");
       if (mode) ctx.cmd.barrier(kStageCompute, kStageCompute);
       record_compute(ctx, {.shader = "rc_world_test.comp",
@@ -78,11 +79,11 @@ std::vector<std::unique_ptr<Pass>> world_passes() {
 }
 
 Settings small_settings() {
-  Settings s;
+  Settings s = defaults_of("radiance-cache");
   s.width = 32;
   s.height = 18;
-  s.rc.cascades = 1;
-  s.rc.rays_per_probe = 16;
+  rc(s).cascades = 1;
+  rc(s).rays_per_probe = 16;
   return s;
 }
 
@@ -159,14 +160,14 @@ FrameCheck check_frame(Executor& ex, const Scene& scene, uint32_t frame) {
   auto cells = as<glsl::RcCell>(ex.read_buffer("rc_cells"));
   auto active = as<uint32_t>(ex.read_buffer("rc_active"));
   auto keys = as<glsl::RcTestKey>(ex.read_buffer("rc_test_keys"));
-  const uint32_t mask = (1u << s.rc.cache_log2_cells) - 1u;
+  const uint32_t mask = (1u << rc(s).cache_log2_cells) - 1u;
   std::set<uint32_t> present;
   for (uint32_t i = 0; i < cells.size(); ++i) {
     const glsl::RcCell& c = cells[i];
     if (!c.key) continue;
     ++fc.occupied;
     present.insert(c.key);
-    if ((((i - ((c.key >> 1) & mask)) & mask)) >= s.rc.cache_max_probe) ++fc.misplaced;
+    if ((((i - ((c.key >> 1) & mask)) & mask)) >= rc(s).cache_max_probe) ++fc.misplaced;
     if (c.shaded_frame == frame + 1) ++fc.shaded_now;
     if (c.shaded_frame) {
       float rgb[3];
@@ -189,7 +190,7 @@ FrameCheck check_frame(Executor& ex, const Scene& scene, uint32_t frame) {
     ++fc.hits;
     if (!present.count(k.key.x)) ++fc.dropped_keys;
     float p[3] = {k.position.x, k.position.y, k.position.z};
-    CpuKey ck = cpu_cell_key(p, cam, s.rc.cache_cell_size, s.rc.cache_lod_distance, k.key.z);
+    CpuKey ck = cpu_cell_key(p, cam, rc(s).cache_cell_size, rc(s).cache_lod_distance, k.key.z);
     if (ck.near_boundary) continue;
     ++fc.mirror_checked;
     fc.mirror_agree += ck.key == k.key.x;
@@ -219,7 +220,7 @@ TEST_F(RadianceCacheWorld, CountersAgreeWithTableAndHits) {
     std::printf("room frame %u: hits %u insertions %u reused %u drops %u collisions %u active %u "
                 "occupied %u shaded_now %u\n",
                 f, c.hits, st.insertions, st.reused, st.drops, st.collisions, st.active, c.occupied, c.shaded_now);
-    EXPECT_GT(c.hits, kProbes * s.rc.rays_per_probe / 4) << "the room should catch many probe rays";
+    EXPECT_GT(c.hits, kProbes * rc(s).rays_per_probe / 4) << "the room should catch many probe rays";
     EXPECT_LE(st.insertions + st.reused + st.drops, c.hits);
     EXPECT_LE(st.insertions, st.active);
     EXPECT_EQ(st.active, c.shaded_now) << "every queued cell is shaded this frame, and only those";
@@ -239,7 +240,7 @@ TEST_F(RadianceCacheWorld, CountersAgreeWithTableAndHits) {
       EXPECT_EQ(st.reused, 0u);
       EXPECT_EQ(st.insertions, st.active);
     }
-    if (f >= 1 && f < s.rc.cache_reuse_frames) {
+    if (f >= 1 && f < rc(s).cache_reuse_frames) {
       EXPECT_GT(st.reused, 0u) << "recently shaded cells are reused";
     }
   }
@@ -254,8 +255,8 @@ TEST_F(RadianceCacheWorld, CountersAgreeWithTableAndHits) {
 TEST_F(RadianceCacheWorld, TinyCacheCountsEveryDrop) {
   Scene scene = parse_scene(nlohmann::json::parse(kRoom), "room");
   Settings s = small_settings();
-  s.rc.cache_log2_cells = 6;  // 64 cells for thousands of distinct cells
-  s.rc.cache_max_probe = 4;
+  rc(s).cache_log2_cells = 6;  // 64 cells for thousands of distinct cells
+  rc(s).cache_max_probe = 4;
   Executor ex(gpu(), scene, s, world_passes(), {"probe_irradiance", "rc_test_keys", "rc_test_atlas"});
   uint32_t total_insertions = 0;
   for (uint32_t f = 0; f < 2; ++f) {
@@ -275,7 +276,7 @@ TEST_F(RadianceCacheWorld, TinyCacheCountsEveryDrop) {
     EXPECT_EQ(c.occupied, total_insertions);
     EXPECT_EQ(c.misplaced, 0u);
     EXPECT_EQ(st.active, c.shaded_now);
-    EXPECT_GE(st.collisions, st.drops * s.rc.cache_max_probe) << "a drop probed every slot";
+    EXPECT_GE(st.collisions, st.drops * rc(s).cache_max_probe) << "a drop probed every slot";
   }
 }
 
@@ -308,7 +309,7 @@ TEST_F(RadianceCacheWorld, OpenSkyProbeConvergesToSkyRadiance) {
     EXPECT_LT(worst, 0.02);
     EXPECT_EQ(zero, 0u) << "every texel of every probe is written";
     // Misses clamp the distance moment to 4 probe spacings.
-    EXPECT_NEAR(mean_distance, 4.0 * s.rc.probe_spacing, 0.01);
+    EXPECT_NEAR(mean_distance, 4.0 * rc(s).probe_spacing, 0.01);
   }
   FrameCheck c = check_frame(ex, scene, 3);
   EXPECT_EQ(c.hits, 0u);
@@ -318,7 +319,7 @@ TEST_F(RadianceCacheWorld, OpenSkyProbeConvergesToSkyRadiance) {
 TEST_F(RadianceCacheWorld, CpuMirrorOfCellKeyAgrees) {
   Scene scene = parse_scene(nlohmann::json::parse(kRoom), "room");
   Settings s = small_settings();
-  s.rc.cache_lod_distance = 2.0f;  // LODs 1, 2 and 4 inside the room
+  rc(s).cache_lod_distance = 2.0f;  // LODs 1, 2 and 4 inside the room
   Executor ex(gpu(), scene, s, world_passes(), {"probe_irradiance", "rc_test_keys", "rc_test_atlas"});
   ex.run_frame();
   FrameCheck c = check_frame(ex, scene, 0);

@@ -8,6 +8,7 @@
 #include "renderer/scene/scene_loader.h"
 #include "renderer/techniques/technique.h"
 #include "tests/gpu_fixture.h"
+#include "tests/technique_settings.h"
 
 namespace gib {
 namespace {
@@ -29,7 +30,7 @@ Rendered render(Gpu& gpu, const Scene& scene, const std::string& technique, uint
   s.width = w;
   s.height = h;
   s = apply_preset(t, preset, s);
-  s.spp_per_frame = spp_per_frame;
+  if (s.has_params<ReferenceSettings>()) ref(s).spp_per_frame = spp_per_frame;
   std::vector<std::string> outputs{t.output};
   outputs.insert(outputs.end(), extra.begin(), extra.end());
   Executor ex(gpu, scene, s, make_passes(t), outputs);
@@ -118,11 +119,11 @@ TEST_F(Render, DirectTechniqueMatchesReferenceDirectAov) {
 TEST_F(Render, SameSeedSameImageOtherSeedOtherImage) {
   Scene scene = load_scene(scene_path("cornell.json"));
   auto run = [&](uint32_t seed) {
-    Settings s;
+    Settings s = defaults_of("reference");
     s.width = 32;
     s.height = 18;
     s.seed = seed;
-    s.spp_per_frame = 2;
+    ref(s).spp_per_frame = 2;
     Executor ex(gpu(), scene, s, make_passes(find_technique("reference")), {"radiance"});
     ex.run_frame();
     return ex.read("radiance").pixels;
@@ -148,7 +149,7 @@ size_t non_finite_values(const FloatImage& img) {
   return bad;
 }
 
-// The degenerate-geometry inputs (DESIGN.md "Numerical stability"): a mesh whose normals are
+// The degenerate-geometry inputs (docs/architecture.md "Determinism and numerical stability"): a mesh whose normals are
 // NaN (null in the file) and zero, with zero-area triangles, filling the view. The guards
 // (Settings::nan_guards; gib_surface falls back to the face normal) keep every output finite;
 // without them the NaN reaches the image, which shows the input does arrive on the GPU as NaN.
@@ -172,7 +173,7 @@ TEST_F(Render, NanAndZeroVertexNormalsRenderFinite) {
     Settings s = apply_preset(t, "low", Settings{});
     s.width = 32;
     s.height = 18;
-    s.spp_per_frame = 4;
+    if (s.has_params<ReferenceSettings>()) ref(s).spp_per_frame = 4;
     s.nan_guards = guards;
     std::vector<std::string> outputs{t.output};
     outputs.insert(outputs.end(), extra.begin(), extra.end());
@@ -237,7 +238,7 @@ TEST_F(Render, WorldOffsetMovesCameraWithScene) {
 
 TEST_F(Render, RequestingOnlyTheVisibilityBufferCullsShading) {
   Scene scene = load_scene(scene_path("cornell.json"));
-  Settings s;
+  Settings s = defaults_of("direct");
   Executor ex(gpu(), scene, s, make_passes(find_technique("direct")), {"vbuffer"});
   std::vector<std::string> culled;
   for (auto& p : ex.plan().passes)

@@ -354,3 +354,35 @@ TEST(Report, MissingResultsIsAnError) {
 
 }  // namespace
 }  // namespace gib
+
+namespace gib {
+namespace {
+
+// The report of a real run, not a fixture: the variant-only case (no reference image: the page
+// once showed "failed to load img/...__reference.indirect_diffuse.png" after a clean run) and,
+// with the stability scan off, extreme-range-exterior, whose negative control only a scan_*
+// threshold catches: that control is "skipped", the technique rows still pass, the run passes.
+TEST(Report, RealRunWithoutTheScanLoadsCleanlyAndSkipsScanThresholds) {
+  REQUIRE_CHROMIUM(chromium);
+  fs::path dir = make_temp_dir("real");
+  SuiteOptions o;
+  o.case_globs = {"r11g11b10-vs-rgb9e5", "extreme-range-exterior"};
+  o.cases_dir = std::string(GIB_SOURCE_DIR) + "/cases";
+  o.goldens_dir = std::string(GIB_SOURCE_DIR) + "/goldens";
+  o.out = dir.string();
+  o.stability_scan = false;
+  ASSERT_EQ(cmd_run(o), 0);
+  std::string results = read_file(dir / "results.json");
+  EXPECT_NE(results.find("\"status\": \"skipped\""), std::string::npos) << "the scan-only control is not skipped";
+  EXPECT_NE(results.find("scan_saturated skipped: the stability scan did not run"), std::string::npos);
+  EXPECT_EQ(results.find("r11g11b10-vs-rgb9e5__reference"), std::string::npos) << "a reference image it does not have";
+  BrowserRun r = run_chromium(chromium, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.describe();
+  EXPECT_EQ(r.status, "ok") << r.describe();
+  expect_clean_console(r);
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+}
+
+}  // namespace
+}  // namespace gib

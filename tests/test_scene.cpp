@@ -860,7 +860,7 @@ TEST(SceneSamples, FurnaceIsWhiteOpenAndApart) {
   EXPECT_LT(view.transform_point((lo1 + hi1) * 0.5f).z, 0.0f);
 }
 
-// The degenerate-geometry case's scene holds every input it promises (DESIGN.md).
+// The degenerate-geometry case's scene holds every input it promises (docs/architecture.md).
 TEST(SceneSamples, DegenerateHoldsTheDegenerateInputs) {
   Scene s = load_scene(scene_path("degenerate.json"));
   EXPECT_EQ(s.features(), SceneFeatures(Feature::sun) | Feature::sky | Feature::local_lights | Feature::textured)

@@ -1,4 +1,4 @@
-// The far-from-origin stress (DESIGN.md "Numerical stability", the degenerate-geometry case):
+// The far-from-origin stress (docs/architecture.md "Determinism and numerical stability", the degenerate-geometry case):
 // Settings::world_offset moves every world-space position; the technique options that set it;
 // `gibench render --option NAME=VALUE`. The GPU side (the camera moves too, the image does not
 // change) is in test_render.cpp.

@@ -261,7 +261,7 @@
   function badge(row) {
     var neg = row.kind === 'negative_control';
     var s = row.status || 'error';
-    var label = neg ? (s === 'pass' ? 'caught' : s === 'fail' ? 'NOT caught' : 'error') : s === 'known_failure' ? 'known failure' : s;
+    var label = neg ? (s === 'pass' ? 'caught' : s === 'fail' ? 'NOT caught' : s === 'skipped' ? 'skipped' : 'error') : s === 'known_failure' ? 'known failure' : s;
     return h('span', { class: 'badge ' + s, title: neg ? 'negative control: status pass means a threshold caught it' : null }, label);
   }
 
@@ -288,14 +288,14 @@
       var frac = (typeof c.value === 'number' && isFinite(c.value) && thr) ? Math.max(0, Math.min(1.5, c.value / thr)) / 1.5
         : (typeof c.value === 'number' && isFinite(c.value) ? 0 : 1);
       var name = c.metric + (c.against ? ' vs ' + c.against : '') + (c.roi ? ' [' + c.roi + ']' : '');
-      var cls = c.pass ? 'pass' : neg ? 'fail caught' : 'fail';
+      var cls = c.skipped ? 'skipped' : c.pass ? 'pass' : neg ? 'fail caught' : 'fail';
       return h('li', { class: cls, title: c.message || '' }, [
-        h('span', { class: 'icon' }, c.pass ? '\u2713' : '\u2717'),
+        h('span', { class: 'icon' }, c.skipped ? '\u2013' : c.pass ? '\u2713' : '\u2717'),
         h('span', { class: 'cname' }, [name, !c.pass && neg ? h('span', { class: 'caught-tag' }, 'caught it') : null]),
         h('span', { class: 'gauge' }, [h('span', { class: 'fill', style: { width: (frac * 100) + '%' } }), h('span', { class: 'thr' })]),
-        h('span', { class: 'cval' }, fmtNum(c.value)),
+        h('span', { class: 'cval' }, c.skipped ? 'skipped' : fmtNum(c.value)),
         h('span', { class: 'cbound' }, bound.join(' ') || '\u2014'),
-        c.pass ? null : h('div', { class: 'cmsg' }, c.message || '')
+        c.pass && !c.skipped ? null : h('div', { class: 'cmsg' }, c.message || '')
       ]);
     }));
   }
@@ -472,7 +472,7 @@
   }
 
   function countStatus(rows) {
-    var n = { pass: 0, fail: 0, error: 0, known_failure: 0 };
+    var n = { pass: 0, fail: 0, error: 0, known_failure: 0, skipped: 0 };
     rows.forEach(function (r) { n[r.status in n ? r.status : 'error']++; });
     return n;
   }
@@ -515,6 +515,7 @@
         h('span', { class: 'pill pass' }, n.pass + ' passed'),
         n.fail ? h('span', { class: 'pill fail' }, n.fail + ' failed') : null,
         n.known_failure ? h('span', { class: 'pill known_failure' }, n.known_failure + ' known failure') : null,
+        n.skipped ? h('span', { class: 'pill skipped', title: 'negative controls whose thresholds need the stability scan (--no-stability-scan)' }, n.skipped + ' skipped') : null,
         n.error + errors.length ? h('span', { class: 'pill error' }, (n.error + errors.length) + ' error' + (n.error + errors.length === 1 ? '' : 's')) : null
       ]),
       c && c.description ? h('p', { class: 'desc' }, c.description) : null,

@@ -358,6 +358,7 @@ class Compiler {
       pp.reason = runs ? "" : reason_[p];
       pp.kind = decls_[p].kind;
       pp.slots = decls_[p].slots;
+      pp.work = decls_[p].work;
       return pp;
     };
     for (int p : order) plan.passes.push_back(make(p, true));

@@ -374,8 +374,7 @@ void Executor::upload_frame_constants(float time) {
   f.sky_horizon = {sky.horizon.x, sky.horizon.y, sky.horizon.z, sky.turbidity};
   f.sky_ground = {sky.ground.x, sky.ground.y, sky.ground.z, 0};
   f.frame_info = {frame_, settings_.width, settings_.height, scene_gpu_.light_count};
-  f.scene_info = {scene_gpu_.triangle_count, scene_gpu_.instance_count, settings_.seed,
-                  frame_ * settings_.spp_per_frame};
+  f.scene_info = {scene_gpu_.triangle_count, scene_gpu_.instance_count, settings_.seed, 0};
   if (!scene_gpu_.frame) scene_gpu_.frame = gpu_.create_buffer(sizeof(f), BufferUsage::uniform, "frame_constants");
   gpu_.upload(*scene_gpu_.frame, &f, sizeof(f));
 }

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "renderer/graph/float_image.h"
+#include "renderer/image/float_image.h"
 #include "renderer/graph/pass.h"
 #include "renderer/graph/stability.h"
 

@@ -9,17 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "renderer/image/format.h"
 #include "renderer/scene/features.h"
 
 namespace gib {
-
-enum class Format : uint32_t {
-  r32_uint, rg32_uint, rgba32_uint, r32_float, rg32_float, rgba32_float,
-  rg16_float, rgba16_float, rgba8_unorm, b10g11r11_float, e5b9g9r9_float,
-  d32_float, buffer
-};
-const char* format_name(Format f);
-uint32_t format_bytes_per_texel(Format f);  // 0 for buffer
 
 enum class SizeRule : uint32_t { render, half, quarter, fixed, buffer };
 
@@ -110,12 +103,20 @@ struct Slot {
 enum class PassKind : uint32_t { compute, graphics, transfer };
 const char* pass_kind_name(PassKind k);
 
+// Work a pass does per frame, known from the settings (rays, probes, samples): reported by
+// `gibench bench` and the pass benchmarks next to its time.
+struct WorkCounter {
+  std::string name;  // e.g. "rays"
+  double per_frame = 0;
+};
+
 struct PassDecl {
   std::string name;     // == folder == timer label == bench key
   PassKind kind = PassKind::compute;
   SceneFeatures needs;  // culled when the scene lacks any of these
   std::vector<Slot> slots;
   bool side_effect = false;  // never culled for unused outputs (readbacks, stats)
+  std::vector<WorkCounter> work;  // besides "pixels", which every pass reports
 };
 
 struct GraphError : std::runtime_error {
@@ -154,6 +155,7 @@ struct PlannedPass {
   uint64_t bytes_written = 0;  // sum of the sizes (one copy) of resources it writes
   PassKind kind = PassKind::compute;
   std::vector<Slot> slots;     // as declared
+  std::vector<WorkCounter> work;  // as declared
 };
 
 struct Plan {

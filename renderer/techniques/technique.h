@@ -1,31 +1,21 @@
-// Techniques: named compositions of passes with quality presets. A technique lists every pass
-// it may use; the graph culls what the scene or the requested outputs do not need.
+// Techniques: named compositions of passes with quality presets and options. Each technique
+// is one folder, renderer/techniques/<name>/, whose <name>.cpp returns its Technique (pass
+// list, output, AOVs, presets table, options bound to its own settings struct); the registry
+// (technique_list.cpp) lists them, one line each. A technique lists every pass it may use;
+// the graph culls what the scene or the requested outputs do not need.
 #pragma once
+#include <functional>
 #include <map>
+#include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "renderer/graph/pass.h"
 
 namespace gib {
 
-struct Technique {
-  std::string name;
-  std::string description;
-  std::vector<std::string> passes;   // in declaration order
-  std::string output;                // the image the technique produces (its final radiance)
-  std::vector<std::string> aovs;     // other outputs that may be requested
-  std::vector<std::string> presets;  // low, medium, high, ultra
-};
-
-const std::vector<Technique>& techniques();
-// Throws std::invalid_argument naming the known techniques when `name` is unknown.
-const Technique& find_technique(const std::string& name);
-// Settings for a preset: throws std::invalid_argument on an unknown preset.
-Settings apply_preset(const Technique& t, const std::string& preset, Settings base);
-std::vector<std::unique_ptr<Pass>> make_passes(const Technique& t);
-
-// A named option of a technique: a Settings field a case (or the CLI) may set directly,
+// A named option of a technique: a settings field a case (or the CLI) may set directly,
 // overriding the preset. Values are numbers in [min, max]; integer options reject fractions
 // (switches are integers in [0, 1]).
 struct TechniqueOption {
@@ -34,17 +24,80 @@ struct TechniqueOption {
   double min = 0;
   double max = 4294967295.0;
   bool integer = true;
-  void (*apply)(Settings&, double) = nullptr;
+  std::function<void(Settings&, double)> apply;
   std::vector<double> allowed;  // when not empty, the only valid values (e.g. the NaN targets a technique has)
 };
+
+// A pass the technique runs: its name (== folder == file stem == timer == bench key) and factory.
+struct PassEntry {
+  std::string name;
+  std::unique_ptr<Pass> (*make)() = nullptr;
+};
+
+struct Technique {
+  std::string name;
+  std::string description;
+  std::vector<PassEntry> passes;     // in declaration order
+  std::string output;                // the image the technique produces (its final radiance)
+  std::vector<std::string> aovs;     // other outputs that may be requested
+  std::vector<std::string> presets;  // in order of quality: low, medium, high, ultra
+  std::vector<TechniqueOption> options;  // in a stable order
+  // The technique's settings struct with its defaults, and the preset table applied to it
+  // (row `level` of `presets`). Made by define_settings<T>().
+  std::function<std::unique_ptr<TechniqueSettings>()> make_settings;
+  std::function<void(Settings&, size_t level)> apply_preset_row;
+};
+
+// Binds a technique to its settings struct T and its presets table: `rows[i]` (a struct with a
+// `name` and the values of preset i) applied by `apply(T&, const Row&)`.
+template <class T, class Row, size_t N>
+void define_settings(Technique& t, const Row (&rows)[N], void (*apply)(T&, const Row&)) {
+  t.presets.clear();
+  for (const Row& r : rows) t.presets.push_back(r.name);
+  t.make_settings = [] { return std::make_unique<T>(); };
+  t.apply_preset_row = [&rows, apply](Settings& s, size_t level) { apply(s.params<T>(), rows[level]); };
+}
+
+// An option bound to field `field` of P: the technique's settings struct or a shared pass's
+// parameter struct it derives from. bool fields are switches in [0, 1].
+template <class P, class V>
+TechniqueOption option(std::string name, std::string description, double min, double max, V P::*field) {
+  TechniqueOption o{std::move(name), std::move(description), min, max, !std::is_floating_point_v<V>};
+  o.apply = [field](Settings& s, double v) {
+    if constexpr (std::is_same_v<V, bool>)
+      s.params<P>().*field = v != 0.0;
+    else
+      s.params<P>().*field = static_cast<V>(v);
+  };
+  return o;
+}
+
+// Appends the options every technique shares: the NaN guards, the NaN-injection debug switches
+// (the injection targets limited to `targets`, those the technique's passes write) and the
+// world offset.
+std::vector<TechniqueOption> with_common_options(std::vector<TechniqueOption> own, std::vector<double> targets);
+
+const std::vector<Technique>& techniques();
+// Throws std::invalid_argument naming the known techniques when `name` is unknown.
+const Technique& find_technique(const std::string& name);
+// Settings for a preset: `base` with the technique's settings struct (kept when `base` already
+// holds this technique's, else its defaults) and the preset's row applied. Throws
+// std::invalid_argument on an unknown preset.
+Settings apply_preset(const Technique& t, const std::string& preset, Settings base);
+std::vector<std::unique_ptr<Pass>> make_passes(const Technique& t);
+// Every pass of every technique, by name (shared passes once).
+std::vector<std::string> pass_names();
+// Throws GraphError naming the known passes when `name` is unknown.
+std::unique_ptr<Pass> make_pass(const std::string& name);
 
 // The options `t` accepts, in a stable order (empty for a technique with none).
 const std::vector<TechniqueOption>& technique_options(const Technique& t);
 // "" when `value` is valid for option `name` of `t`, else "expected <what>, got <what>"
 // (for callers that prefix their own location, such as the case loader's JSON pointer).
 std::string check_option(const Technique& t, const std::string& name, double value);
-// Applies options on top of `base` (normally the preset's settings). Throws
-// std::invalid_argument naming the option: unknown names list the technique's known ones.
+// Applies options on top of `base` (normally the preset's settings; given the technique's
+// default settings struct when it holds another technique's). Throws std::invalid_argument
+// naming the option: unknown names list the technique's known ones.
 Settings apply_options(const Technique& t, Settings base, const std::map<std::string, double>& options);
 
 }  // namespace gib

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "renderer/graph/graph.h"  // Format
+#include "renderer/image/format.h"
 
 namespace gib {
 
@@ -90,10 +90,11 @@ struct GraphicsPipelineDesc {
   bool depth = true;  // D32 depth test (less), depth write
 };
 
-// Pipeline stage classes for barriers; matches 1 << PassKind in graph.h.
-inline constexpr uint32_t kStageCompute = 1u << static_cast<uint32_t>(PassKind::compute);
-inline constexpr uint32_t kStageGraphics = 1u << static_cast<uint32_t>(PassKind::graphics);
-inline constexpr uint32_t kStageTransfer = 1u << static_cast<uint32_t>(PassKind::transfer);
+// Pipeline stage classes for barriers. The graph's PassKind masks use the same bits (1 <<
+// PassKind; checked in renderer/graph/pass.h).
+inline constexpr uint32_t kStageCompute = 1u << 0;
+inline constexpr uint32_t kStageGraphics = 1u << 1;
+inline constexpr uint32_t kStageTransfer = 1u << 2;
 inline constexpr uint32_t kStageHost = 1u << 8;
 
 // A command list under construction. Recording is cheap; submit() runs it and waits.

@@ -5,7 +5,7 @@
 // Slots: reads direct_light, gbuffer_albedo, gi_irradiance; writes final_color (RGBA32F,
 // persistent: final_gather reads last frame's copy as its screen cache, so the graph keeps two)
 // and indirect_diffuse (RGBA32F).
-// Seed: idtech8-global-illumination.txt, "Denoise and Upscale Passes" (step 4: adding direct
+// Seed: the idTech 8 "Global Illumination" talk, "Denoise and Upscale Passes" (step 4: adding direct
 // lighting).
 // Limits: diffuse only (no indirect specular / reflection probes); translucent surfaces get no
 // back-side indirect light.

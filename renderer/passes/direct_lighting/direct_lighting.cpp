@@ -7,7 +7,7 @@ namespace {
 
 class DirectLightingPass final : public Pass {
  public:
-  PassDecl declare(const Scene&, const Settings&) const override {
+  PassDecl declare(const Scene&, const Settings& s) const override {
     PassDecl d;
     d.name = "direct_lighting";
     d.slots = {{"gbuffer_albedo", Access::read},
@@ -15,13 +15,14 @@ class DirectLightingPass final : public Pass {
                {"gbuffer_position", Access::read},
                {"gbuffer_emissive", Access::read},
                {"direct_light", Access::write, ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values())}};
+    d.work = {{"sky_rays", double(s.width) * s.height * s.params<DirectLightingParams>().sky_rays}};
     return d;
   }
 
   void record(RecordContext& ctx) override {
     using namespace glsl;
     SceneFeatures f = ctx.scene.features();
-    DirectPush push{ctx.settings.sky_rays, ctx.settings.nan_guards ? 1u : 0u, 0, 0};
+    DirectPush push{ctx.settings.params<DirectLightingParams>().sky_rays, ctx.settings.nan_guards ? 1u : 0u, 0, 0};
     static_assert(sizeof(push) == 16, "DirectPush must match direct_lighting.comp's push block");
     record_compute(ctx, {.shader = "direct_lighting.comp",
                          .images = {{kDirectBindAlbedo, "gbuffer_albedo"},

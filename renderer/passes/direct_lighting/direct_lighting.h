@@ -4,16 +4,24 @@
 // diffuse transmission for translucent materials (light from the back face scaled by
 // translucency). Sky pixels get the sky radiance. Output is linear HDR (RGBA32F).
 // Slots: reads gbuffer_albedo, gbuffer_normal, gbuffer_position, gbuffer_emissive; writes direct_light.
-// Seed: the `direct` base technique in DESIGN.md; shadows are traced with our BVH (god-of-war
+// Seed: the `direct` base technique (docs/architecture.md "Techniques"); shadows are traced with our BVH (god-of-war
 // PCF/contact-hardening shadows are a later pass).
 // Limits: loops over all local lights (the light grid of radiance-cache will bound this);
 // specular terms are not shaded (roughness/metalness are stored but the BRDF is Lambertian).
 // NaN guard (Settings::nan_guards): a non-finite G-buffer normal is lit as if it faced the camera.
 #pragma once
+#include <cstdint>
 #include <memory>
 
 #include "renderer/graph/pass.h"
 
 namespace gib {
+
+// Settings of direct_lighting: the settings struct of every technique that runs it derives
+// from this (the pass reads Settings::params<DirectLightingParams>()).
+struct DirectLightingParams {
+  uint32_t sky_rays = 4;  // cosine-distributed sky visibility rays per pixel (0: no sky light)
+};
+
 std::unique_ptr<Pass> make_direct_lighting_pass();
-}
+}  // namespace gib

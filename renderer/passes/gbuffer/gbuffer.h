@@ -5,7 +5,7 @@
 // screen-space derivatives of the barycentrics and the UVs; those derivatives box-filter the
 // procedural checker so it does not alias. Writes the G-buffer.
 // Slots: reads vbuffer; writes gbuffer_albedo, gbuffer_normal, gbuffer_position, gbuffer_emissive.
-// Seed: doom-visibility-buffer-vrcs.txt, "Attribute interpolation" (barycentrics and their
+// Seed: DOOM: The Dark Ages "Visibility Buffer and Deferred Rendering" talk, "Attribute interpolation" (barycentrics and their
 // derivatives from the triangle, then deferred texturing).
 // Limits: no material classification or per-material dispatch yet (one uber kernel).
 // NaN guard (Settings::nan_guards): a non-finite or non-unit shading normal falls back to the face

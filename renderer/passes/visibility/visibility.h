@@ -3,7 +3,7 @@
 // and a D32 depth buffer. Alpha-tested materials discard in the fragment shader with the
 // same mask the tracer uses; stochastic opacity uses a hash of (pixel, frame).
 // Slots: writes vbuffer (rg32_uint), depth (d32_float).
-// Seed: doom-visibility-buffer-vrcs.txt, "Visibility Buffer" (64-bit ids, then compute).
+// Seed: DOOM: The Dark Ages "Visibility Buffer and Deferred Rendering" talk, "Visibility Buffer" (64-bit ids, then compute).
 // Limits: one draw of all triangles (no instancing, no GPU culling): scenes here are small.
 #pragma once
 #include <memory>

@@ -1,4 +1,4 @@
-// NaN guards (Settings::nan_guards, DESIGN.md "Numerical stability"): finiteness tests on the
+// NaN guards (Settings::nan_guards, docs/architecture.md "Determinism and numerical stability"): finiteness tests on the
 // float's bits. Integer compares, so a compiler that assumes no NaN/Inf in float arithmetic
 // (fast-math style optimisations are allowed without the float-controls execution modes) cannot
 // fold them away, unlike isnan()/isinf() or x == x.

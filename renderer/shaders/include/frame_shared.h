@@ -22,7 +22,7 @@ struct GpuFrame {
   vec4 sky_horizon;     // rgb, w: turbidity
   vec4 sky_ground;      // rgb, w: unused
   uvec4 frame_info;     // frame index, render width, render height, light count
-  uvec4 scene_info;     // triangle count, instance count, seed, samples accumulated so far
+  uvec4 scene_info;     // triangle count, instance count, seed, unused (0)
 };
 
 GIB_SHARED_END

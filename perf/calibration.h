@@ -1,0 +1,32 @@
+// Calibration micro-kernels (bench/calibrate_fma.comp, bench/calibrate_copy.comp): the
+// measuring device's achieved FP32 FMA rate and copy bandwidth, median of repeats. Every
+// `gibench bench` run records them, since the console-scaling model divides by them.
+#pragma once
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "perf/profiles.h"
+#include "renderer/vk/gpu.h"
+
+namespace gib::perf {
+
+struct Calibration {
+  DeviceThroughput throughput;
+  std::string timing;           // "timestamps" (GPU) or "host clock" (CPU device)
+  uint32_t repeats = 0;
+  uint64_t fma_threads = 0, fma_iterations = 0;
+  double fma_flops = 0;         // per dispatch
+  std::vector<double> fma_ms;   // every repeat
+  uint64_t copy_bytes = 0;      // per dispatch (read + write)
+  std::vector<double> copy_ms;
+  nlohmann::json to_json() const;
+  static Calibration from_json(const nlohmann::json& j);
+};
+
+// Times one dispatch of each kernel `repeats` times after tuning its size to a few ms (GPU) or
+// ~100 ms (CPU device); the rates come from the median time.
+Calibration calibrate(Gpu& gpu, uint32_t repeats = 7);
+
+}  // namespace gib::perf

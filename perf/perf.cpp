@@ -1,0 +1,693 @@
+#include "perf/perf.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "perf/calibration.h"
+#include "perf/profiles.h"
+#include "perf/stats.h"
+#include "revision.h"
+#include "renderer/graph/executor.h"
+#include "renderer/scene/scene_loader.h"
+#include "renderer/techniques/technique.h"
+
+#ifndef GIB_SOURCE_DIR
+#define GIB_SOURCE_DIR "."
+#endif
+
+namespace gib::perf {
+
+PassBytes pass_bytes(const Plan& plan, const PlannedPass& pass) {
+  PassBytes b;
+  b.written = pass.bytes_written;
+  for (auto& s : pass.slots) {
+    if (s.access == Access::write) continue;
+    if (const ResolvedResource* r = plan.find(s.name)) b.read += r->bytes_per_copy ? r->bytes_per_copy : r->bytes;
+  }
+  return b;
+}
+
+double parse_scale(const std::string& text) {
+  double v = 0;
+  unsigned a = 0, b = 0;
+  char slash = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%u%c%u%c", &a, &slash, &b, &extra) == 3 && slash == '/' && b)
+    v = double(a) / double(b);
+  else {
+    try {
+      size_t used = 0;
+      v = std::stod(text, &used);
+      if (used != text.size()) v = 0;
+    } catch (const std::exception&) {
+      v = 0;
+    }
+  }
+  if (!(v > 0 && v <= 1))
+    throw PerfError(fmt::format("--scale-resolution: expected a fraction in (0, 1] like 1/8 or 0.125, got '{}'", text));
+  return v;
+}
+
+namespace {
+
+std::string utc_now() {
+  std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw PerfError(fmt::format("{}: cannot open", path));
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+// --case: a case file (its "scene"), a scene file, or a name under cases/ or cases/scenes/.
+std::string resolve_scene(const std::string& c) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> tries;
+  if (fs::path(c).extension() == ".json") tries.push_back(c);
+  tries.push_back(fs::path(GIB_SOURCE_DIR) / "cases" / (c + ".json"));
+  tries.push_back(fs::path(GIB_SOURCE_DIR) / "cases" / "scenes" / (c + ".json"));
+  for (auto& p : tries) {
+    if (!fs::exists(p)) continue;
+    nlohmann::json j;
+    try {
+      j = nlohmann::json::parse(read_file(p.string()));
+    } catch (const nlohmann::json::parse_error& e) {
+      throw PerfError(fmt::format("{}: expected valid JSON, got a parse error: {}", p.string(), e.what()));
+    }
+    if (j.is_object() && j.contains("scene")) {
+      if (!j["scene"].is_string())
+        throw PerfError(fmt::format("{}: /scene: expected a scene path string, got {}", p.string(), j["scene"].dump()));
+      return (p.parent_path() / j["scene"].get<std::string>()).string();
+    }
+    return p.string();
+  }
+  throw PerfError(fmt::format("--case: expected a case or scene name (cases/<name>.json, cases/scenes/<name>.json) or a "
+                              "JSON path, got '{}'",
+                              c));
+}
+
+struct Workload {
+  uint32_t width = 0, height = 0;                 // the profiles' target resolution
+  uint32_t run_width = 0, run_height = 0;         // what was rendered
+  std::vector<const ConsoleProfile*> profiles;
+  std::string name() const { return fmt::format("{}x{}", width, height); }
+  std::string run_name() const { return fmt::format("{}x{}", run_width, run_height); }
+};
+
+struct PassRun {
+  std::string name;
+  std::vector<double> samples;   // ms per frame, every repeat
+  std::vector<uint32_t> repeat;  // which repeat each sample came from
+  PassBytes bytes_run, bytes_full;
+  double work_scale = 1;         // bytes_full / bytes_run: the per-pass scale to the workload
+  nlohmann::json counters;
+};
+
+struct TechniqueRun {
+  const Technique* technique = nullptr;
+  std::string name;     // the technique's name, "+LABEL" for a --variant
+  int base = -1;        // a variant: index of the plain run it is compared with
+  Workload workload;
+  Settings settings_run, settings_full;
+  Plan plan_run, plan_full;
+  std::vector<PassRun> passes;
+  std::vector<double> frame_ms;
+  std::vector<uint32_t> frame_repeat;
+};
+
+// Work done per frame, as the pass declares it (PassDecl::work), for reports.
+nlohmann::json work_counters(const PlannedPass& pass, const Settings& s) {
+  nlohmann::json c;
+  c["pixels"] = double(s.width) * s.height;
+  for (const WorkCounter& w : pass.work) c[w.name] = w.per_frame;
+  return c;
+}
+
+Plan compile_for(const Technique& t, const Scene& scene, const Settings& s) {
+  std::vector<PassDecl> decls;
+  for (auto& p : make_passes(t)) decls.push_back(p->declare(scene, s));
+  return compile(decls, {scene.features(), {t.output}, s.width, s.height});
+}
+
+std::string fmt_ms(double ms) {
+  if (!std::isfinite(ms)) return "-";
+  if (ms >= 100) return fmt::format("{:.1f}", ms);
+  if (ms >= 1) return fmt::format("{:.3f}", ms);
+  return fmt::format("{:.4f}", ms);
+}
+std::string fmt_pct(double f) {
+  if (!std::isfinite(f)) return "inf";
+  return fmt::format("{:+.1f}%", f * 100);
+}
+
+std::string scale_text(double f) {
+  double inv = 1 / f;
+  if (std::fabs(inv - std::round(inv)) < 1e-9) return fmt::format("1/{}", int(std::round(inv)));
+  return fmt::format("{:g}", f);
+}
+
+}  // namespace
+
+int cmd_bench(const BenchOptions& o) {
+  const std::string data = find_data_dir(o.data_dir);
+  const std::string profiles_path = data + "/console-profiles.json", seeds_path = data + "/seed-timings.json";
+  auto all_profiles = load_profiles(profiles_path);
+  auto profiles = select_profiles(all_profiles, o.profiles);
+  SeedTable seeds = load_seed_table(seeds_path);
+
+  std::vector<const Technique*> techs;
+  if (o.techniques.empty())
+    for (auto& t : techniques()) techs.push_back(&t);
+  else
+    for (auto& n : o.techniques) techs.push_back(&find_technique(n));
+  const std::string scene_path = resolve_scene(o.case_name);
+  Scene scene = load_scene(scene_path);
+
+  auto gpu = Gpu::create({o.device, false});
+  const DeviceInfo& dev = gpu->info();
+  const bool cpu = dev.is_software();
+  const double scale = o.scale_resolution.empty() ? (cpu ? 0.125 : 1.0) : parse_scale(o.scale_resolution);
+  const uint32_t frames = o.frames ? o.frames : (cpu ? 5 : 30);
+  const uint32_t warmup = o.warmup ? o.warmup : (cpu ? 1 : 5);
+  const uint32_t repeats = std::max(1u, o.repeats);
+
+  fmt::print("device: {} ({}, {} {}, subgroup {})\n", dev.name, dev.type, dev.driver_name, dev.driver_info,
+             dev.subgroup_size);
+  fmt::print("calibrating (median of {} repeats)...\n", o.calibration_repeats);
+  std::fflush(stdout);
+  Calibration cal = calibrate(*gpu, o.calibration_repeats);
+  const DeviceThroughput thr = cal.throughput;
+  fmt::print("calibration: FP32 {:.1f} GFLOP/s (FMA kernel, {}), copy bandwidth {:.1f} GB/s ({:.0f} MiB moved/dispatch)\n",
+             thr.fp32_gflops, cal.timing, thr.bandwidth_gbs, cal.copy_bytes / 1048576.0);
+
+  // Workloads: one per distinct target resolution; profiles sharing one share the measurement.
+  std::vector<Workload> workloads;
+  for (auto& p : profiles) {
+    auto it = std::find_if(workloads.begin(), workloads.end(),
+                           [&](auto& w) { return w.width == p.width && w.height == p.height; });
+    if (it == workloads.end()) {
+      Workload w;
+      w.width = p.width;
+      w.height = p.height;
+      w.run_width = std::max(8u, uint32_t(std::lround(p.width * scale)));
+      w.run_height = std::max(8u, uint32_t(std::lround(p.height * scale)));
+      workloads.push_back(w);
+      it = workloads.end() - 1;
+    }
+    it->profiles.push_back(&p);
+  }
+  fmt::print("case: {} (scene {}), preset {}, {} warm-up + {} timed frames x {} repeats; timing: {}\n", o.case_name,
+             scene_path, o.preset, warmup, frames, repeats, cpu ? "host clock per pass (CPU device)" : "GPU timestamps");
+  if (scale != 1)
+    fmt::print("resolution scale {}: passes run at {} of each profile's pixels; each pass's time is scaled up by the "
+               "ratio of the bytes it moves at the full resolution to those at the run resolution (= the pixel "
+               "ratio for passes whose resources follow the render size, 1 for fixed-size passes)\n",
+               scale_text(scale), scale_text(scale * scale));
+
+  // --variant: parsed up front (option names are checked against each technique below).
+  std::vector<BenchVariant> variants;
+  for (const auto& v : o.variants) variants.push_back(parse_variant(v));
+
+  // Runs: each technique and workload, then its variants (base = the plain run's index);
+  // timed repeat-major below, so the two halves of the noise floor are apart in time.
+  std::vector<TechniqueRun> runs;
+  for (auto* t : techs)
+    for (auto& w : workloads)
+      for (size_t vi = 0; vi <= variants.size(); ++vi) {
+        TechniqueRun r;
+        r.technique = t;
+        r.workload = w;
+        r.name = t->name;
+        Settings s;
+        s = apply_preset(*t, o.preset, s);  // the reference: 1 sample per pixel per frame (its default)
+        if (vi > 0) {
+          const auto& [label, opts] = variants[vi - 1];
+          try {
+            s = apply_options(*t, s, opts);
+          } catch (const std::invalid_argument& e) {
+            throw PerfError(fmt::format("--variant {}: {}: {}", label, t->name, e.what()));
+          }
+          r.name = t->name + "+" + label;
+          r.base = int(runs.size() - vi);
+        }
+        r.settings_full = s;
+        r.settings_full.width = w.width;
+        r.settings_full.height = w.height;
+        r.settings_run = s;
+        r.settings_run.width = w.run_width;
+        r.settings_run.height = w.run_height;
+        r.plan_full = compile_for(*t, scene, r.settings_full);
+        runs.push_back(std::move(r));
+      }
+  auto t_start = std::chrono::steady_clock::now();
+  for (uint32_t rep = 0; rep < repeats; ++rep)
+    for (auto& r : runs) {
+      Executor ex(*gpu, scene, r.settings_run, make_passes(*r.technique), {r.technique->output});
+      if (rep == 0) {
+        r.plan_run = ex.plan();
+        for (auto* pp : r.plan_run.running()) {
+          PassRun pr;
+          pr.name = pp->name;
+          pr.bytes_run = pass_bytes(r.plan_run, *pp);
+          pr.counters = work_counters(*pp, r.settings_full);
+          for (auto* fp : r.plan_full.running())
+            if (fp->name == pp->name) {
+              pr.bytes_full = pass_bytes(r.plan_full, *fp);
+              pr.counters = work_counters(*fp, r.settings_full);  // at the profile's workload
+            }
+          double pixel_ratio = double(r.workload.width) * r.workload.height / (double(r.workload.run_width) * r.workload.run_height);
+          pr.work_scale = pr.bytes_run.total() ? double(pr.bytes_full.total()) / double(pr.bytes_run.total()) : pixel_ratio;
+          r.passes.push_back(std::move(pr));
+        }
+      }
+      for (uint32_t f = 0; f < warmup; ++f) ex.run_frame();
+      for (uint32_t f = 0; f < frames; ++f) {
+        FrameResult fr = ex.run_frame();
+        for (auto& pt : fr.passes)
+          for (auto& pr : r.passes)
+            if (pr.name == pt.name) {
+              pr.samples.push_back(pt.ms);
+              pr.repeat.push_back(rep);
+            }
+        r.frame_ms.push_back(fr.total_ms);
+        r.frame_repeat.push_back(rep);
+      }
+      fmt::print("  [{}/{}] {} @ {} ({}): frame median {:.3f} ms\n", rep + 1, repeats, r.name,
+                 r.workload.name(), r.workload.run_name(), median_of(r.frame_ms));
+      std::fflush(stdout);
+    }
+  const double run_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+
+  nlohmann::json out;
+  out["format"] = "gibench-perf-1";
+  out["revision"] = GIB_REVISION;
+  out["date"] = utc_now();
+  out["device"] = {{"name", dev.name}, {"type", dev.type}, {"driver", dev.driver_name},
+                   {"driver_info", dev.driver_info}, {"api_version", dev.api_version},
+                   {"subgroup_size", dev.subgroup_size}};
+  out["calibration"] = cal.to_json();
+  out["settings"] = {{"case", o.case_name}, {"scene", scene_path}, {"preset", o.preset}, {"frames", frames},
+                     {"warmup", warmup}, {"repeats", repeats}, {"scale_resolution", scale},
+                     {"timing", cpu ? "host clock per pass" : "timestamps"}, {"profiles", o.profiles},
+                     {"data", {{"profiles", profiles_path}, {"seeds", seeds_path}}}, {"seconds", run_seconds}};
+  auto& jruns = out["runs"] = nlohmann::json::array();
+  auto& jnoise = out["noise_floor"] = nlohmann::json::object();
+  auto& jseed = out["seed_comparison"] = nlohmann::json::array();
+  nlohmann::json medians = nlohmann::json::object();
+
+  const auto& seed_map = seed_key_of_pass();
+  std::vector<double> detectables;
+  std::string worst_key;
+  double worst = 0;
+
+  for (auto& r : runs) {
+    const Workload& w = r.workload;
+    fmt::print("\n== {} @ {} (profiles: ", r.name, w.name());
+    for (size_t i = 0; i < w.profiles.size(); ++i) fmt::print("{}{}", i ? ", " : "", w.profiles[i]->name);
+    fmt::print(")");
+    if (scale != 1) fmt::print(" measured at {} (scale {}), pass times scaled to {} by work x", w.run_name(), scale_text(scale), w.name());
+    fmt::print(" ==\n");
+    bool has_probe_pass = false;
+    for (auto& pr : r.passes) has_probe_pass |= pr.name.find("probe") != std::string::npos;
+    for (auto* p : w.profiles)
+      if (p->probes_per_frame && has_probe_pass)
+        fmt::print("note: {} targets {} probes/frame; {} has no probes-per-frame setting, so it ran at its own "
+                   "(16^3 probes of one cascade per frame)\n",
+                   p->name, *p->probes_per_frame, r.name);
+    std::string header = fmt::format("{:<26} {:>10} {:>21} {:>7} {:>10} {:>9} {:>9} {:>9} |", "pass", "meas ms",
+                                     "IQR [q1, q3]", "work x", "ms @full", "MB moved", "mem ms", "comp ms");
+    for (auto* p : w.profiles) header += fmt::format(" {:>13}", p->name);
+    fmt::print("{}\n", header);
+
+    nlohmann::json jr{{"technique", r.name},
+                      {"workload", {{"width", w.width}, {"height", w.height}}},
+                      {"run", {{"width", w.run_width}, {"height", w.run_height}}},
+                      {"profiles", nlohmann::json::array()}};
+    for (auto* p : w.profiles) jr["profiles"].push_back(p->name);
+    std::map<std::string, double> scaled_total;
+    double meas_total = 0, full_total = 0, bytes_total = 0, mem_total = 0, comp_total = 0;
+    std::map<std::string, std::map<std::string, double>> seed_ours;  // profile -> seed key -> ms
+    std::map<std::string, std::vector<std::string>> seed_passes;
+    for (auto& pr : r.passes) {
+      Summary s = summarize_samples(pr.samples);
+      double full_ms = s.median * pr.work_scale;
+      PassSplit split = split_pass(full_ms, double(pr.bytes_full.total()), thr);
+      std::string line = fmt::format("{:<26} {:>10} {:>21} {:>7.2f} {:>10} {:>9.2f} {:>9} {:>9} |", pr.name,
+                                     fmt_ms(s.median), fmt::format("[{}, {}]", fmt_ms(s.q1), fmt_ms(s.q3)),
+                                     pr.work_scale, fmt_ms(full_ms), pr.bytes_full.total() / 1e6,
+                                     fmt_ms(split.memory_ms), fmt_ms(split.compute_ms));
+      nlohmann::json scaled = nlohmann::json::object();
+      for (auto* p : w.profiles) {
+        double ms = scale_to_profile(split, thr, *p);
+        scaled[p->name] = ms;
+        scaled_total[p->name] += ms;
+        line += fmt::format(" {:>13}", fmt_ms(ms));
+        auto sk = seed_map.find(pr.name);
+        if (sk != seed_map.end()) seed_ours[p->name][sk->second] += ms;
+      }
+      if (auto sk = seed_map.find(pr.name); sk != seed_map.end()) seed_passes[sk->second].push_back(pr.name);
+      fmt::print("{}\n", line);
+      meas_total += s.median;
+      full_total += full_ms;
+      bytes_total += double(pr.bytes_full.total());
+      mem_total += split.memory_ms;
+      comp_total += split.compute_ms;
+      const std::string key = fmt::format("{}/{}/{}", r.name, pr.name, w.run_name());
+      medians[key] = s.median;
+
+      // Noise floor: the same configuration timed twice in this run (even vs odd repeats, or
+      // the two halves of the frames when there is one repeat).
+      std::vector<double> a, b;
+      for (size_t i = 0; i < pr.samples.size(); ++i) {
+        bool first = repeats >= 2 ? pr.repeat[i] % 2 == 0 : i < pr.samples.size() / 2;
+        (first ? a : b).push_back(pr.samples[i]);
+      }
+      nlohmann::json jn;
+      double det = detectable_regression(pr.samples);
+      jn["detectable_regression"] = std::isfinite(det) ? nlohmann::json(det) : nlohmann::json(nullptr);
+      if (a.size() && b.size()) {
+        bool positive = true;
+        for (double v : pr.samples) positive &= v > 0;
+        if (positive) {
+          RankTest t = mann_whitney(a, b);
+          jn.update({{"a_vs_b_change", t.change}, {"ci", {t.ci_low, t.ci_high}}, {"p", t.p},
+                     {"verdict", verdict_name(judge(t, o.min_change))}, {"n_a", a.size()}, {"n_b", b.size()}});
+        }
+      }
+      jnoise[key] = jn;
+      if (std::isfinite(det)) {
+        detectables.push_back(det);
+        if (det > worst) worst = det, worst_key = key;
+      }
+
+      jr["passes"].push_back({{"name", pr.name},
+                              {"key", key},
+                              {"samples_ms", pr.samples},
+                              {"sample_repeat", pr.repeat},
+                              {"median_ms", s.median},
+                              {"q1_ms", s.q1},
+                              {"q3_ms", s.q3},
+                              {"min_ms", s.min},
+                              {"max_ms", s.max},
+                              {"bytes_read", pr.bytes_run.read},
+                              {"bytes_written", pr.bytes_run.written},
+                              {"bytes_read_full", pr.bytes_full.read},
+                              {"bytes_written_full", pr.bytes_full.written},
+                              {"work_scale", pr.work_scale},
+                              {"device_ms_full", full_ms},
+                              {"memory_ms", split.memory_ms},
+                              {"compute_ms", split.compute_ms},
+                              {"scaled_ms", scaled},
+                              {"counters", pr.counters}});
+    }
+    std::string line = fmt::format("{:<26} {:>10} {:>21} {:>7} {:>10} {:>9.2f} {:>9} {:>9} |", "frame (sum of passes)",
+                                   fmt_ms(meas_total), "", "", fmt_ms(full_total), bytes_total / 1e6, fmt_ms(mem_total),
+                                   fmt_ms(comp_total));
+    for (auto* p : w.profiles) line += fmt::format(" {:>13}", fmt_ms(scaled_total[p->name]));
+    fmt::print("{}\n", line);
+    Summary fs = summarize_samples(r.frame_ms);
+    fmt::print("frame measured end to end: median {} ms, IQR [{}, {}] at {}\n", fmt_ms(fs.median), fmt_ms(fs.q1),
+               fmt_ms(fs.q3), w.run_name());
+    const std::string fkey = fmt::format("{}/frame/{}", r.name, w.run_name());
+    medians[fkey] = fs.median;
+    jr["frame"] = {{"key", fkey}, {"samples_ms", r.frame_ms}, {"sample_repeat", r.frame_repeat},
+                   {"median_ms", fs.median}, {"sum_of_pass_medians_ms", meas_total},
+                   {"device_ms_full", full_total}, {"scaled_ms", scaled_total}};
+    jruns.push_back(jr);
+
+    // Seed comparison: our scaled cost of the passes that make up each seed row.
+    for (auto* p : w.profiles) {
+      const SeedPlatform* sp = seeds.find(p->name);
+      if (!sp || seed_ours[p->name].empty()) continue;
+      for (auto& [k, ours] : seed_ours[p->name]) {
+        auto it = sp->ms.find(k);
+        if (it == sp->ms.end()) continue;
+        jseed.push_back({{"technique", r.name}, {"profile", p->name}, {"seed_key", k},
+                         {"passes", seed_passes[k]}, {"ours_ms", ours}, {"seed_ms", it->second},
+                         {"ratio", it->second > 0 ? ours / it->second : 0.0},
+                         {"seed_resolution", {sp->width, sp->height}}});
+      }
+    }
+  }
+
+  fmt::print("\n== seed comparison: {} ({}) ==\n", seeds.name, seeds.source);
+  std::set<std::string> with_seed;
+  for (auto& e : jseed) with_seed.insert(e["technique"].get<std::string>());
+  for (auto* t : techs)
+    if (!with_seed.count(t->name))
+      fmt::print("{}: no pass maps to a seed row (mapped passes: probe_trace, radiance_cache_update/shade, "
+                 "irradiance_volume_update, final_gather, gi_denoise, gi_upscale)\n",
+                 t->name);
+  if (!jseed.empty()) {
+    fmt::print("{:<16} {:<14} {:<20} {:>10} {:>10} {:>8}  {}\n", "technique", "profile", "seed row", "ours ms",
+               "seed ms", "ratio", "our passes");
+    std::map<std::pair<std::string, std::string>, std::pair<double, double>> sums;
+    for (auto& e : jseed) {
+      fmt::print("{:<16} {:<14} {:<20} {:>10} {:>10} {:>7.2f}x  {}\n", e["technique"].get<std::string>(),
+                 e["profile"].get<std::string>(), e["seed_key"].get<std::string>(), fmt_ms(e["ours_ms"]),
+                 fmt_ms(e["seed_ms"]), e["ratio"].get<double>(),
+                 fmt::join(e["passes"].get<std::vector<std::string>>(), "+"));
+      auto& s = sums[{e["technique"].get<std::string>(), e["profile"].get<std::string>()}];
+      s.first += e["ours_ms"].get<double>();
+      s.second += e["seed_ms"].get<double>();
+    }
+    for (auto& [k, s] : sums) {
+      const SeedPlatform* sp = seeds.find(k.second);
+      fmt::print("{:<16} {:<14} {:<20} {:>10} {:>10} {:>7.2f}x  (seed total_serial {} ms)\n", k.first, k.second,
+                 "sum of matched rows", fmt_ms(s.first), fmt_ms(s.second), s.second > 0 ? s.first / s.second : 0.0,
+                 sp && sp->ms.count("total_serial") ? fmt_ms(sp->ms.at("total_serial")) : "-");
+    }
+  }
+
+  fmt::print("\n== noise floor: the same configuration timed twice in this run ({}) ==\n",
+             repeats >= 2 ? "even vs odd repeats" : "first vs second half of the frames");
+  fmt::print("{:<44} {:>9} {:>21} {:>8} {:>12}  {}\n", "benchmark", "A vs B", "95% CI", "p", "detectable", "A vs B");
+  for (auto& [key, jn] : jnoise.items()) {
+    if (!jn.contains("a_vs_b_change")) continue;
+    double det = jn["detectable_regression"].is_null() ? INFINITY : jn["detectable_regression"].get<double>();
+    // Here a significant difference does not mean a regression: the code is the same, so it
+    // says the machine drifted between the two halves (clocks, other load).
+    std::string v = jn["verdict"].get<std::string>();
+    std::string what = v == "unchanged" ? "halves agree" : v == "too few samples" ? v : "halves differ (drift)";
+    fmt::print("{:<44} {:>9} {:>21} {:>8.3f} {:>12}  {}\n", key, fmt_pct(jn["a_vs_b_change"]),
+               fmt::format("[{}, {}]", fmt_pct(jn["ci"][0]), fmt_pct(jn["ci"][1])), jn["p"].get<double>(),
+               fmt_pct(det), what);
+  }
+  if (!detectables.empty()) {
+    fmt::print("smallest regression detectable at 95% confidence (rank test, {} samples per side): median over passes "
+               "{}, worst {} ({}); perf-diff also needs a change of at least {:.0f}% to flag it\n",
+               frames * repeats, fmt_pct(median_of(detectables)), fmt_pct(worst), worst_key, o.min_change * 100);
+    out["noise_summary"] = {{"median_detectable", median_of(detectables)}, {"worst_detectable", worst},
+                            {"worst_key", worst_key}, {"min_change", o.min_change}};
+  }
+
+  // Variants against their plain run: the same repeats, interleaved, so machine drift hits both.
+  auto& jvar = out["variants"] = nlohmann::json::array();
+  for (auto& r : runs) {
+    if (r.base < 0) continue;
+    const TechniqueRun& b = runs[size_t(r.base)];
+    fmt::print("\n== variant {} vs {} @ {} (measured side by side; change = variant / plain - 1, Hodges-Lehmann "
+               "with 95% CI) ==\n",
+               r.name, b.name, r.workload.run_name());
+    fmt::print("{:<26} {:>10} {:>10} {:>9} {:>21} {:>8}  {}\n", "pass", "plain ms", "variant ms", "change", "95% CI",
+               "p", "verdict");
+    auto row = [&](const std::string& pass, const std::vector<double>& base, const std::vector<double>& next) {
+      if (base.empty() || next.empty()) {
+        fmt::print("{:<26} {:>10} {:>10}  {}\n", pass, base.empty() ? "-" : fmt_ms(median_of(base)),
+                   next.empty() ? "-" : fmt_ms(median_of(next)), base.empty() ? "only in the variant" : "culled in the variant");
+        jvar.push_back({{"variant", r.name}, {"base", b.name}, {"pass", pass}});
+        return;
+      }
+      RankTest t = mann_whitney(base, next);
+      Verdict v = judge(t, o.min_change);
+      fmt::print("{:<26} {:>10} {:>10} {:>9} {:>21} {:>8.3f}  {}\n", pass, fmt_ms(median_of(base)),
+                 fmt_ms(median_of(next)), fmt_pct(t.change),
+                 t.ci_valid ? fmt::format("[{}, {}]", fmt_pct(t.ci_low), fmt_pct(t.ci_high)) : "-", t.p,
+                 verdict_name(v));
+      jvar.push_back({{"variant", r.name}, {"base", b.name}, {"pass", pass}, {"base_median_ms", median_of(base)},
+                      {"variant_median_ms", median_of(next)}, {"change", t.change}, {"ci", {t.ci_low, t.ci_high}},
+                      {"p", t.p}, {"verdict", verdict_name(v)}});
+    };
+    std::set<std::string> done;
+    for (auto& bp : b.passes) {
+      auto it = std::find_if(r.passes.begin(), r.passes.end(), [&](const PassRun& x) { return x.name == bp.name; });
+      row(bp.name, bp.samples, it == r.passes.end() ? std::vector<double>{} : it->samples);
+      done.insert(bp.name);
+    }
+    for (auto& vp : r.passes)
+      if (!done.count(vp.name)) row(vp.name, {}, vp.samples);
+    row("frame", b.frame_ms, r.frame_ms);
+  }
+
+  if (!o.json.empty()) {
+    std::ofstream(o.json) << out.dump(1) << "\n";
+    fmt::print("wrote {}\n", o.json);
+  }
+  if (!o.no_history) {
+    std::string hist = o.history.empty() ? std::string(GIB_SOURCE_DIR) + "/bench/history.jsonl" : o.history;
+    nlohmann::json line{{"date", out["date"]},
+                        {"revision", GIB_REVISION},
+                        {"device", dev.name},
+                        {"driver", dev.driver_name + " " + dev.driver_info},
+                        {"case", o.case_name},
+                        {"preset", o.preset},
+                        {"scale_resolution", scale},
+                        {"fp32_gflops", thr.fp32_gflops},
+                        {"bandwidth_gbs", thr.bandwidth_gbs},
+                        {"median_ms", medians}};
+    std::ofstream h(hist, std::ios::app);
+    if (!h) throw PerfError(fmt::format("--history {}: cannot append", hist));
+    h << line.dump() << "\n";
+    fmt::print("appended a line to {}\n", hist);
+  }
+  return 0;
+}
+
+BenchVariant parse_variant(const std::string& v) {
+  auto colon = v.find(':');
+  if (colon == std::string::npos || colon == 0)
+    throw PerfError(fmt::format("--variant \"{}\": expected LABEL:NAME=VALUE[,NAME=VALUE...]", v));
+  BenchVariant out{v.substr(0, colon), {}};
+  std::string rest = v.substr(colon + 1);
+  for (size_t at = 0; at <= rest.size();) {
+    size_t end = rest.find(',', at);
+    if (end == std::string::npos) end = rest.size();
+    std::string kv = rest.substr(at, end - at);
+    auto eq = kv.find('=');
+    char* stop = nullptr;
+    double value = eq == std::string::npos ? 0 : std::strtod(kv.c_str() + eq + 1, &stop);
+    if (eq == std::string::npos || eq == 0 || stop == kv.c_str() + eq + 1 || *stop != '\0')
+      throw PerfError(fmt::format("--variant \"{}\": expected NAME=VALUE, got \"{}\"", v, kv));
+    out.options[kv.substr(0, eq)] = value;
+    at = end + 1;
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------- perf-diff
+SampleFile parse_sample_file(const std::string& raw, const std::string& file) {
+  // Google Benchmark writes NaN / inf for undefined aggregates (the cv of a zero counter): not
+  // JSON, so they become null before parsing.
+  static const std::regex non_finite(R"((:\s*)-?(nan|NaN|inf|Inf|Infinity)\b)");
+  const std::string text = std::regex_replace(raw, non_finite, "$1null");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw PerfError(fmt::format("{}: expected valid JSON, got a parse error: {}", file, e.what()));
+  }
+  SampleFile sf;
+  auto need_samples = [&](const nlohmann::json& v, const std::string& ptr) {
+    if (!v.is_array() || v.empty())
+      throw PerfError(fmt::format("{}: {}: expected a non-empty array of ms, got {}", file, ptr, v.type_name()));
+    std::vector<double> out;
+    for (auto& x : v) {
+      if (!x.is_number() || !(x.get<double>() > 0))
+        throw PerfError(fmt::format("{}: {}: expected positive numbers (ms), got {}", file, ptr, x.dump()));
+      out.push_back(x.get<double>());
+    }
+    return out;
+  };
+  if (j.is_object() && j.value("format", "") == "gibench-perf-1") {
+    sf.format = "gibench-perf-1";
+    if (j.contains("device") && j["device"].is_object()) sf.device = j["device"].value("name", "");
+    if (!j.contains("runs") || !j["runs"].is_array())
+      throw PerfError(fmt::format("{}: /runs: expected an array, got {}", file, j.contains("runs") ? j["runs"].type_name() : "nothing"));
+    for (size_t i = 0; i < j["runs"].size(); ++i) {
+      auto& r = j["runs"][i];
+      std::string ptr = fmt::format("/runs/{}", i);
+      if (!r.contains("passes") || !r["passes"].is_array())
+        throw PerfError(fmt::format("{}: {}/passes: expected an array", file, ptr));
+      for (size_t k = 0; k < r["passes"].size(); ++k) {
+        auto& p = r["passes"][k];
+        std::string pp = fmt::format("{}/passes/{}", ptr, k);
+        if (!p.contains("key") || !p["key"].is_string())
+          throw PerfError(fmt::format("{}: {}/key: expected a string", file, pp));
+        sf.samples[p["key"]] = need_samples(p.value("samples_ms", nlohmann::json()), pp + "/samples_ms");
+      }
+      if (r.contains("frame") && r["frame"].contains("key"))
+        sf.samples[r["frame"]["key"]] = need_samples(r["frame"]["samples_ms"], ptr + "/frame/samples_ms");
+    }
+    if (j.contains("noise_floor") && j["noise_floor"].is_object())
+      for (auto& [k, v] : j["noise_floor"].items())
+        if (v.is_object() && v.contains("detectable_regression") && v["detectable_regression"].is_number())
+          sf.detectable[k] = v["detectable_regression"].get<double>();
+    return sf;
+  }
+  if (j.is_object() && j.contains("benchmarks") && j["benchmarks"].is_array()) {
+    sf.format = "google-benchmark";
+    if (j.contains("context") && j["context"].is_object()) sf.device = j["context"].value("gpu_device", "");
+    for (size_t i = 0; i < j["benchmarks"].size(); ++i) {
+      auto& b = j["benchmarks"][i];
+      if (b.value("run_type", "iteration") != "iteration") continue;
+      std::string ptr = fmt::format("/benchmarks/{}", i);
+      std::string name = b.value("run_name", b.value("name", ""));
+      if (name.empty()) throw PerfError(fmt::format("{}: {}/run_name: expected a string", file, ptr));
+      if (!b.contains("real_time") || !b["real_time"].is_number())
+        throw PerfError(fmt::format("{}: {}/real_time: expected a number", file, ptr));
+      std::string unit = b.value("time_unit", "ns");
+      double to_ms = unit == "ns" ? 1e-6 : unit == "us" ? 1e-3 : unit == "ms" ? 1.0 : unit == "s" ? 1e3 : -1;
+      if (to_ms < 0) throw PerfError(fmt::format("{}: {}/time_unit: expected ns|us|ms|s, got '{}'", file, ptr, unit));
+      double v = b["real_time"].get<double>() * to_ms;
+      if (v > 0) sf.samples[name].push_back(v);
+    }
+    return sf;
+  }
+  throw PerfError(fmt::format("{}: expected a `gibench bench --json` file (format gibench-perf-1) or Google Benchmark "
+                              "JSON (benchmarks[]), got neither",
+                              file));
+}
+
+SampleFile load_sample_file(const std::string& path) { return parse_sample_file(read_file(path), path); }
+
+int cmd_perf_diff(const DiffOptions& o) {
+  SampleFile base = load_sample_file(o.base), next = load_sample_file(o.next);
+  if (!base.device.empty() && !next.device.empty() && base.device != next.device)
+    fmt::print("warning: different devices: {} vs {}; timings are not comparable\n", base.device, next.device);
+  fmt::print("perf-diff {} -> {}\nMann-Whitney U (two-sided, {:.0f}%), change = Hodges-Lehmann estimate of new/base - 1 "
+             "with its {:.0f}% interval; a regression needs the interval above 0 and a change >= {:.0f}%\n",
+             o.base, o.next, o.confidence * 100, o.confidence * 100, o.min_change * 100);
+  fmt::print("{:<44} {:>10} {:>10} {:>9} {:>21} {:>8} {:>10}  {}\n", "benchmark", "base ms", "new ms", "change",
+             fmt::format("{:.0f}% CI", o.confidence * 100), "p", "base floor", "verdict");
+  int regressions = 0;
+  std::set<std::string> keys;
+  for (auto& [k, v] : base.samples) keys.insert(k);
+  for (auto& [k, v] : next.samples) keys.insert(k);
+  for (auto& k : keys) {
+    auto b = base.samples.find(k), n = next.samples.find(k);
+    if (b == base.samples.end() || n == next.samples.end()) {
+      fmt::print("{:<44} only in {}\n", k, b == base.samples.end() ? "new" : "base");
+      continue;
+    }
+    RankTest t = mann_whitney(b->second, n->second, o.confidence);
+    Verdict v = judge(t, o.min_change);
+    if (v == Verdict::regression) ++regressions;
+    auto fl = base.detectable.find(k);
+    fmt::print("{:<44} {:>10} {:>10} {:>9} {:>21} {:>8.4f} {:>10}  {}\n", k, fmt_ms(median_of(b->second)),
+               fmt_ms(median_of(n->second)), fmt_pct(t.change),
+               t.ci_valid ? fmt::format("[{}, {}]", fmt_pct(t.ci_low), fmt_pct(t.ci_high)) : std::string("-"), t.p,
+               fl != base.detectable.end() ? fmt_pct(fl->second) : std::string("-"), verdict_name(v));
+  }
+  fmt::print("{} regression{}\n", regressions, regressions == 1 ? "" : "s");
+  return regressions ? 1 : 0;
+}
+
+}  // namespace gib::perf

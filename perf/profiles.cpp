@@ -1,0 +1,217 @@
+#include "perf/profiles.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <unistd.h>
+
+#ifndef GIB_SOURCE_DIR
+#define GIB_SOURCE_DIR "."
+#endif
+
+namespace gib::perf {
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+std::string read_text(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw PerfError(fmt::format("{}: cannot open (expected a JSON file)", path));
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+ojson parse_json(const std::string& text, const std::string& file) {
+  try {
+    return ojson::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw PerfError(fmt::format("{}: expected valid JSON, got a parse error: {}", file, e.what()));
+  }
+}
+
+std::string got(const ojson& v) {
+  std::string s = v.dump();
+  if (s.size() > 40) s = s.substr(0, 37) + "...";
+  return fmt::format("{} {}", v.type_name(), s);
+}
+
+const ojson& member(const ojson& obj, const std::string& key, const std::string& file, const std::string& ptr,
+                    const char* expected) {
+  if (!obj.is_object()) throw PerfError(fmt::format("{}: {}: expected an object, got {}", file, ptr, got(obj)));
+  auto it = obj.find(key);
+  if (it == obj.end()) throw PerfError(fmt::format("{}: {}/{}: expected {}, got nothing (missing)", file, ptr, key, expected));
+  return *it;
+}
+
+double positive(const ojson& obj, const std::string& key, const std::string& file, const std::string& ptr) {
+  const ojson& v = member(obj, key, file, ptr, "a positive number");
+  if (!v.is_number() || !(v.get<double>() > 0))
+    throw PerfError(fmt::format("{}: {}/{}: expected a positive number, got {}", file, ptr, key, got(v)));
+  return v.get<double>();
+}
+
+std::pair<uint32_t, uint32_t> resolution(const ojson& obj, const std::string& file, const std::string& ptr) {
+  const ojson& r = member(obj, "resolution", file, ptr, "[width, height]");
+  if (!r.is_array() || r.size() != 2 || !r[0].is_number_unsigned() || !r[1].is_number_unsigned() ||
+      r[0].get<uint64_t>() == 0 || r[1].get<uint64_t>() == 0 || r[0].get<uint64_t>() > 65536 ||
+      r[1].get<uint64_t>() > 65536)
+    throw PerfError(fmt::format("{}: {}/resolution: expected [width, height] of positive integers, got {}", file, ptr, got(r)));
+  return {r[0].get<uint32_t>(), r[1].get<uint32_t>()};
+}
+
+}  // namespace
+
+std::vector<ConsoleProfile> parse_profiles(const std::string& text, const std::string& file) {
+  ojson j = parse_json(text, file);
+  const ojson& profiles = member(j, "profiles", file, "", "an object of profiles");
+  if (!profiles.is_object() || profiles.empty())
+    throw PerfError(fmt::format("{}: /profiles: expected a non-empty object, got {}", file, got(profiles)));
+  std::vector<ConsoleProfile> out;
+  for (auto& [name, p] : profiles.items()) {
+    std::string ptr = "/profiles/" + name;
+    ConsoleProfile c;
+    c.name = name;
+    if (!p.is_object()) throw PerfError(fmt::format("{}: {}: expected an object, got {}", file, ptr, got(p)));
+    c.label = p.value("label", name);
+    c.fp32_tflops = positive(p, "fp32_tflops", file, ptr);
+    c.bandwidth_gbs = positive(p, "bandwidth_gbs", file, ptr);
+    const ojson& t = member(p, "targets", file, ptr, "an object with resolution");
+    std::tie(c.width, c.height) = resolution(t, file, ptr + "/targets");
+    if (t.contains("probes_per_frame")) {
+      const ojson& v = t["probes_per_frame"];
+      if (!v.is_number_unsigned() || v.get<uint64_t>() == 0)
+        throw PerfError(fmt::format("{}: {}/targets/probes_per_frame: expected a positive integer, got {}", file, ptr, got(v)));
+      c.probes_per_frame = v.get<uint32_t>();
+    }
+    if (t.contains("gi_trace_scale")) c.gi_trace_scale = positive(t, "gi_trace_scale", file, ptr + "/targets");
+    if (p.contains("wave_size")) {
+      const ojson& w = p["wave_size"];
+      if (!w.is_array()) throw PerfError(fmt::format("{}: {}/wave_size: expected an array of integers, got {}", file, ptr, got(w)));
+      for (auto& x : w) {
+        if (!x.is_number_unsigned())
+          throw PerfError(fmt::format("{}: {}/wave_size: expected an array of integers, got {}", file, ptr, got(w)));
+        c.wave_size.push_back(x.get<uint32_t>());
+      }
+    }
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+std::vector<ConsoleProfile> load_profiles(const std::string& path) { return parse_profiles(read_text(path), path); }
+
+std::vector<ConsoleProfile> select_profiles(const std::vector<ConsoleProfile>& all, const std::string& names) {
+  if (names == "all") return all;
+  std::vector<ConsoleProfile> out;
+  std::stringstream ss(names);
+  std::string name;
+  while (std::getline(ss, name, ',')) {
+    auto it = std::find_if(all.begin(), all.end(), [&](auto& p) { return p.name == name; });
+    if (it == all.end()) {
+      std::vector<std::string> known;
+      for (auto& p : all) known.push_back(p.name);
+      throw PerfError(fmt::format("--profile: expected all or one of [{}], got '{}'", fmt::join(known, ", "), name));
+    }
+    out.push_back(*it);
+  }
+  if (out.empty()) throw PerfError("--profile: expected all or a profile name, got ''");
+  return out;
+}
+
+const SeedPlatform* SeedTable::find(const std::string& profile) const {
+  for (auto& p : platforms)
+    if (p.profile == profile) return &p;
+  return nullptr;
+}
+
+SeedTable parse_seed_table(const std::string& text, const std::string& file) {
+  ojson j = parse_json(text, file);
+  SeedTable t;
+  t.name = "idtech8_gi_hotspot";
+  const ojson& table = member(j, t.name, file, "", "the idTech 8 hotspot table");
+  const std::string base = "/" + t.name;
+  t.source = table.value("source", "");
+  const ojson& plats = member(table, "platforms", file, base, "an object of platforms");
+  if (!plats.is_object()) throw PerfError(fmt::format("{}: {}/platforms: expected an object, got {}", file, base, got(plats)));
+  for (auto& [name, p] : plats.items()) {
+    std::string ptr = base + "/platforms/" + name;
+    SeedPlatform sp;
+    sp.profile = name;
+    std::tie(sp.width, sp.height) = resolution(p, file, ptr);
+    for (auto& [k, v] : p.items()) {
+      if (k == "resolution") continue;
+      if (!v.is_number() || v.get<double>() < 0)
+        throw PerfError(fmt::format("{}: {}/{}: expected milliseconds (a number >= 0), got {}", file, ptr, k, got(v)));
+      sp.ms[k] = v.get<double>();
+    }
+    t.platforms.push_back(std::move(sp));
+  }
+  return t;
+}
+
+SeedTable load_seed_table(const std::string& path) { return parse_seed_table(read_text(path), path); }
+
+const std::map<std::string, std::string>& seed_key_of_pass() {
+  // idTech 8 "Hotspot Performance" rows: world sampling is the probe ray tracing; the radiance
+  // cache row covers update + shading; irradiance volumes their convolution/update.
+  static const std::map<std::string, std::string> m = {
+      {"probe_trace", "world_sampling"},
+      {"radiance_cache_update", "radiance_cache"},
+      {"radiance_cache_shade", "radiance_cache"},
+      {"irradiance_volume_update", "irradiance_volumes"},
+      {"final_gather", "final_gather"},
+      {"gi_denoise", "denoise"},
+      {"gi_upscale", "upscale"},
+  };
+  return m;
+}
+
+PassSplit split_pass(double device_ms, double bytes, const DeviceThroughput& dev) {
+  PassSplit s;
+  s.device_ms = std::max(0.0, device_ms);
+  s.bytes = bytes;
+  double mem = dev.bandwidth_gbs > 0 ? bytes / (dev.bandwidth_gbs * 1e9) * 1e3 : 0.0;
+  // A pass cannot spend longer on memory than it took: when the plan's bytes at the calibrated
+  // bandwidth exceed the measured time, caches served part of it; all of it counts as memory.
+  s.memory_ms = std::min(mem, s.device_ms);
+  s.compute_ms = s.device_ms - s.memory_ms;
+  return s;
+}
+
+double scale_to_profile(const PassSplit& s, const DeviceThroughput& dev, const ConsoleProfile& p) {
+  double mem = p.bandwidth_gbs > 0 ? s.memory_ms * dev.bandwidth_gbs / p.bandwidth_gbs : 0.0;
+  double comp = p.fp32_tflops > 0 ? s.compute_ms * dev.fp32_gflops / (p.fp32_tflops * 1e3) : 0.0;
+  return mem + comp;
+}
+
+std::string find_data_dir(const std::string& override_dir) {
+  namespace fs = std::filesystem;
+  auto ok = [](const fs::path& d) { return fs::exists(d / "console-profiles.json"); };
+  if (!override_dir.empty()) {
+    if (!ok(override_dir))
+      throw PerfError(fmt::format("--data-dir {}: expected a folder with console-profiles.json and seed-timings.json", override_dir));
+    return override_dir;
+  }
+  if (const char* e = std::getenv("GIB_DATA_DIR"); e && *e) {
+    if (!ok(e)) throw PerfError(fmt::format("GIB_DATA_DIR={}: expected a folder with console-profiles.json", e));
+    return e;
+  }
+  std::error_code ec;
+  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    for (fs::path d : {exe.parent_path() / "data", exe.parent_path().parent_path() / "data"})
+      if (ok(d)) return d.string();
+  }
+  fs::path src = fs::path(GIB_SOURCE_DIR) / "data";
+  if (ok(src)) return fs::weakly_canonical(src).string();
+  throw PerfError(fmt::format(
+      "console profiles: expected console-profiles.json in --data-dir, $GIB_DATA_DIR, <exe>/data or {}, found none",
+      src.string()));
+}
+
+}  // namespace gib::perf

@@ -1,0 +1,72 @@
+// Console profiles (data/console-profiles.json) and the seed per-pass timings
+// (data/seed-timings.json), and the scaling model that maps a pass measured on this
+// device to a profile (bench/README.md). Errors are PerfError naming the file and JSON field.
+#pragma once
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace gib::perf {
+
+struct PerfError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct ConsoleProfile {
+  std::string name, label;
+  double fp32_tflops = 0, bandwidth_gbs = 0;
+  uint32_t width = 0, height = 0;               // targets.resolution
+  std::optional<uint32_t> probes_per_frame;     // targets.probes_per_frame
+  std::optional<double> gi_trace_scale;         // targets.gi_trace_scale
+  std::vector<uint32_t> wave_size;
+};
+
+// Profiles in file order. `file` only names the source in messages.
+std::vector<ConsoleProfile> parse_profiles(const std::string& text, const std::string& file);
+std::vector<ConsoleProfile> load_profiles(const std::string& path);
+// "all" or a comma-separated list of names; PerfError listing the known names otherwise.
+std::vector<ConsoleProfile> select_profiles(const std::vector<ConsoleProfile>& all, const std::string& names);
+
+// One platform row of the idtech8 hotspot table: ms per seed key (world_sampling, ...).
+struct SeedPlatform {
+  std::string profile;
+  uint32_t width = 0, height = 0;
+  std::map<std::string, double> ms;
+};
+struct SeedTable {
+  std::string name;    // "idtech8_gi_hotspot"
+  std::string source;  // where the seed talk printed it
+  std::vector<SeedPlatform> platforms;
+  const SeedPlatform* find(const std::string& profile) const;
+};
+SeedTable parse_seed_table(const std::string& text, const std::string& file);
+SeedTable load_seed_table(const std::string& path);
+
+// Our pass name -> the seed key whose cost it is part of (several passes may share a key:
+// their costs are summed before comparing). Passes not listed have no seed counterpart.
+const std::map<std::string, std::string>& seed_key_of_pass();
+
+// ---- the scaling model
+struct DeviceThroughput {
+  double fp32_gflops = 0;    // achieved FP32 rate (calibrated)
+  double bandwidth_gbs = 0;  // achieved copy bandwidth (calibrated)
+};
+struct PassSplit {
+  double device_ms = 0;   // measured, at the profile's workload
+  double bytes = 0;       // bytes the pass reads + writes (from the plan)
+  double memory_ms = 0;   // min(device_ms, bytes / device bandwidth)
+  double compute_ms = 0;  // device_ms - memory_ms
+};
+PassSplit split_pass(double device_ms, double bytes, const DeviceThroughput& dev);
+// memory_ms x device_bw / console_bw + compute_ms x device_flops / console_flops
+double scale_to_profile(const PassSplit& s, const DeviceThroughput& dev, const ConsoleProfile& p);
+
+// Where the profile and seed data live: --data-dir, else $GIB_DATA_DIR, else <executable
+// dir>/data or <executable dir>/../data (a pack from ci/pack_gpu.sh), else <source>/data (the
+// repository's own data/, which every checkout has).
+std::string find_data_dir(const std::string& override_dir);
+
+}  // namespace gib::perf

@@ -1,0 +1,100 @@
+// What a frame is rendered with: the settings every technique shares (size, seed, NaN guards,
+// debug injection, world offset) and, held opaquely, the running technique's own settings
+// struct. The graph layer knows no technique: a pass reads its technique's settings, typed,
+// with `settings.params<RadianceCacheSettings>()` (or the parameter struct of a shared pass,
+// e.g. DirectLightingParams, which a technique's settings struct derives from).
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <typeinfo>
+
+#include "renderer/scene/math.h"
+
+namespace gib {
+
+// Base of every technique's settings struct. Derive from TechniqueSettingsOf<YourSettings> (and
+// from the parameter structs of the shared passes the technique runs).
+struct TechniqueSettings {
+  virtual ~TechniqueSettings() = default;
+  virtual std::unique_ptr<TechniqueSettings> clone() const = 0;
+};
+template <class Derived>
+struct TechniqueSettingsOf : TechniqueSettings {
+  std::unique_ptr<TechniqueSettings> clone() const override {
+    return std::make_unique<Derived>(static_cast<const Derived&>(*this));
+  }
+};
+
+// Robustness debugging (technique options inject_nan, inject_frame, inject_x, inject_y): the pass
+// that writes the target resource writes a NaN into it on one frame.
+struct DebugSettings {
+  uint32_t inject_nan = 0;    // 0 none, 1 gbuffer_normal texel (gbuffer), 2 radiance-cache cell radiance
+                              // (radiance_cache_shade), 3 one path-tracer sample (path_trace)
+  uint32_t inject_frame = 0;  // frame index (RecordContext::frame, 0-based) of the injection
+  uint32_t inject_x = 0, inject_y = 0;  // pixel (render resolution); target 2: the cell of that pixel's surface
+  bool injects(uint32_t target, uint32_t frame) const { return inject_nan == target && frame == inject_frame; }
+};
+
+// Throws GraphError: "settings: a pass expected <wanted>, but the technique settings are <held>".
+[[noreturn]] void throw_settings_type_error(const std::type_info& wanted, const TechniqueSettings* held);
+
+struct Settings {
+  uint32_t width = 256, height = 144;
+  uint32_t seed = 1;
+  std::string preset = "medium";
+  // >= 0: every frame renders the scene at this time (seconds): a reference of one moment of
+  // an animated scene. < 0: frame f renders at f * scene.frame_time.
+  float scene_time = -1.0f;
+  // Every pass that reads history, blends or accumulates drops/repairs non-finite values (and
+  // gib_surface/gbuffer/direct_lighting repair non-finite normals). 0 turns them all off (negative control).
+  bool nan_guards = true;
+  // Metres added to every world-space position (vertices, lights, camera position and target)
+  // when the executor uploads the scene: the far-from-origin stress case (options
+  // world_offset_x/y/z). The image is unchanged in exact arithmetic.
+  Vec3 world_offset{0, 0, 0};
+  DebugSettings debug;
+
+  // The technique whose settings struct `technique_settings` holds ("" before apply_preset /
+  // apply_options gave it one: renderer/techniques/technique.h).
+  std::string technique;
+
+  Settings() = default;
+  Settings(const Settings& o) { *this = o; }
+  Settings(Settings&&) noexcept = default;
+  Settings& operator=(Settings&&) noexcept = default;
+  Settings& operator=(const Settings& o) {
+    if (this == &o) return *this;
+    width = o.width, height = o.height, seed = o.seed, preset = o.preset, scene_time = o.scene_time;
+    nan_guards = o.nan_guards, world_offset = o.world_offset, debug = o.debug, technique = o.technique;
+    technique_settings_ = o.technique_settings_ ? o.technique_settings_->clone() : nullptr;
+    return *this;
+  }
+
+  // The technique's settings as P (its settings struct, or a shared pass's parameter struct it
+  // derives from). Throws GraphError when the technique has none of that type.
+  template <class P>
+  const P& params() const {
+    if (auto* p = dynamic_cast<const P*>(technique_settings_.get())) return *p;
+    throw_settings_type_error(typeid(P), technique_settings_.get());
+  }
+  template <class P>
+  P& params() {
+    if (auto* p = dynamic_cast<P*>(technique_settings_.get())) return *p;
+    throw_settings_type_error(typeid(P), technique_settings_.get());
+  }
+  template <class P>
+  bool has_params() const {
+    return dynamic_cast<const P*>(technique_settings_.get()) != nullptr;
+  }
+  const TechniqueSettings* technique_settings() const { return technique_settings_.get(); }
+  void set_technique_settings(std::string name, std::unique_ptr<TechniqueSettings> t) {
+    technique = std::move(name);
+    technique_settings_ = std::move(t);
+  }
+
+ private:
+  std::unique_ptr<TechniqueSettings> technique_settings_;
+};
+
+}  // namespace gib

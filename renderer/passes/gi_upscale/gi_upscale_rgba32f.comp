@@ -1,5 +1,0 @@
-#version 460
-#extension GL_GOOGLE_include_directive : require
-// gi_upscale with its history stored as rgba32f (history_format 3); the kernel is gi_upscale.glsl.
-#define GI_HISTORY_FORMAT 3
-#include "renderer/passes/gi_upscale/gi_upscale.glsl"

@@ -1,0 +1,38 @@
+// `direct`: the base every GI technique adds to (docs/architecture.md, "direct"): visibility buffer,
+// G-buffer, direct light with ray-traced shadows.
+#include "renderer/techniques/direct/direct.h"
+
+#include "renderer/passes/gbuffer/gbuffer.h"
+#include "renderer/passes/visibility/visibility.h"
+#include "renderer/techniques/technique.h"
+
+namespace gib {
+namespace {
+struct Preset {
+  const char* name;
+  uint32_t sky_rays;
+};
+constexpr Preset kPresets[] = {{"low", 1}, {"medium", 4}, {"high", 16}, {"ultra", 64}};
+void apply_preset_row(DirectSettings& s, const Preset& p) { s.sky_rays = p.sky_rays; }
+}  // namespace
+
+Technique direct_technique() {
+  Technique t;
+  t.name = "direct";
+  t.description = "visibility buffer, G-buffer, direct light from sun, sky and local lights with ray-traced shadows";
+  t.passes = {{"visibility", make_visibility_pass},
+              {"gbuffer", make_gbuffer_pass},
+              {"direct_lighting", make_direct_lighting_pass}};
+  t.output = "direct_light";
+  t.aovs = {"vbuffer", "depth", "gbuffer_albedo", "gbuffer_normal", "gbuffer_position", "gbuffer_emissive"};
+  define_settings<DirectSettings>(t, kPresets, apply_preset_row);
+  t.options = with_common_options(
+      {
+          option("sky_rays", "sky visibility rays per pixel (0: no sky light)", 0, 4294967295.0,
+                 &DirectLightingParams::sky_rays),
+      },
+      {0, 1});
+  return t;
+}
+
+}  // namespace gib

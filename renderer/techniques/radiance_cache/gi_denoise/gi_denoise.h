@@ -1,0 +1,26 @@
+// gi_denoise: spatial denoise of the final gather's SH at gather resolution: a separable
+// "bilateral" gaussian, horizontal (gather_sh_* -> gi_denoise_tmp_*) then vertical
+// (gi_denoise_tmp_* -> gi_sh_*), 2 * denoise_radius + 1 taps each. A tap's weight is the
+// gaussian (sigma = radius / 2) times edge stops on the normal (pow(max(0, dot), 32)), the
+// depth (distance from the centre's tangent plane relative to its view distance, e^(-rel/0.02))
+// and the gather hit-distance delta (relative, e^(-dh^2): a hit at 1 m vs 3 m keeps 0.64, a hit
+// vs a miss 0.37; mild, since with one ray per pixel the distance is itself noisy); constants
+// and formulas in gi_denoise_shared.h. A gather pixel's geometry is the G-buffer sample of its representative
+// full-res pixel g * divisor + divisor / 2 (final_gather's convention). Sky gather pixels are
+// skipped as taps and written as 0.
+// Slots: reads gather_sh_r/g/b, gather_hit_distance, gbuffer_normal, gbuffer_position; writes
+// gi_denoise_tmp_r/g/b (horizontal result) and gi_sh_r/g/b (RGBA16F, gather resolution).
+// Seed: the idTech 8 "Global Illumination" talk, "Denoise + Upscale" (spatial denoise at final-gather
+// resolution, separable bilateral gaussian weighted by normal/depth and hit-distance deltas).
+// Limits: no group-shared preload (each tap reads the images; the seed preloads to LDS in FP16);
+// the vertical pass weighs hit distances of the unfiltered gather, as the horizontal one does.
+// radius 0 copies.
+// NaN guard (DenoisePush.nan_guards): taps with a non-finite weight or SH are skipped.
+#pragma once
+#include <memory>
+
+#include "renderer/graph/pass.h"
+
+namespace gib {
+std::unique_ptr<Pass> make_gi_denoise_pass();
+}

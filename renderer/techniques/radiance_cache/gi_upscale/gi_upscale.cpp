@@ -1,0 +1,98 @@
+#include "renderer/techniques/radiance_cache/gi_upscale/gi_upscale.h"
+
+#include <fmt/format.h>
+
+#include "renderer/techniques/radiance_cache/gi_upscale/gi_upscale_shared.h"
+#include "renderer/techniques/radiance_cache/radiance_cache.h"
+
+namespace gib {
+
+Format gi_history_format(uint32_t history_format) {
+  switch (history_format) {
+    case 0: return Format::r32_uint;  // RGB9E5, packed in the shader
+    case 1: return Format::rgba16_float;
+    case 2: return Format::b10g11r11_float;
+    case 3: return Format::rgba32_float;
+  }
+  throw GraphError(fmt::format("gi_upscale: history_format expected 0 (rgb9e5), 1 (rgba16f), 2 (r11g11b10f) "
+                               "or 3 (rgba32f), got {}", history_format));
+}
+
+namespace {
+
+const char* shader_for(uint32_t history_format) {
+  static const char* const kShaders[] = {"gi_upscale_rgb9e5.comp", "gi_upscale_rgba16f.comp",
+                                         "gi_upscale_r11g11b10f.comp", "gi_upscale_rgba32f.comp"};
+  (void)gi_history_format(history_format);  // throws when out of range
+  return kShaders[history_format];
+}
+
+class GiUpscalePass final : public Pass {
+ public:
+  PassDecl declare(const Scene&, const Settings& s) const override {
+    const RadianceCacheSettings& r = s.params<RadianceCacheSettings>();
+    ResourceDesc history{gi_history_format(r.history_format), SizeRule::render};
+    ResourceDesc frames{Format::r32_float, SizeRule::render};
+    history.persistent = frames.persistent = true;
+    history.values = non_negative_values().only(kChannelsRgb).encoded(  // irradiance / pi
+        history.format == Format::r32_uint ? Encoding::rgb9e5 : Encoding::none);
+    frames.values = non_negative_values().bounded(float(r.history_max_frames));  // n of the temporal filter
+    PassDecl d;
+    d.name = "gi_upscale";
+    d.slots = {{"gi_sh_r", Access::read},
+               {"gi_sh_g", Access::read},
+               {"gi_sh_b", Access::read},
+               {"gbuffer_normal", Access::read},
+               {"gbuffer_position", Access::read},
+               {"gbuffer_normal", Access::read_prev},
+               {"gbuffer_position", Access::read_prev},
+               {"gi_history", Access::write, history},
+               {"gi_history", Access::read_prev},
+               {"gi_history_frames", Access::write, frames},
+               {"gi_history_frames", Access::read_prev},
+               {"exposure", Access::read},
+               {"gi_irradiance", Access::write, ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values())}};
+    return d;
+  }
+
+  void record(RecordContext& ctx) override {
+    using namespace glsl;
+    const RadianceCacheSettings& r = ctx.settings.params<RadianceCacheSettings>();
+    UpscalePush push{r.gather_divisor >= 4 ? 4u : 2u, float(r.history_max_frames), r.disocclusion ? 1u : 0u,
+                     ctx.frame > 0 ? 1u : 0u, ctx.settings.nan_guards ? 1u : 0u, 0, 0, 0};
+    static_assert(sizeof(push) == 32, "UpscalePush must match gi_upscale.glsl's push block");
+    ComputePipelineDesc desc;
+    desc.shader = shader_for(r.history_format);
+    desc.bindings = scene_bindings();
+    desc.push_constant_bytes = sizeof(push);
+    std::vector<Bind> binds = ctx.scene_gpu.binds();
+    auto image = [&](uint32_t binding, const Image& img) {
+      desc.bindings.push_back({binding, DescriptorKind::storage_image});
+      binds.push_back({binding, nullptr, &img});
+    };
+    image(kUpscaleBindNormal, ctx.image("gbuffer_normal"));
+    image(kUpscaleBindPosition, ctx.image("gbuffer_position"));
+    image(kUpscaleBindPrevNormal, ctx.prev_image("gbuffer_normal"));
+    image(kUpscaleBindPrevPosition, ctx.prev_image("gbuffer_position"));
+    image(kUpscaleBindShR, ctx.image("gi_sh_r"));
+    image(kUpscaleBindShG, ctx.image("gi_sh_g"));
+    image(kUpscaleBindShB, ctx.image("gi_sh_b"));
+    image(kUpscaleBindPrevHistory, ctx.prev_image("gi_history"));
+    image(kUpscaleBindPrevFrames, ctx.prev_image("gi_history_frames"));
+    image(kUpscaleBindHistory, ctx.image("gi_history"));
+    image(kUpscaleBindFrames, ctx.image("gi_history_frames"));
+    image(kUpscaleBindIrradiance, ctx.image("gi_irradiance"));
+    desc.bindings.push_back({kUpscaleBindExposure, DescriptorKind::storage_buffer});
+    binds.push_back({kUpscaleBindExposure, &ctx.buffer("exposure"), nullptr});
+    auto pipeline = ctx.gpu.compute_pipeline(desc);
+    ctx.cmd.bind(*pipeline, binds, &push, sizeof(push));
+    ctx.cmd.dispatch(div_up(ctx.width("gi_irradiance"), kUpscaleGroup),
+                     div_up(ctx.height("gi_irradiance"), kUpscaleGroup));
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Pass> make_gi_upscale_pass() { return std::make_unique<GiUpscalePass>(); }
+
+}  // namespace gib

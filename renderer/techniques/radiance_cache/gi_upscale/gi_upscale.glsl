@@ -1,0 +1,221 @@
+// gi_upscale kernel, included by gi_upscale_<format>.comp with GI_HISTORY_FORMAT defined
+// (0 RGB9E5 in r32ui, 1 rgba16f, 2 r11f_g11f_b10f, 3 rgba32f). See gi_upscale.h.
+#include "renderer/techniques/radiance_cache/gi_upscale/gi_upscale_shared.h"
+#include "frame.glsl"
+#include "sampling.glsl"
+#include "packing.glsl"
+#include "sh.glsl"
+#include "finite.glsl"
+
+layout(local_size_x = kUpscaleGroup, local_size_y = kUpscaleGroup) in;
+layout(set = 0, binding = kUpscaleBindNormal, rgba16f) uniform readonly image2D gb_normal;
+layout(set = 0, binding = kUpscaleBindPosition, rgba32f) uniform readonly image2D gb_position;
+layout(set = 0, binding = kUpscaleBindPrevNormal, rgba16f) uniform readonly image2D prev_normal;
+layout(set = 0, binding = kUpscaleBindPrevPosition, rgba32f) uniform readonly image2D prev_position;
+layout(set = 0, binding = kUpscaleBindShR, rgba16f) uniform readonly image2D sh_r;
+layout(set = 0, binding = kUpscaleBindShG, rgba16f) uniform readonly image2D sh_g;
+layout(set = 0, binding = kUpscaleBindShB, rgba16f) uniform readonly image2D sh_b;
+layout(set = 0, binding = kUpscaleBindPrevFrames, r32f) uniform readonly image2D prev_frames;
+layout(set = 0, binding = kUpscaleBindFrames, r32f) uniform writeonly image2D out_frames;
+layout(set = 0, binding = kUpscaleBindIrradiance, rgba32f) uniform writeonly image2D out_irradiance;
+layout(push_constant) uniform Push { UpscalePush push; };
+// Pre-exposure (exposure pass): the gather SH and the history hold irradiance / pi x P; P_now
+// is this frame's P, P_prev the one last frame's history was stored with.
+layout(set = 0, binding = kUpscaleBindExposure, std430) readonly buffer Exposure { float exposure[4]; };
+
+// History storage. store_history returns exactly what a later load returns: values are
+// quantised here with a known rounding (the codec's or packHalf2x16), so the image's own
+// conversion on store is exact.
+#if GI_HISTORY_FORMAT == 0
+layout(set = 0, binding = kUpscaleBindPrevHistory, r32ui) uniform readonly uimage2D prev_history;
+layout(set = 0, binding = kUpscaleBindHistory, r32ui) uniform writeonly uimage2D out_history;
+vec3 load_history(ivec2 q) { return gib_unpack_rgb9e5(imageLoad(prev_history, q).x); }
+vec3 store_history(ivec2 p, vec3 v) {
+  uint e = gib_pack_rgb9e5(v);
+  imageStore(out_history, p, uvec4(e, 0u, 0u, 0u));
+  return gib_unpack_rgb9e5(e);
+}
+#elif GI_HISTORY_FORMAT == 1
+layout(set = 0, binding = kUpscaleBindPrevHistory, rgba16f) uniform readonly image2D prev_history;
+layout(set = 0, binding = kUpscaleBindHistory, rgba16f) uniform writeonly image2D out_history;
+vec3 load_history(ivec2 q) { return imageLoad(prev_history, q).rgb; }
+vec3 store_history(ivec2 p, vec3 v) {
+  // min() keeps a NaN for the guards to decide (gib_clamp_keep_nan, finite.glsl).
+  v = vec3(gib_clamp_keep_nan(v.x, -65504.0, 65504.0), gib_clamp_keep_nan(v.y, -65504.0, 65504.0),
+           gib_clamp_keep_nan(v.z, -65504.0, 65504.0));
+  vec3 h = vec3(unpackHalf2x16(packHalf2x16(v.rg)), unpackHalf2x16(packHalf2x16(vec2(v.b, 0.0))).x);
+  imageStore(out_history, p, vec4(h, 1.0));
+  return h;
+}
+#elif GI_HISTORY_FORMAT == 2
+layout(set = 0, binding = kUpscaleBindPrevHistory, r11f_g11f_b10f) uniform readonly image2D prev_history;
+layout(set = 0, binding = kUpscaleBindHistory, r11f_g11f_b10f) uniform writeonly image2D out_history;
+vec3 load_history(ivec2 q) { return imageLoad(prev_history, q).rgb; }
+vec3 store_history(ivec2 p, vec3 v) {
+  vec3 h = gib_unpack_r11g11b10(gib_pack_r11g11b10(v));
+  imageStore(out_history, p, vec4(h, 1.0));
+  return h;
+}
+#else
+layout(set = 0, binding = kUpscaleBindPrevHistory, rgba32f) uniform readonly image2D prev_history;
+layout(set = 0, binding = kUpscaleBindHistory, rgba32f) uniform writeonly image2D out_history;
+vec3 load_history(ivec2 q) { return imageLoad(prev_history, q).rgb; }
+vec3 store_history(ivec2 p, vec3 v) {
+  imageStore(out_history, p, vec4(v, 1.0));
+  return v;
+}
+#endif
+
+// value is pre-exposed (x P_now) and stored so; gi_irradiance is in absolute units.
+void write_out(ivec2 p, vec3 value, float frames) {
+  vec3 stored = store_history(p, value);
+  imageStore(out_frames, p, vec4(frames, 0.0, 0.0, 0.0));
+  imageStore(out_irradiance, p, vec4(stored / exposure[kUpscaleExposureNow], 1.0));
+}
+
+// How much gather sample g (a gather-res pixel) lies on the surface at x with normal n: normal
+// agreement times distance from the plane; 0 when that gather pixel saw the sky.
+float tap_similarity(ivec2 g, vec3 x, vec3 n, float dist) {
+  int div = int(push.divisor);
+  ivec2 src = min(g * div + div / 2, imageSize(gb_position) - 1);  // gather pixel g's full-res pixel
+  vec4 gp = imageLoad(gb_position, src);
+  if (gp.w == 0.0) return 0.0;
+  vec3 gn = imageLoad(gb_normal, src).xyz;
+  float s = pow(max(0.0, dot(n, gn)), kUpscaleNormalPower) * exp(-abs(dot(n, gp.xyz - x)) / (dist * kUpscaleDepthSigma));
+  // Guard: a tap with a non-finite similarity (NaN normal) is not on any surface. (Its SH are
+  // checked where they are loaded anyway: loading them here too cost gi_upscale +27% on an H100.)
+  if (push.nan_guards != 0u && !gib_finite(s)) return 0.0;
+  return s;
+}
+
+// Gather sample g's SH (r, g, b); false when the guards are on and one is not finite (such a
+// tap is not on any surface).
+bool tap_sh(ivec2 g, out vec4 r, out vec4 gg, out vec4 b) {
+  r = imageLoad(sh_r, g);
+  gg = imageLoad(sh_g, g);
+  b = imageLoad(sh_b, g);
+  return push.nan_guards == 0u || (gib_finite(r) && gib_finite(gg) && gib_finite(b));
+}
+
+// 4-tap bilateral upscale of the denoised gather SH, evaluated with the full-res normal.
+// Returns false when no gather sample around p lies on p's surface.
+bool upscale(ivec2 p, vec3 x, vec3 n, float dist, out vec3 irradiance) {
+  irradiance = vec3(0.0);
+  int div = int(push.divisor);
+  ivec2 gsize = imageSize(sh_r);
+  vec2 xg = (vec2(p) - float(div / 2)) / float(div);
+  ivec2 g0 = ivec2(floor(xg));
+  vec2 f = xg - vec2(g0);
+  vec4 acc_r = vec4(0.0), acc_g = vec4(0.0), acc_b = vec4(0.0);
+  float acc_w = 0.0, best = 0.0;
+  ivec2 best_g = ivec2(-1);
+  for (int i = 0; i < 4; ++i) {
+    ivec2 o = ivec2(i & 1, i >> 1);
+    ivec2 g = clamp(g0 + o, ivec2(0), gsize - 1);
+    float similar = tap_similarity(g, x, n, dist);
+    if (push.nan_guards != 0u && similar == 0.0) continue;  // 0 x NaN would still be NaN
+    vec4 r, gg, b;
+    if (!tap_sh(g, r, gg, b)) continue;
+    if (similar > best) {
+      best = similar;
+      best_g = g;
+    }
+    float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y) * similar;
+    acc_r += w * r;
+    acc_g += w * gg;
+    acc_b += w * b;
+    acc_w += w;
+  }
+  if (acc_w > 1e-4) {
+    acc_r /= acc_w;
+    acc_g /= acc_w;
+    acc_b /= acc_w;
+  } else {
+    // The bilinear weight sits on other surfaces: take the most similar of the 4 taps, or on
+    // thin silhouettes, where none of them lies on this surface (their gather pixels saw the
+    // sky or another object), the most similar sample of the surrounding 4x4.
+    if (best <= 1e-3)
+      for (int j = -1; j <= 2; ++j)
+        for (int i = -1; i <= 2; ++i) {
+          ivec2 g = clamp(g0 + ivec2(i, j), ivec2(0), gsize - 1);
+          float similar = tap_similarity(g, x, n, dist);
+          if (similar > best) {
+            best = similar;
+            best_g = g;
+          }
+        }
+    if (best <= 1e-3 || !tap_sh(best_g, acc_r, acc_g, acc_b)) return false;
+  }
+  vec3 e = vec3(gib_sh2_irradiance(acc_r, n), gib_sh2_irradiance(acc_g, n), gib_sh2_irradiance(acc_b, n));
+  if (push.nan_guards != 0u && !gib_finite(e)) return false;
+  irradiance = gib_max0_keep_nan(e);  // gib_sh2_irradiance returns irradiance / pi
+  return true;
+}
+
+// Last frame's history at x: bilinear over the 4 texels around its reprojection, each kept
+// only if it passes the disocclusion tests. Returns false when none does or x was off screen.
+bool reproject(vec3 x, vec3 n, out vec3 prev, out float frames) {
+  prev = vec3(0.0);
+  frames = 0.0;
+  if (push.history_valid == 0u) return false;
+  vec4 clip = gib_frame.prev_view_proj * vec4(x, 1.0);
+  if (clip.w <= 0.0) return false;
+  vec2 ndc = clip.xy / clip.w;
+  if (any(greaterThan(abs(ndc), vec2(1.0)))) return false;
+  ivec2 full = imageSize(prev_position);
+  vec2 px = (ndc * 0.5 + 0.5) * vec2(full) - 0.5;  // texel centres at integers
+  ivec2 q0 = ivec2(floor(px));
+  vec2 f = px - vec2(q0);
+  vec3 sum = vec3(0.0);
+  float sum_n = 0.0, sum_w = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    ivec2 o = ivec2(i & 1, i >> 1);
+    ivec2 q = q0 + o;
+    if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, full))) continue;
+    float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+    if (w <= 0.0) continue;
+    if (push.disocclusion != 0u) {
+      vec4 qp = imageLoad(prev_position, q);
+      if (qp.w == 0.0) continue;
+      vec3 qn = imageLoad(prev_normal, q).xyz;
+      if (abs(dot(qn, x - qp.xyz)) > kUpscaleDepthTolerance * clip.w) continue;
+      if (dot(n, qn) < kUpscaleNormalCos) continue;
+      if (push.nan_guards != 0u && !gib_finite(qn)) continue;  // the NaN compares above pass
+    }
+    vec3 h = load_history(q);
+    float hn = imageLoad(prev_frames, q).x;
+    // Guard: a non-finite history texel is dropped (formats 1-3 can hold NaN and Inf; RGB9E5 cannot).
+    if (push.nan_guards != 0u && !(gib_finite(h) && gib_finite(hn))) continue;
+    sum += w * h;
+    sum_n += w * hn;
+    sum_w += w;
+  }
+  if (sum_w < 1e-2) return false;
+  // Last frame's history was stored x P_prev: bring it to this frame's P_now.
+  prev = sum / sum_w * (exposure[kUpscaleExposureNow] / exposure[kUpscaleExposurePrev]);
+  frames = sum_n / sum_w;
+  return true;
+}
+
+void main() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(p, imageSize(out_irradiance)))) return;
+  vec4 pos = imageLoad(gb_position, p);
+  if (pos.w == 0.0) {  // sky
+    write_out(p, vec3(0.0), 0.0);
+    return;
+  }
+  vec3 n = normalize(imageLoad(gb_normal, p).xyz);
+  vec3 curr = vec3(0.0), prev;
+  float frames;
+  // Guard: no upscale around a broken (non-finite) normal; the pixel keeps its history.
+  bool have_curr = (push.nan_guards == 0u || gib_finite(n)) && upscale(p, pos.xyz, n, pos.w, curr);
+  bool have_prev = reproject(pos.xyz, n, prev, frames);
+  if (!have_prev) frames = 0.0;  // rejected: restart the average
+  if (!have_curr) {
+    write_out(p, prev, frames);  // nothing new here this frame: keep what history says
+    return;
+  }
+  // New = (n Prev + Curr) / (n + 1), n = min(n + 1, n_max)  [Mattauch 2010]
+  write_out(p, (frames * prev + curr) / (frames + 1.0), min(frames + 1.0, push.max_frames));
+}

@@ -1,0 +1,105 @@
+// World radiance cache: an open-addressing hash table of RcCell (radiance_cache_shared.h) keyed
+// by quantised world position and a camera-distance LOD (spatial hashing after Gautron 2020, as
+// in the seed's "Sampling the World"). Owner: the world-sampling passes; design:
+// renderer/techniques/radiance_cache/radiance_cache.md.
+//
+//   LOD  = 2^floor(log2(1 + |p - camera| / cache.y))       (1, 2, 4, ...)
+//   cell = floor(p / (cache.x * LOD))                      (ivec3)
+//   h    = pcg(LOD + pcg(cell.z + pcg(cell.y + pcg(cell.x))))   (gib_pcg, hash.glsl; uint wrap)
+//   key  = h | 1 (0 marks an empty cell), first slot (key >> 1) & (2^cache.z - 1), then linear
+//          probing over at most cache.w slots. Cells are never removed, so an empty slot ends a
+//          search.
+// The C++ mirror in tests/test_radiance_cache_world.cpp repeats these operations.
+//
+// Use (push constants named `rc` and frame.glsl first):
+//   #include "frame.glsl"
+//   layout(push_constant) uniform Push { RcParams rc; ... };
+//   #include "renderer/techniques/radiance_cache/include/radiance_cache.glsl"
+//   RC_CELL_BUFFER(binding, readonly)    // or coherent (writers), or nothing; declares
+//                                        // RcCell rc_cells[] and the accessors used here
+//   vec3 radiance;
+//   if (rc_lookup(p, n, radiance)) ...  // n: geometric normal facing the ray (rc_facing_normal)       // outgoing diffuse radiance of a shaded cell
+#ifndef GIB_RADIANCE_CACHE_GLSL
+#define GIB_RADIANCE_CACHE_GLSL
+#include "renderer/techniques/radiance_cache/include/radiance_cache_shared.h"
+#include "hash.glsl"
+#include "packing.glsl"
+
+// Declares the cell buffer and the accessors the lookups below use (prototyped here, so the
+// macro may come after this include).
+#define RC_CELL_BUFFER(B, QUALIFIER)                                                       \
+  layout(std430, set = 0, binding = (B)) QUALIFIER buffer RcCellBuffer { RcCell rc_cells[]; }; \
+  uint rc_cell_key_at(uint i) { return rc_cells[i].key; }                                  \
+  uint rc_cell_radiance_at(uint i) { return rc_cells[i].radiance; }                        \
+  uint rc_cell_shaded_frame_at(uint i) { return rc_cells[i].shaded_frame; }
+
+uint rc_cell_key_at(uint i);
+uint rc_cell_radiance_at(uint i);
+uint rc_cell_shaded_frame_at(uint i);
+
+uint rc_cell_mask() { return (1u << uint(rc.cache.z)) - 1u; }
+uint rc_max_probe() { return uint(rc.cache.w); }
+
+// Which side of a surface a point was seen from: the dominant axis and sign of the unit
+// geometric normal facing the viewer/ray (0..5). Part of the key, so the two faces of a wall
+// thinner than a cell get separate cells: without it the sunlit outside of a thin wall lights
+// its inside (the cache's own thin-wall leak).
+uint rc_side(vec3 n) {
+  vec3 a = abs(n);
+  uint axis = a.x >= a.y && a.x >= a.z ? 0u : (a.y >= a.z ? 1u : 2u);
+  return axis * 2u + (n[axis] < 0.0 ? 1u : 0u);
+}
+
+// Unit geometric normal of a triangle, turned to face against `dir` (the ray that hit it).
+vec3 rc_facing_normal(uint triangle, vec3 dir) {
+  GpuTriangle t = gib_triangles[triangle];
+  vec3 a = gib_vertices[t.i0].position, b = gib_vertices[t.i1].position, c = gib_vertices[t.i2].position;
+  vec3 g = cross(b - a, c - a);
+  float len = length(g);
+  g = len > 0.0 ? g / len : vec3(0.0, 1.0, 0.0);
+  return dot(g, dir) > 0.0 ? -g : g;
+}
+
+// Hash of position, side and LOD; lod receives the LOD factor (1, 2, 4, ...).
+uint rc_cell_hash(vec3 p, vec3 n, out float lod) {
+  precise vec3 dp = p - gib_frame.camera_pos.xyz;
+  precise float dist = sqrt(dot(dp, dp));
+  lod = exp2(floor(log2(1.0 + dist / rc.cache.y)));
+  precise float size = rc.cache.x * lod;
+  precise vec3 q = floor(p / size);
+  ivec3 cell = ivec3(clamp(q, vec3(-2e9), vec3(2e9)));
+  uint h = gib_pcg(uint(cell.x));
+  h = gib_pcg(uint(cell.y) + h);
+  h = gib_pcg(uint(cell.z) + h);
+  if (rc.flags.x != 0u) h = gib_pcg(rc_side(n) + h);
+  return gib_pcg(uint(lod) + h);
+}
+
+uint rc_cell_key(vec3 p, vec3 n, out float lod) { return rc_cell_hash(p, n, lod) | 1u; }
+
+// First slot of a key's probe sequence (bit 0 of a key is always set, so skip it).
+uint rc_cell_first_slot(uint key) { return (key >> 1u) & rc_cell_mask(); }
+
+// Index of the cell holding key, or 0xffffffff when the probe sequence holds none.
+uint rc_find_cell(uint key) {
+  uint mask = rc_cell_mask();
+  uint n = rc_max_probe();
+  for (uint s = 0u; s < n; ++s) {
+    uint i = (rc_cell_first_slot(key) + s) & mask;
+    uint k = rc_cell_key_at(i);
+    if (k == key) return i;
+    if (k == 0u) break;
+  }
+  return 0xffffffffu;
+}
+
+// Outgoing diffuse radiance stored for p's cell, when the cell exists and was ever shaded.
+bool rc_lookup(vec3 p, vec3 n, out vec3 radiance) {
+  radiance = vec3(0.0);
+  float lod;
+  uint i = rc_find_cell(rc_cell_key(p, n, lod));
+  if (i == 0xffffffffu || rc_cell_shaded_frame_at(i) == 0u) return false;
+  radiance = gib_unpack_rgb9e5(rc_cell_radiance_at(i));
+  return true;
+}
+#endif  // GIB_RADIANCE_CACHE_GLSL

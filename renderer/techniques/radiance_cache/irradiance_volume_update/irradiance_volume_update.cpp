@@ -1,0 +1,112 @@
+#include "renderer/techniques/radiance_cache/irradiance_volume_update/irradiance_volume_update.h"
+
+#include "renderer/techniques/radiance_cache/irradiance_volume_update/irradiance_volume_update_shared.h"
+#include "renderer/techniques/radiance_cache/radiance_cache_params.h"
+
+namespace gib {
+namespace {
+
+constexpr uint32_t kProbesPerCascade = glsl::kProbeGridDim * glsl::kProbeGridDim * glsl::kProbeGridDim;
+
+class IrradianceVolumeUpdatePass final : public Pass {
+ public:
+  PassDecl declare(const Scene&, const Settings& s) const override {
+    const RadianceCacheSettings& r = s.params<RadianceCacheSettings>();
+    PassDecl d;
+    d.name = "irradiance_volume_update";
+    ResourceDesc irr{Format::r32_uint, SizeRule::fixed, glsl::kProbeAtlasWidth,
+                     glsl::kProbeAtlasRowsPerCascade * r.cascades};
+    irr.persistent = true;
+    ResourceDesc vis = irr;
+    vis.format = Format::rg16_float;
+    irr.values = non_negative_values().encoded(Encoding::rgb9e5);  // irradiance / pi
+    vis.values = non_negative_values();                             // distance moments
+    ResourceDesc rays{Format::buffer, SizeRule::buffer};
+    rays.bytes = uint64_t(kProbesPerCascade) * r.rays_per_probe * 16;  // vec4 per ray
+    rays.values = non_negative_values().layout(4, 0, 3);                 // rgb radiance
+    d.slots = {{"probe_hits", Access::read},
+               {"rc_cells", Access::read},
+               {"probe_ray_radiance", Access::write, rays},
+               {"probe_irradiance", Access::write, irr},
+               {"probe_visibility", Access::write, vis},
+               {"probe_irradiance", Access::read_prev},
+               {"probe_visibility", Access::read_prev}};
+    d.work = {{"probes", kProbesPerCascade}};
+    return d;
+  }
+
+  void record(RecordContext& ctx) override {
+    const RadianceCacheSettings& r = ctx.settings.params<RadianceCacheSettings>();
+    using namespace glsl;
+    // Both ray-shading kernels: cache fallback on; alpha testing (probe rays) when the scene has it.
+    const std::vector<SpecConstant> ray_specs = {
+        {kIvSpecCacheFallback, 1}, {kIvSpecAlpha, ctx.scene.features().has(Feature::alpha_tested) ? 1u : 0u}};
+    // Cascades not updated this frame carry over from last frame's copy; the updated one is
+    // rewritten whole by the convolve below.
+    ctx.cmd.begin_label("irradiance_volume_update/carry");
+    IvCarryPush carry{ctx.frame % r.cascades, 0, 0, 0};
+    const Image& atlas = ctx.image("probe_irradiance");
+    record_compute(ctx, {.shader = "irradiance_volume_carry.comp",
+                         .images = {{kIvBindPrevIrradiance, "probe_irradiance", true},
+                                    {kIvBindPrevVisibility, "probe_visibility", true},
+                                    {kIvBindIrradiance, "probe_irradiance"},
+                                    {kIvBindVisibility, "probe_visibility"}},
+                         .groups_x = div_up(atlas.width(), 16),
+                         .groups_y = div_up(atlas.height(), 16),
+                         .push = &carry,
+                         .push_bytes = sizeof(carry),
+                         .scene = false});
+    ctx.cmd.end_label();
+    ctx.cmd.barrier(kStageCompute, kStageCompute);
+    IvPush push{make_rc_params(ctx.settings, ctx.frame)};
+    if (!ctx.gpu.info().is_software()) {
+      // GPU: one workgroup per probe with its rays in group-shared memory.
+      ctx.cmd.begin_label("irradiance_volume_update/probe");
+      record_compute(ctx, {.shader = "irradiance_volume_probe.comp",
+                           .images = {{kIvBindPrevIrradiance, "probe_irradiance", true},
+                                      {kIvBindPrevVisibility, "probe_visibility", true},
+                                      {kIvBindIrradiance, "probe_irradiance"},
+                                      {kIvBindVisibility, "probe_visibility"}},
+                           .groups_x = kProbesPerCascade,
+                           .push = &push,
+                           .push_bytes = sizeof(push),
+                           .spec_constants = ray_specs,
+                           .buffers = {{kIvBindHits, "probe_hits"}, {kIvBindCells, "rc_cells"}}});
+      ctx.cmd.end_label();
+      // The split path's ray buffer is unused here: zeroed so nothing (the stability scan, a
+      // dump) reads undefined memory.
+      ctx.cmd.fill(ctx.buffer("probe_ray_radiance"), 0);
+      return;
+    }
+    // CPU device: two barrier-free kernels (see irradiance_volume_probe.comp for why).
+    ctx.cmd.begin_label("irradiance_volume_update/rays");
+    record_compute(ctx, {.shader = "irradiance_volume_rays.comp",
+                         .images = {{kIvBindPrevIrradiance, "probe_irradiance", true},
+                                    {kIvBindPrevVisibility, "probe_visibility", true}},
+                         .groups_x = div_up(kProbesPerCascade * r.rays_per_probe, kIvRaysGroup),
+                         .push = &push,
+                         .push_bytes = sizeof(push),
+                         .spec_constants = ray_specs,
+                         .buffers = {{kIvBindHits, "probe_hits"}, {kIvBindCells, "rc_cells"},
+                                     {kIvBindRays, "probe_ray_radiance"}}});
+    ctx.cmd.end_label();
+    ctx.cmd.barrier(kStageCompute, kStageCompute);
+    ctx.cmd.begin_label("irradiance_volume_update/convolve");
+    record_compute(ctx, {.shader = "irradiance_volume_update.comp",
+                         .images = {{kIvBindPrevIrradiance, "probe_irradiance", true},
+                                    {kIvBindPrevVisibility, "probe_visibility", true},
+                                    {kIvBindIrradiance, "probe_irradiance"},
+                                    {kIvBindVisibility, "probe_visibility"}},
+                         .groups_x = div_up(kProbesPerCascade * kProbeTileSize * kProbeTileSize, kIvConvolveGroup),
+                         .push = &push,
+                         .push_bytes = sizeof(push),
+                         .buffers = {{kIvBindRays, "probe_ray_radiance"}}});
+    ctx.cmd.end_label();
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Pass> make_irradiance_volume_update_pass() { return std::make_unique<IrradianceVolumeUpdatePass>(); }
+
+}  // namespace gib

@@ -1,0 +1,31 @@
+// irradiance_volume_update <-> C++: bindings, group size, push constants.
+#ifndef GIB_IRRADIANCE_VOLUME_UPDATE_SHARED_H
+#define GIB_IRRADIANCE_VOLUME_UPDATE_SHARED_H
+#include "frame_shared.h"
+#include "renderer/techniques/radiance_cache/include/radiance_cache_shared.h"
+GIB_SHARED_BEGIN
+GIB_CONST(uint, kIvGroup, 8)                    // irradiance_volume_probe.comp: 8x8 threads per probe
+GIB_CONST(uint, kIvMaxRays, 256)                // rays per probe held in its group-shared memory
+GIB_CONST(uint, kIvRaysGroup, 64)               // irradiance_volume_rays.comp: one invocation per ray
+GIB_CONST(uint, kIvConvolveGroup, 64)           // irradiance_volume_update.comp: one per tile texel
+GIB_CONST(uint, kIvBindHits, 8)                 // readonly ProbeHit probe_hits[]
+GIB_CONST(uint, kIvBindCells, 9)                // readonly RcCell rc_cells[]
+GIB_CONST(uint, kIvBindPrevIrradiance, 10)      // last frame's probe_irradiance (r32ui RGB9E5)
+GIB_CONST(uint, kIvBindPrevVisibility, 11)      // last frame's probe_visibility (rg16f)
+GIB_CONST(uint, kIvBindIrradiance, 12)          // this frame's probe_irradiance
+GIB_CONST(uint, kIvBindVisibility, 13)          // this frame's probe_visibility
+GIB_CONST(uint, kIvBindRays, 14)                // probe_ray_radiance: vec4 (rgb, distance) per ray
+GIB_CONST(uint, kIvSpecCacheFallback, 0)        // 1: hits without a shaded cell use last frame's volumes
+GIB_CONST(uint, kIvSpecAlpha, 1)                // 1: the scene has alpha-tested materials (probe rays test them)
+// Exponent k of the max(0, n.d)^k weight of the distance moments.
+GIB_CONST(float, kIvDistanceSharpness, 16.0)
+struct IvPush {
+  RcParams rc;
+};
+// irradiance_volume_carry.comp: rows of cascade skip_cascade are not copied.
+struct IvCarryPush {
+  uint skip_cascade;
+  uint pad0, pad1, pad2;
+};
+GIB_SHARED_END
+#endif

@@ -1,0 +1,21 @@
+// probe_trace: traces the rays of every probe of one irradiance-volume cascade (seed
+// the idTech 8 "Global Illumination" talk, "Sampling the World": interleaved updates,
+// one cascade per frame, each probe traces N visibility rays from its cell centre, a 128-bit
+// hit record per ray). Cascade frame % cascades; its 16^3 probes (geometry in
+// renderer/techniques/radiance_cache/include/probe_volume.glsl) each trace rays_per_probe rays in spherical
+// Fibonacci directions rotated by a random rotation hashed from the frame (rc_ray_direction, the
+// same for every probe), closest hit with alpha testing, up to kProbeMissDistance (10 km).
+// Slots: reads the scene and BVH; writes `probe_hits` (buffer, 16^3 x rays_per_probe ProbeHit,
+// probe-major: record probe * rays + ray; radiance_cache_shared.h).
+// Limits: no probe relocation or back-face classification (DDGI's); a probe inside geometry
+// sees its inside. rays_per_probe must be 1..256 (declare() throws otherwise). The hit record
+// holds triangle + 1, instance, unorm16 barycentrics and distance (the seed packs an SBT index;
+// we have one material model).
+#pragma once
+#include <memory>
+
+#include "renderer/graph/pass.h"
+
+namespace gib {
+std::unique_ptr<Pass> make_probe_trace_pass();
+}

@@ -1,0 +1,103 @@
+// `radiance-cache`: idTech 8's GI (idTech 8 "Global Illumination" talk: light grid, world
+// sampling, radiance cache, irradiance volumes, final gather, denoise, upscale). Design notes:
+// radiance_cache.md beside this file.
+#include "renderer/techniques/radiance_cache/radiance_cache.h"
+
+#include "renderer/passes/composite/composite.h"
+#include "renderer/passes/gbuffer/gbuffer.h"
+#include "renderer/passes/visibility/visibility.h"
+#include "renderer/techniques/radiance_cache/exposure/exposure.h"
+#include "renderer/techniques/radiance_cache/final_gather/final_gather.h"
+#include "renderer/techniques/radiance_cache/gi_denoise/gi_denoise.h"
+#include "renderer/techniques/radiance_cache/gi_upscale/gi_upscale.h"
+#include "renderer/techniques/radiance_cache/irradiance_volume_update/irradiance_volume_update.h"
+#include "renderer/techniques/radiance_cache/light_grid/light_grid.h"
+#include "renderer/techniques/radiance_cache/probe_trace/probe_trace.h"
+#include "renderer/techniques/radiance_cache/radiance_cache_shade/radiance_cache_shade.h"
+#include "renderer/techniques/radiance_cache/radiance_cache_update/radiance_cache_update.h"
+#include "renderer/techniques/technique.h"
+
+namespace gib {
+namespace {
+// The seed's platform tiers: 16/32/64 rays per probe, 1/4 or 1/2 gather; cascades and cache
+// size grow with quality (6 cascades and ~2^20 cells ship on consoles at 'ultra').
+struct Preset {
+  const char* name;
+  uint32_t rays_per_probe, gather_divisor, cascades, cache_log2_cells;
+};
+constexpr Preset kPresets[] = {
+    {"low", 16, 4, 2, 13}, {"medium", 32, 2, 3, 15}, {"high", 64, 2, 4, 16}, {"ultra", 64, 2, 6, 18}};
+void apply_preset_row(RadianceCacheSettings& s, const Preset& p) {
+  s.rays_per_probe = p.rays_per_probe;
+  s.gather_divisor = p.gather_divisor;
+  s.cascades = p.cascades;
+  s.cache_log2_cells = p.cache_log2_cells;
+}
+
+using S = RadianceCacheSettings;
+std::vector<TechniqueOption> own_options() {
+  return {
+      option("visibility_test", "leak mitigation: Chebyshev test on probe distance moments (0/1)", 0, 1,
+             &S::visibility_test),
+      option("normal_bias", "leak mitigation: metres along the normal before sampling probes", 0, 10, &S::normal_bias),
+      option("view_bias", "leak mitigation: metres towards the viewer before sampling probes", 0, 10, &S::view_bias),
+      option("probe_rays",
+             "leak mitigation: a shadow ray from each point that samples the volumes to each of its 8 probes; "
+             "blocked probes get no weight (0/1)",
+             0, 1, &S::probe_rays),
+      option("cache_side_key", "leak mitigation: radiance-cache cells keyed by surface side (0/1)", 0, 1,
+             &S::cache_side_key),
+      option("disocclusion", "temporal filter rejects history failing depth/normal tests (0/1)", 0, 1,
+             &S::disocclusion),
+      option("history_format", "GI history: 0 RGB9E5, 1 RGBA16F, 2 R11G11B10F, 3 RGBA32F", 0, 3, &S::history_format),
+      option("history_max_frames", "n_max of the temporal filter", 1, 1024, &S::history_max_frames),
+      option("cascades", "irradiance-volume cascades", 1, 8, &S::cascades),
+      option("rays_per_probe", "visibility rays per updated probe", 1, 64, &S::rays_per_probe),
+      option("probe_spacing", "metres between cascade-0 probes", 0.01, 100, &S::probe_spacing),
+      option("gather_divisor", "final gather at 1/2 or 1/4 resolution (2 or 4)", 2, 4, &S::gather_divisor),
+      option("cache_log2_cells", "radiance cache capacity, log2 cells", 4, 24, &S::cache_log2_cells),
+      option("cache_reuse_frames", "frames a shaded cache cell is reused", 1, 1024, &S::cache_reuse_frames),
+      option("denoise_radius", "bilateral half-width in gather pixels (0: off)", 0, 16, &S::denoise_radius),
+      option("probe_hysteresis", "weight of last frame's probe texel when blending (0: no history)", 0, 0.999,
+             &S::probe_hysteresis),
+      option("multi_bounce",
+             "1: caches feed back on themselves (cells and volumes shade bounces from last frame's volumes, the "
+             "gather reads last frame's image); 0: single bounce (white-furnace negative control)",
+             0, 1, &S::multi_bounce),
+      option("pre_exposure",
+             "1: the gather, denoise and upscale work on radiance x P, P = 1 / log-average luminance of the frame "
+             "(exposure pass), so RGBA16F SH and the history do not clamp under bright light; 0: P = 1 (negative "
+             "control)",
+             0, 1, &S::pre_exposure),
+  };
+}
+}  // namespace
+
+Technique radiance_cache_technique() {
+  Technique t;
+  t.name = "radiance-cache";
+  t.description =
+      "idTech 8 GI: light grid, cascaded irradiance volumes, world radiance cache, 1/2-1/4 res final gather, "
+      "bilateral denoise, upscale + temporal filter (renderer/techniques/radiance_cache/radiance_cache.md)";
+  t.passes = {{"visibility", make_visibility_pass},
+              {"gbuffer", make_gbuffer_pass},
+              {"direct_lighting", make_direct_lighting_pass},
+              {"light_grid", [] { return make_light_grid_pass(); }},
+              {"probe_trace", make_probe_trace_pass},
+              {"radiance_cache_update", make_radiance_cache_update_pass},
+              {"radiance_cache_shade", make_radiance_cache_shade_pass},
+              {"irradiance_volume_update", make_irradiance_volume_update_pass},
+              {"exposure", make_exposure_pass},
+              {"final_gather", make_final_gather_pass},
+              {"gi_denoise", make_gi_denoise_pass},
+              {"gi_upscale", make_gi_upscale_pass},
+              {"composite", make_composite_pass}};
+  t.output = "final_color";
+  t.aovs = {"indirect_diffuse", "gi_irradiance",    "direct_light",     "probe_irradiance", "probe_visibility",
+            "gather_sh_r",      "gbuffer_albedo",   "gbuffer_normal",   "gbuffer_position"};
+  define_settings<RadianceCacheSettings>(t, kPresets, apply_preset_row);
+  t.options = with_common_options(own_options(), {0, 1, 2});
+  return t;
+}
+
+}  // namespace gib

@@ -1,0 +1,41 @@
+// The `radiance-cache` technique's settings (definition: radiance_cache.cpp; design notes:
+// radiance_cache.md). Presets and case options set them; its passes read them with
+// Settings::params<RadianceCacheSettings>().
+#pragma once
+#include <cstdint>
+
+#include "renderer/graph/settings.h"
+#include "renderer/passes/direct_lighting/direct_lighting.h"
+
+namespace gib {
+
+struct RadianceCacheSettings : TechniqueSettingsOf<RadianceCacheSettings>, DirectLightingParams {
+  // The sky reaches surfaces through the GI (gather misses return it, in the SH), so
+  // direct_lighting must not add it again.
+  RadianceCacheSettings() { sky_rays = 0; }
+  uint32_t cascades = 3;            // irradiance-volume cascades (16^3 probes each), one updated per frame
+  float probe_spacing = 0.5f;       // metres between cascade-0 probes; doubles per cascade
+  uint32_t rays_per_probe = 32;     // visibility rays per updated probe (16 / 32 / 64)
+  float probe_hysteresis = 0.85f;   // weight of last frame's probe texel when blending
+  uint32_t gather_divisor = 2;      // final gather at 1/2 or 1/4 resolution
+  uint32_t cache_log2_cells = 15;   // world radiance cache capacity (2^n cells)
+  uint32_t cache_max_probe = 8;     // linear-probing steps before an insertion is dropped
+  float cache_cell_size = 0.25f;    // metres at LOD 0
+  float cache_lod_distance = 8.0f;  // metres: LOD = 2^floor(log2(1 + dist / this))
+  uint32_t cache_reuse_frames = 4;  // a shaded cell is reused this many frames
+  uint32_t light_grid_cascades = 4; // 16^3 cells each, first cascade light_grid_extent metres wide
+  float light_grid_extent = 32.0f;
+  bool visibility_test = true;      // leak mitigation: Chebyshev test on RG16F probe moments
+  float normal_bias = 0.1f;         // leak mitigation: metres along the normal before sampling probes
+  float view_bias = 0.1f;           // leak mitigation: metres towards the viewer
+  bool probe_rays = true;           // leak mitigation: a shadow ray from the sampled point to each of its 8 probes; blocked ones get no weight
+  bool cache_side_key = true;       // leak mitigation: cache cells keyed by surface side, so the two faces of a thin wall differ
+  bool disocclusion = true;         // temporal filter rejects history failing depth/normal tests
+  uint32_t history_format = 0;      // 0 RGB9E5 (R32_UINT), 1 RGBA16F, 2 R11G11B10F, 3 RGBA32F
+  uint32_t history_max_frames = 16; // n_max of the temporal filter
+  uint32_t denoise_radius = 3;      // bilateral half-width in gather pixels
+  bool multi_bounce = true;         // 0: no cache feeds back on itself (single bounce; white-furnace negative control)
+  bool pre_exposure = true;         // screen-space GI works on radiance x P (exposure pass); 0: P = 1 (negative control)
+};
+
+}  // namespace gib

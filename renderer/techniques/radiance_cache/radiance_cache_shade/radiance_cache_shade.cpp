@@ -1,0 +1,61 @@
+#include "renderer/techniques/radiance_cache/radiance_cache_shade/radiance_cache_shade.h"
+
+#include "renderer/techniques/radiance_cache/radiance_cache_shade/radiance_cache_shade_shared.h"
+#include "renderer/techniques/radiance_cache/radiance_cache_params.h"
+
+namespace gib {
+namespace {
+
+class RadianceCacheShadePass final : public Pass {
+ public:
+  PassDecl declare(const Scene& scene, const Settings& s) const override {
+    PassDecl d;
+    d.name = "radiance_cache_shade";
+    d.slots = {{"probe_hits", Access::read},
+               {"rc_active", Access::read},
+               {"rc_counters", Access::read},
+               {"rc_cells", Access::read_write},
+               {"probe_irradiance", Access::read_prev},
+               {"probe_visibility", Access::read_prev}};
+    if (scene.features().has(Feature::local_lights)) d.slots.push_back({"light_grid", Access::read});
+    d.work = rc_cache_work(s);
+    return d;
+  }
+
+  void record(RecordContext& ctx) override {
+    using namespace glsl;
+    SceneFeatures f = ctx.scene.features();
+    const bool local = f.has(Feature::local_lights);
+    const RadianceCacheSettings& r = ctx.settings.params<RadianceCacheSettings>();
+    const DebugSettings& dbg = ctx.settings.debug;
+    RcShadePush push{make_rc_params(ctx.settings, ctx.frame),
+                     {r.light_grid_extent, float(r.light_grid_cascades), float(ctx.scene_gpu.light_count), 0.0f},
+                     {dbg.injects(2, ctx.frame) ? 1u : 0u, dbg.inject_x, dbg.inject_y, 0}};
+    static_assert(sizeof(push) == 112, "RcShadePush must match radiance_cache_shade.comp's push block");
+    record_compute(ctx, {.shader = "radiance_cache_shade.comp",
+                         // read_prev only: the plain name is last frame's copy.
+                         .images = {{kRcShadeBindProbeIrradiance, "probe_irradiance"},
+                                    {kRcShadeBindProbeVisibility, "probe_visibility"}},
+                         .push = &push,
+                         .push_bytes = sizeof(push),
+                         .spec_constants = {{kRcShadeSpecSun, f.has(Feature::sun)},
+                                            {kRcShadeSpecSky, f.has(Feature::sky)},
+                                            {kRcShadeSpecLocal, local},
+                                            {kRcShadeSpecAlpha, f.has(Feature::alpha_tested)}},
+                         .buffers = {{kRcShadeBindHits, "probe_hits"},
+                                     {kRcShadeBindActive, "rc_active"},
+                                     {kRcShadeBindCounters, "rc_counters"},
+                                     {kRcShadeBindCells, "rc_cells"},
+                                     // Without local lights the shader never reads binding 14,
+                                     // but declares it: bind any buffer.
+                                     {kRcShadeBindLightGrid, local ? "light_grid" : "rc_counters"}},
+                         .indirect = "rc_counters",
+                         .indirect_offset = 0});
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Pass> make_radiance_cache_shade_pass() { return std::make_unique<RadianceCacheShadePass>(); }
+
+}  // namespace gib

@@ -1,0 +1,46 @@
+// radiance_cache_update: inserts this frame's probe hits into the world radiance cache and
+// queues the cells that need shading (the idTech 8 "Global Illumination" talk,
+// "Sampling the World": each ray hit triggers a cache update; spatial hashing [Gautron 2020],
+// 25 cm cells with distance LODs, linear probing, an active-cell counter and list, indirect
+// dispatch args). Kernels, in one pass (labels radiance_cache_update/<kernel>):
+//   reset  fill rc_counters with 0 (and rc_cells the first time the pass sees that buffer: the
+//          executor does not zero buffers)
+//   insert one thread per hit record; misses are skipped. The hit position probe + dir *
+//          distance is hashed (rc_cell_key, radiance_cache.glsl: LOD = 2^floor(log2(1 + d_cam /
+//          lod_distance)), cell = floor(p / (cell_size * LOD)), key = hash(cell, LOD) | 1); the
+//          key is claimed with atomicCompSwap over at most cache_max_probe slots. A cell whose
+//          shaded_frame is 0 or at least cache_reuse_frames old is queued: the queued marker is
+//          RcCell.shaded_frame itself, atomicCompSwap'd from its old value to frame + 1 (so a
+//          cell is queued once per frame; radiance_cache_shade then writes the radiance, and
+//          shaded_frame already holds frame + 1). The winner appends the cell to rc_active and
+//          stores its hit record index in RcCell.hit_index.
+//   args   dispatch_x = ceil(active / kRcShadeGroup), 1, 1.
+// Counters (RcCounters, radiance_cache_shared.h), per hit record that is a hit: `drops` (no slot
+// within cache_max_probe), `insertions` (claimed an empty slot), `reused` (found a cell shaded in
+// an earlier frame within cache_reuse_frames), or none of them (found a cell queued this frame
+// by another hit, or queued it itself); `collisions` = probing steps past occupied slots of other
+// keys; `active` = cells queued. So insertions + reused + drops <= hits and insertions <= active.
+// Slots: reads probe_hits; writes rc_cells (persistent buffer, read_write, 2^cache_log2_cells x
+// 16 bytes), rc_active (buffer, 16^3 x max(64, rays_per_probe) uint), rc_counters (32 bytes).
+// Limits: cells are never evicted (a long camera path fills the table, then insertions are
+// dropped and counted); between this pass and radiance_cache_shade a queued cell reads as shaded
+// this frame (readers run after the shade); the key ignores the normal, so both faces of a wall
+// thinner than a cell share one radiance.
+#pragma once
+#include <cstdint>
+#include <memory>
+
+#include "renderer/graph/pass.h"
+#include "renderer/techniques/radiance_cache/include/radiance_cache_shared.h"
+
+namespace gib {
+std::unique_ptr<Pass> make_radiance_cache_update_pass();
+
+// The counters as read back from the `rc_counters` buffer (its first 32 bytes: RcCounters).
+struct RcStats {
+  uint32_t active = 0, insertions = 0, collisions = 0, drops = 0, reused = 0;
+  uint32_t dispatch_x = 0;
+};
+RcStats read_rc_stats(Gpu& gpu, const Buffer& counters);
+RcStats rc_stats_from_bytes(const void* data, size_t bytes);  // e.g. Executor::read_buffer's
+}  // namespace gib

@@ -1,0 +1,122 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "renderer/techniques/reference/path_trace/path_trace_shared.h"
+#include "frame.glsl"
+#include "scene.glsl"
+GIB_SCENE_BUFFERS(0, kBindSceneFirst)
+#include "hash.glsl"
+#include "material.glsl"
+layout(constant_id = kPathTraceSpecSun) const bool kHasSun = true;
+layout(constant_id = kPathTraceSpecLocal) const bool kHasLocal = true;
+layout(constant_id = kPathTraceSpecAlpha) const bool kHasAlpha = true;
+// Stochastic opacity needs a fresh decision per ray; alpha masks ignore the seed.
+uint g_alpha_seed = 0u;
+#define GIB_ALPHA_TEST
+bool gib_alpha_accept(uint triangle, float u, float v) {
+  return !kHasAlpha || gib_alpha_accept_default(triangle, u, v, gib_pcg(g_alpha_seed ^ triangle));
+}
+#include "bvh.glsl"
+#include "lights.glsl"
+#include "surface.glsl"
+#include "finite.glsl"
+
+layout(local_size_x = kPathTraceGroup, local_size_y = kPathTraceGroup) in;
+layout(set = 0, binding = kPathTraceBindRadiance, rgba32f) uniform image2D sum_radiance;
+layout(set = 0, binding = kPathTraceBindDirect, rgba32f) uniform image2D sum_direct;
+layout(set = 0, binding = kPathTraceBindIndirect, rgba32f) uniform image2D sum_indirect;
+layout(push_constant) uniform Push { PathTracePush push; };
+
+const float kFar = 3.4e38;
+
+bool shadow(vec3 o, vec3 d, float tmax, inout GibRng rng) {
+  g_alpha_seed = uint(gib_next(rng) * 16777216.0);
+  return trace_any(o, d, 0.0, tmax);
+}
+
+// Next-event estimation at x towards the sun and every local light.
+vec3 light_direct(vec3 x, vec3 n, vec3 albedo, float translucency, inout GibRng rng) {
+  vec3 sum = vec3(0.0);
+  if (kHasSun && gib_frame.sun_irradiance.w > 0.0) {
+    vec3 wi = gib_uniform_cone(gib_frame.sun_dir.xyz, gib_frame.sun_dir.w, gib_next2(rng));
+    float c = dot(n, wi);
+    float f = c > 0.0 ? (1.0 - translucency) * c : translucency * (-c);
+    if (f > 0.0 && !shadow(gib_offset_ray(x, c > 0.0 ? n : -n), wi, kFar, rng))
+      sum += albedo / GIB_PI * f * gib_frame.sun_irradiance.rgb;
+  }
+  if (kHasLocal) {
+    for (uint i = 0u; i < gib_light_count(); ++i) {
+      vec3 wi;
+      float dist;
+      vec3 e = gib_local_light(gib_lights[i], x, wi, dist);
+      float c = dot(n, wi);
+      float f = c > 0.0 ? (1.0 - translucency) * c : translucency * (-c);
+      if (f <= 0.0 || all(equal(e, vec3(0.0)))) continue;
+      if (!shadow(gib_offset_ray(x, c > 0.0 ? n : -n), wi, dist * 0.999, rng)) sum += albedo / GIB_PI * f * e;
+    }
+  }
+  return sum;
+}
+
+void main() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(p, imageSize(sum_radiance)))) return;
+  vec3 acc_radiance = vec3(0.0), acc_direct = vec3(0.0), acc_indirect = vec3(0.0);
+  bool inject = push.inject_nan != 0u && all(equal(uvec2(p), uvec2(push.inject_x, push.inject_y)));
+  uint accepted = 0u;
+  for (uint s = 0u; s < push.spp; ++s) {
+    GibRng rng = gib_rng(gib_seed(), push.sample_base + s, uvec2(p), 7u);
+    vec3 o, d;
+    gib_camera_ray(vec2(p) + gib_next2(rng), o, d);
+    vec3 throughput = vec3(1.0);
+    vec3 direct = vec3(0.0), indirect = vec3(0.0);
+    for (uint depth = 0u; depth <= push.max_bounces; ++depth) {
+      // Light that reaches the first hit straight from a source is direct; the rest indirect.
+      bool primary = depth <= 1u;
+      GibHit hit;
+      g_alpha_seed = uint(gib_next(rng) * 16777216.0);
+      if (!trace_closest(o, d, 0.0, kFar, hit)) {
+        vec3 l = throughput * gib_sky_radiance(d);
+        if (primary) direct += l; else indirect += l;
+        break;
+      }
+      GibSurface surf = gib_surface(hit.triangle, hit.u, hit.v, push.nan_guards != 0u);
+      GpuMaterial m = gib_materials[surf.material];
+      vec3 albedo = gib_material_albedo(m, surf.uv);
+      vec3 n = dot(surf.normal, d) > 0.0 ? -surf.normal : surf.normal;
+      vec3 ng = dot(surf.geo_normal, d) > 0.0 ? -surf.geo_normal : surf.geo_normal;
+      vec3 e = throughput * m.emissive;
+      if (primary) direct += e; else indirect += e;
+      if (depth == push.max_bounces) break;
+      vec3 nee = throughput * light_direct(surf.position, n, albedo, m.translucency, rng);
+      if (depth == 0u) direct += nee; else indirect += nee;
+      // Continue: reflect, or transmit to the back side with probability = translucency.
+      bool transmit = m.translucency > 0.0 && gib_next(rng) < m.translucency;
+      vec3 side = transmit ? -n : n;
+      vec3 side_g = transmit ? -ng : ng;
+      d = gib_cosine_hemisphere(side, gib_next2(rng));
+      // An interpolated normal can send the ray below the real surface: mirror it back across
+      // the face plane rather than kill the path, so albedo-1 scenes keep all their energy.
+      float below = dot(d, side_g);
+      if (below <= 0.0) d = normalize(d - 2.0 * below * side_g);
+      o = gib_offset_ray(surf.position, side_g);
+      throughput *= albedo;
+      if (depth >= 3u) {
+        float survive = min(max(throughput.r, max(throughput.g, throughput.b)), 1.0);
+        if (gib_next(rng) >= survive) break;
+        throughput /= survive;
+      }
+    }
+    if (inject && s == 0u) direct = indirect = vec3(gib_nan());
+    // Guard: one non-finite sample would poison the running sums for good; drop it (the count
+    // then holds only the samples added).
+    if (push.nan_guards != 0u && !(gib_finite(direct) && gib_finite(indirect))) continue;
+    acc_radiance += direct + indirect;
+    acc_direct += direct;
+    acc_indirect += indirect;
+    ++accepted;
+  }
+  float n = float(accepted);
+  imageStore(sum_radiance, p, imageLoad(sum_radiance, p) + vec4(acc_radiance, n));
+  imageStore(sum_direct, p, imageLoad(sum_direct, p) + vec4(acc_direct, n));
+  imageStore(sum_indirect, p, imageLoad(sum_indirect, p) + vec4(acc_indirect, n));
+}

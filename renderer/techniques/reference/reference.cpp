@@ -1,0 +1,38 @@
+// `reference`: the progressive unbiased path tracer every error is measured against
+// (docs/architecture.md, "reference").
+#include "renderer/techniques/reference/reference.h"
+
+#include "renderer/techniques/reference/path_trace/path_trace.h"
+#include "renderer/techniques/reference/path_trace_resolve/path_trace_resolve.h"
+#include "renderer/techniques/technique.h"
+
+namespace gib {
+namespace {
+struct Preset {
+  const char* name;
+  uint32_t max_bounces;
+};
+constexpr Preset kPresets[] = {{"low", 4}, {"medium", 8}, {"high", 16}, {"ultra", 64}};
+void apply_preset_row(ReferenceSettings& s, const Preset& p) { s.max_bounces = p.max_bounces; }
+}  // namespace
+
+Technique reference_technique() {
+  Technique t;
+  t.name = "reference";
+  t.description = "progressive path tracer (ground truth)";
+  t.passes = {{"path_trace", make_path_trace_pass}, {"path_trace_resolve", make_path_trace_resolve_pass}};
+  t.output = "radiance";
+  t.aovs = {"direct", "indirect_diffuse"};
+  define_settings<ReferenceSettings>(t, kPresets, apply_preset_row);
+  t.options = with_common_options(
+      {
+          option("max_bounces", "path length cap (1: direct light only, no interreflection)", 1, 4294967295.0,
+                 &ReferenceSettings::max_bounces),
+          option("spp_per_frame", "samples per pixel added each frame", 1, 4294967295.0,
+                 &ReferenceSettings::spp_per_frame),
+      },
+      {0, 3});
+  return t;
+}
+
+}  // namespace gib
