@@ -267,12 +267,12 @@ int cmd_bench(const BenchOptions& o) {
           PassRun pr;
           pr.name = pp->name;
           pr.bytes_run = pass_bytes(r.plan_run, *pp);
-          pr.counters = work_counters(*pp, r.settings_full);
+          // Bytes and work at the profile's workload: from the plan compiled at that size.
+          const PlannedPass* full = pp;
           for (auto* fp : r.plan_full.running())
-            if (fp->name == pp->name) {
-              pr.bytes_full = pass_bytes(r.plan_full, *fp);
-              pr.counters = work_counters(*fp, r.settings_full);  // at the profile's workload
-            }
+            if (fp->name == pp->name) full = fp;
+          if (full != pp) pr.bytes_full = pass_bytes(r.plan_full, *full);
+          pr.counters = work_counters(*full, r.settings_full);
           double pixel_ratio = double(r.workload.width) * r.workload.height / (double(r.workload.run_width) * r.workload.run_height);
           pr.work_scale = pr.bytes_run.total() ? double(pr.bytes_full.total()) / double(pr.bytes_run.total()) : pixel_ratio;
           r.passes.push_back(std::move(pr));

@@ -36,6 +36,25 @@ struct DebugSettings {
   bool injects(uint32_t target, uint32_t frame) const { return inject_nan == target && frame == inject_frame; }
 };
 
+// Owns one TechniqueSettings; copies clone it, so Settings copies like a value.
+class TechniqueSettingsHolder {
+ public:
+  TechniqueSettingsHolder() = default;
+  explicit TechniqueSettingsHolder(std::unique_ptr<TechniqueSettings> p) : p_(std::move(p)) {}
+  TechniqueSettingsHolder(const TechniqueSettingsHolder& o) : p_(o.p_ ? o.p_->clone() : nullptr) {}
+  TechniqueSettingsHolder(TechniqueSettingsHolder&&) noexcept = default;
+  TechniqueSettingsHolder& operator=(const TechniqueSettingsHolder& o) {
+    if (this != &o) p_ = o.p_ ? o.p_->clone() : nullptr;
+    return *this;
+  }
+  TechniqueSettingsHolder& operator=(TechniqueSettingsHolder&&) noexcept = default;
+  const TechniqueSettings* get() const { return p_.get(); }
+  TechniqueSettings* get() { return p_.get(); }
+
+ private:
+  std::unique_ptr<TechniqueSettings> p_;
+};
+
 // Throws GraphError: "settings: a pass expected <wanted>, but the technique settings are <held>".
 [[noreturn]] void throw_settings_type_error(const std::type_info& wanted, const TechniqueSettings* held);
 
@@ -59,18 +78,6 @@ struct Settings {
   // apply_options gave it one: renderer/techniques/technique.h).
   std::string technique;
 
-  Settings() = default;
-  Settings(const Settings& o) { *this = o; }
-  Settings(Settings&&) noexcept = default;
-  Settings& operator=(Settings&&) noexcept = default;
-  Settings& operator=(const Settings& o) {
-    if (this == &o) return *this;
-    width = o.width, height = o.height, seed = o.seed, preset = o.preset, scene_time = o.scene_time;
-    nan_guards = o.nan_guards, world_offset = o.world_offset, debug = o.debug, technique = o.technique;
-    technique_settings_ = o.technique_settings_ ? o.technique_settings_->clone() : nullptr;
-    return *this;
-  }
-
   // The technique's settings as P (its settings struct, or a shared pass's parameter struct it
   // derives from). Throws GraphError when the technique has none of that type.
   template <class P>
@@ -90,11 +97,11 @@ struct Settings {
   const TechniqueSettings* technique_settings() const { return technique_settings_.get(); }
   void set_technique_settings(std::string name, std::unique_ptr<TechniqueSettings> t) {
     technique = std::move(name);
-    technique_settings_ = std::move(t);
+    technique_settings_ = TechniqueSettingsHolder(std::move(t));
   }
 
  private:
-  std::unique_ptr<TechniqueSettings> technique_settings_;
+  TechniqueSettingsHolder technique_settings_;
 };
 
 }  // namespace gib

@@ -9,6 +9,9 @@
 
 namespace gib {
 
+// Probes per irradiance-volume cascade (16^3); one cascade is updated per frame.
+inline constexpr uint32_t kProbesPerCascade = glsl::kProbeGridDim * glsl::kProbeGridDim * glsl::kProbeGridDim;
+
 static_assert(sizeof(glsl::RcParams) == 80, "RcParams: 80 bytes in every radiance-cache push block");
 
 inline glsl::RcParams make_rc_params(const Settings& s, uint32_t frame) {
@@ -26,8 +29,7 @@ inline glsl::RcParams make_rc_params(const Settings& s, uint32_t frame) {
 // cascade updated per frame.
 inline std::vector<WorkCounter> rc_cache_work(const Settings& s) {
   const RadianceCacheSettings& r = s.params<RadianceCacheSettings>();
-  const double probes = double(glsl::kProbeGridDim) * glsl::kProbeGridDim * glsl::kProbeGridDim;
-  return {{"cache_cells", std::ldexp(1.0, int(r.cache_log2_cells))}, {"hits", probes * r.rays_per_probe}};
+  return {{"cache_cells", std::ldexp(1.0, int(r.cache_log2_cells))}, {"hits", double(kProbesPerCascade) * r.rays_per_probe}};
 }
 
 }  // namespace gib

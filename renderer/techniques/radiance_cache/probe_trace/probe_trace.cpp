@@ -10,8 +10,6 @@
 namespace gib {
 namespace {
 
-constexpr uint32_t kProbesPerCascade = glsl::kProbeGridDim * glsl::kProbeGridDim * glsl::kProbeGridDim;
-
 class ProbeTracePass final : public Pass {
  public:
   PassDecl declare(const Scene&, const Settings& s) const override {

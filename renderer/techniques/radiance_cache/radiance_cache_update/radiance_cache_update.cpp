@@ -10,8 +10,6 @@
 namespace gib {
 namespace {
 
-constexpr uint32_t kProbesPerCascade = glsl::kProbeGridDim * glsl::kProbeGridDim * glsl::kProbeGridDim;
-
 uint32_t active_capacity(const Settings& s) {
   return kProbesPerCascade * std::max(glsl::kRcActivePerProbe, s.params<RadianceCacheSettings>().rays_per_probe);
 }
