@@ -2,6 +2,7 @@
 #include "renderer/scene/json_messages.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -264,12 +265,8 @@ std::vector<Roi> read_rois(const Node& n) {
   return rois;
 }
 
-std::vector<std::string> reference_outputs() {
-  const Technique& ref = find_technique("reference");
-  std::vector<std::string> out = {ref.output};
-  out.insert(out.end(), ref.aovs.begin(), ref.aovs.end());
-  return out;
-}
+// The contract AOVs (renderer/techniques/aov.h), all of which the reference produces.
+std::vector<std::string> reference_outputs() { return contract_aov_names(find_technique("reference")); }
 
 std::string roi_name_what(const Case& c) {
   std::vector<std::string> names;
@@ -330,8 +327,8 @@ Threshold read_threshold(const Node& n, const Case& c, const TechniqueRun& run) 
 }
 
 // Fields shared by technique entries and negative controls.
-const std::vector<std::string> kRunKeys = {"technique", "presets",  "options",      "compare_aov",
-                                           "thresholds", "variants", "known_failure"};
+const std::vector<std::string> kRunKeys = {"technique", "presets",  "options",       "compare_aov",
+                                           "thresholds", "variants", "known_failure", "spp"};
 
 // An object of option name -> number, validated against the technique's options.
 std::map<std::string, double> read_options(const Node& options, const Technique& tech) {
@@ -388,12 +385,25 @@ TechniqueRun read_run(const Node& n, const Case& c, bool negative) {
     }
   }
 
+  if (Node spp = n["spp"]; spp.present()) {
+    if (tech.name != "reference") spp.fail("no \"spp\" outside a reference (path tracer) run");
+    run.spp = read_uint(spp, 1, 1048576);
+  }
   if (Node kf = n["known_failure"]; kf.present()) {
     if (negative) kf.fail("no \"known_failure\" in a negative control (it must fail anyway)");
     run.known_failure = read_nonempty_string(kf);
   }
   if (Node aov = n["compare_aov"]; aov.present())
     run.compare_aov = read_choice(aov, reference_outputs(), "one of the reference outputs");
+  // The AOV contract (renderer/techniques/aov.h): a run compares an AOV only if its technique
+  // produces that very light path set.
+  std::string compared = run.compare_aov.empty() ? c.output : run.compare_aov;
+  if (contract_resource(tech, compared).empty()) {
+    Node where = n["compare_aov"].present() ? n["compare_aov"] : n["technique"];
+    where.fail(fmt::format("a technique that produces the compared AOV \"{}\" ({} declares: {})", compared, tech.name,
+                           fmt::join(contract_aov_names(tech), ", ")),
+               json_quoted(where.present() ? where.v->get<std::string>() : tech.name));
+  }
 
   Node thresholds = n["thresholds"];
   if (negative || thresholds.present()) {
@@ -407,7 +417,7 @@ const std::vector<std::string> kTopKeys = {
     "$schema",         "description",  "scene",          "width", "height",          "frames",
     "output",          "reference_spp", "reference_seed", "analytic_value", "flip_mode", "ppd",
     "golden_flip_max", "rois",          "techniques",     "negative_controls", "eval_frames", "convergence",
-    "flicker_frames", "track_nan"};
+    "flicker_frames", "track_nan", "timing_frames"};
 
 Case parse_case(const json& doc, const std::string& file) {
   Case c;
@@ -457,6 +467,7 @@ Case parse_case(const json& doc, const std::string& file) {
     c.convergence = conv;
   }
   if (Node n = root["flicker_frames"]; n.present()) c.flicker_frames = read_uint(n, 2, c.frames);
+  if (Node n = root["timing_frames"]; n.present()) c.timing_frames = read_uint(n, 0, 1000);
   if (Node n = root["track_nan"]; n.present()) {
     if (!n.v->is_boolean()) n.fail("true or false");
     c.track_nan = n.v->get<bool>();

@@ -79,6 +79,10 @@ struct TechniqueRun {
   // tracks it). A failing run is reported as "known_failure" and does not fail the suite; a
   // run that passes fails it ("remove known_failure"), so the mark cannot go stale.
   std::string known_failure;
+  // A reference (path tracer) row's samples per pixel, split over frames like a committed
+  // reference's; independent of Case::reference_spp (the committed reference's budget, often
+  // 65536+ and rendered on a GPU). 0: the case's frames at the preset's spp per frame.
+  uint32_t spp = 0;
 };
 
 // Per-frame tracking of the mean luminance in one ROI (the convergence curve): conv_* metrics.
@@ -111,13 +115,16 @@ struct Case {
   std::optional<Convergence> convergence;  // record the ROI mean every frame
   uint32_t flicker_frames = 0;             // >= 2: keep the last N outputs for the flicker metric
   bool track_nan = false;                  // count NaN pixels of the output every frame (nan_* metrics)
+  // Frames rendered after the case's frames and every read, with the stability scan off, from
+  // which GPU times are taken (perf/frame_timing.h; 0: the case's own frames are timed).
+  uint32_t timing_frames = 8;
   std::string output = "radiance";  // reference AOV compared by default
   uint32_t reference_spp = 256;      // 0: no path-traced reference (analytic cases only)
   uint32_t reference_seed = 1;
   std::optional<double> analytic_value;  // for against == "analytic"
   std::string flip_mode = "hdr";         // "hdr" or "ldr"
   double ppd = 67.02064514160156;        // FLIP pixels per degree (the reference tool's default)
-  double golden_flip_max = 0.01;         // regression threshold vs the approved golden
+  double golden_flip_max = 0.001;        // regression threshold vs the approved golden
   std::vector<Roi> rois;
   std::vector<TechniqueRun> techniques;
   std::vector<NegativeControl> negative_controls;

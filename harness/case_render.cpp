@@ -1,6 +1,7 @@
 #include "harness/case_render.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -22,8 +23,12 @@ bool per_frame_references(const Case& c) {
   return !c.eval_frames.empty() && c.scene.features().has(Feature::motion);
 }
 
-CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::string& preset,
-                       uint32_t seed_offset, uint32_t at_frame, bool scan) {
+namespace {
+
+// `budget`: a path tracer's samples per pixel, split over frames (0: the case's frames at the
+// preset's samples per frame, like any technique).
+CaseRender render(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::string& preset, uint32_t seed_offset,
+                  uint32_t at_frame, bool scan, uint32_t budget) {
   const Technique& t = find_technique(run.technique);
   Settings s;
   s.width = c.width;
@@ -32,30 +37,36 @@ CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const s
   s = apply_preset(t, preset, s);
   const bool reference = t.name == "reference";
   uint32_t frames = c.frames;
-  // With reference_spp 0 (no reference image: analytic or variant-only cases) a reference row
-  // runs the case's frames at its preset's (or options') samples per frame, like any technique.
-  const bool spp_budget = reference && c.reference_spp > 0;
+  const bool spp_budget = reference && budget > 0;
   if (spp_budget) {
+    // Up to 512 spp at most 16 per frame (the committed lavapipe references were split so).
+    // Larger budgets (GPU references): about sqrt(budget) per frame, 16 to 256 (65536 spp =
+    // 256 x 256 frames), so per-frame overhead does not dominate. Samples are numbered across
+    // frames (sample_base), so the split changes only the order of the float sums.
+    const uint32_t cap = budget <= 512 ? 16 : std::clamp<uint32_t>(uint32_t(std::sqrt(double(budget))), 16, 256);
     uint32_t& spp = s.params<ReferenceSettings>().spp_per_frame;
-    spp = std::min<uint32_t>(c.reference_spp, 16);
-    while (c.reference_spp % spp) --spp;
+    spp = std::min<uint32_t>(budget, cap);
+    while (budget % spp) --spp;
   }
   s = apply_options(t, s, run.options);
-  if (spp_budget) frames = std::max(1u, c.reference_spp / s.params<ReferenceSettings>().spp_per_frame);
+  if (spp_budget) frames = std::max(1u, budget / s.params<ReferenceSettings>().spp_per_frame);
   if (reference) {
     // A reference never moves while it converges: it shows one moment of the scene.
     s.scene_time = float(at_frame ? at_frame - 1 : 0) * c.scene.frame_time;
   }
 
+  // The compared AOV, by the contract (renderer/techniques/aov.h): the resource the technique
+  // declares for it. The case loader has checked that every run's technique declares it.
   std::string aov = run.compare_aov.empty() ? c.output : run.compare_aov;
-  // A technique that produces the compared AOV itself (e.g. radiance-cache's indirect_diffuse)
-  // is compared on that AOV; otherwise on its final output.
-  bool own_aov = std::find(t.aovs.begin(), t.aovs.end(), aov) != t.aovs.end();
-  std::string out_name = reference ? aov : (own_aov ? aov : t.output);
+  std::string out_name = contract_resource(t, aov);
+  if (out_name.empty())
+    throw std::runtime_error(fmt::format("{}: technique '{}' does not produce the AOV '{}' (it declares: {})", c.name,
+                                         t.name, aov, fmt::join(contract_aov_names(t), ", ")));
   std::vector<std::string> outputs{out_name};
   if (reference)
-    for (auto& a : std::vector<std::string>{t.output, "direct", "indirect_diffuse"})
-      if (std::find(outputs.begin(), outputs.end(), a) == outputs.end()) outputs.push_back(a);
+    for (auto& a : contract_aov_names(t))
+      if (std::find(outputs.begin(), outputs.end(), contract_resource(t, a)) == outputs.end())
+        outputs.push_back(contract_resource(t, a));
 
   Executor ex(gpu, c.scene, s, make_passes(t), outputs);
   ex.enable_stability_scan(scan);
@@ -94,27 +105,53 @@ CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const s
   r.technique = t.name;
   r.preset = preset;
   r.plan = ex.plan();
-  r.passes = summarize(results);
-  std::vector<double> totals;
-  for (auto& fr : results) {
-    totals.push_back(fr.total_ms);
-    r.gpu_ms_total += fr.total_ms;
-  }
-  std::sort(totals.begin(), totals.end());
-  r.frame_median_ms = totals.empty() ? 0 : totals[totals.size() / 2];
+  r.settings = ex.settings();
+  r.outputs = outputs;
+  for (auto& fr : results) r.gpu_ms_total += fr.total_ms;
   r.frames = frames;
   r.spp = reference ? frames * s.params<ReferenceSettings>().spp_per_frame : 0;
   r.image = ex.read(out_name);
   r.scanned = scan;
   if (scan) r.stability = ex.stability();
   if (reference)
-    for (auto& a : outputs) r.aovs[a] = a == out_name ? r.image : ex.read(a);
+    for (auto& a : contract_aov_names(t)) {
+      std::string res = contract_resource(t, a);
+      r.aovs[a] = res == out_name ? r.image : ex.read(res);
+    }
+  // GPU times (perf/frame_timing.h). Every image, curve and scan result was read above, so the
+  // timing frames cannot change anything evaluated; they run with the scan off, the case's
+  // frames serving as warm-up. With timing_frames 0, and for a reference with an spp budget
+  // rendered without the scan (sweep, update-goldens, the noise floor: its convergence frames
+  // are scan-free, and their sum is the cost sweep reports), the case's frames after the first
+  // are timed instead; scan-free only when the scan was off (timing.scan_free says).
+  const uint32_t timing_frames = spp_budget && !scan ? 0 : c.timing_frames;
+  if (timing_frames) {
+    r.timing = perf::time_frames(ex, 0, timing_frames);
+  } else {
+    const size_t skip = results.size() > 1 ? 1 : 0;
+    r.timing = perf::timing_of({results.begin() + long(skip), results.end()}, uint32_t(skip), "case frames");
+  }
+  r.passes = summarize(r.timing.frames);
+  r.frame_median_ms = r.timing.frame().median;
   nlohmann::json key{{"case", c.name}, {"technique", t.name}, {"preset", preset}, {"options", run.options},
                      {"size", {c.width, c.height}}, {"frames", frames}, {"seed", s.seed},
                      {"spp", r.spp}, {"scene", c.scene_file.empty() ? std::string("inline") : c.scene_file}};
   if (at_frame) key["at_frame"] = at_frame;
   r.settings_hash = fnv1a_hex(key.dump());
   return r;
+}
+
+}  // namespace
+
+CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::string& preset,
+                       uint32_t seed_offset, uint32_t at_frame, bool scan) {
+  return render(gpu, c, run, preset, seed_offset, at_frame, scan, run.technique == "reference" ? run.spp : 0);
+}
+
+CaseRender render_reference(Gpu& gpu, const Case& c, uint32_t seed_offset, uint32_t at_frame) {
+  if (c.reference_spp == 0) throw std::runtime_error(fmt::format("{}: the case has no reference (reference_spp 0)", c.name));
+  TechniqueRun ref_run{"reference", {"ultra"}, {}, "", {}, {}, {}, 0};
+  return render(gpu, c, ref_run, "ultra", seed_offset, at_frame, false, c.reference_spp);
 }
 
 }  // namespace gib

@@ -7,6 +7,7 @@
 
 #include "harness/case.h"
 #include "harness/render.h"
+#include "perf/frame_timing.h"
 #include "renderer/graph/stability.h"
 
 namespace gib {
@@ -15,10 +16,13 @@ struct CaseRender {
   std::string technique, preset;
   FloatImage image;                  // the compared output (technique output, or a reference AOV)
   std::map<std::string, FloatImage> aovs;  // reference: every AOV
-  std::vector<PassStats> passes;
+  std::vector<PassStats> passes;     // over timing.frames
   Plan plan;
-  double frame_median_ms = 0;
-  double gpu_ms_total = 0;           // sum over frames (reference: the whole convergence)
+  Settings settings;                 // what the executor ran with, and the outputs it was asked for
+  std::vector<std::string> outputs;
+  double frame_median_ms = 0;        // over timing.frames
+  double gpu_ms_total = 0;           // sum over the case's frames (reference: the whole convergence)
+  perf::FrameTiming timing;          // the frames GPU times come from (render_case says which)
   uint32_t frames = 0, spp = 0;
   std::string settings_hash;
   // Non-reference runs, from the case's tracking fields:
@@ -30,12 +34,18 @@ struct CaseRender {
   StabilityReport stability;                    // when rendered with scan = true
 };
 
-// `aov` picks the reference AOV compared ("" = the case's output). Reference runs use the
-// case's reference_spp and seed (seed_offset shifts it: the noise floor renders twice);
-// at_frame (1-based, reference only) renders the scene as it is at that frame of a technique
-// run (a per-frame reference of an animated scene; 0 = the scene's first frame, time 0).
+// A technique run of the case (`gibench run`, sweep, update-goldens of a technique golden):
+// the case's frames at the preset; a reference (path tracer) row with TechniqueRun::spp renders
+// that many samples per pixel instead (split over frames), seeded with the case's seed
+// (seed_offset shifts it). `scan`: the stability scan during the case's frames.
 CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::string& preset,
                        uint32_t seed_offset = 0, uint32_t at_frame = 0, bool scan = false);
+// The committed path-traced reference: technique "reference", preset ultra, the case's
+// reference_spp and reference_seed (seed_offset shifts it: the noise floor renders twice);
+// at_frame (1-based) renders the scene as it is at that frame of a technique run (a per-frame
+// reference of an animated scene; 0 = the scene's first frame, time 0). Every contract AOV is
+// in CaseRender::aovs.
+CaseRender render_reference(Gpu& gpu, const Case& c, uint32_t seed_offset = 0, uint32_t at_frame = 0);
 
 // The 1-based frames a technique run is evaluated at: Case::eval_frames, or {frames}.
 std::vector<uint32_t> evaluation_frames(const Case& c);

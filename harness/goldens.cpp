@@ -2,13 +2,18 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <unistd.h>
 
+#include "harness/case.h"
+#include "harness/case_render.h"
 #include "harness/image_io.h"
+#include "metrics/flip.h"
 #include "revision.h"
 
 namespace fs = std::filesystem;
@@ -40,9 +45,9 @@ std::string GoldenStore::technique_stem(const std::string& technique, const std:
   return technique + "." + preset;
 }
 
-// The CI device class (lavapipe) owns the plain name; other classes get a suffix.
+// The CI device class (lavapipe) and "" (references) own the plain name; other classes get a suffix.
 std::string GoldenStore::file_name(const std::string& stem, const std::string& cls) const {
-  return cls == "lavapipe" ? stem + ".exr" : stem + "." + cls + ".exr";
+  return cls.empty() || cls == "lavapipe" ? stem + ".exr" : stem + "." + cls + ".exr";
 }
 
 std::string GoldenStore::find(const std::string& stem, const std::string& cls) const {
@@ -77,15 +82,21 @@ std::string GoldenStore::write(const std::string& stem, const std::string& cls, 
   // missing or partial.
   fs::path staged = fs::path(dir_) / fmt::format(".staged.{}.{}.exr", getpid(), stem);
   write_exr(staged.string(), image);
-  if (fs::exists(target)) {
-    fs::create_directories(fs::path(dir_) / "history");
-    std::string stamp = utc_now_iso();
-    for (auto& c : stamp) if (c == ':') c = '-';
-    fs::path hist = fs::path(dir_) / "history" / (target.stem().string() + "." + stamp + ".exr");
-    fs::copy_file(target, hist, fs::copy_options::overwrite_existing);
-    moved = hist.string();
+  try {
+    if (fs::exists(target)) {
+      fs::create_directories(fs::path(dir_) / "history");
+      std::string stamp = utc_now_iso();
+      for (auto& c : stamp) if (c == ':') c = '-';
+      fs::path hist = fs::path(dir_) / "history" / (target.stem().string() + "." + stamp + ".exr");
+      fs::copy_file(target, hist, fs::copy_options::overwrite_existing);
+      moved = hist.string();
+    }
+    fs::rename(staged, target);
+  } catch (...) {  // the old golden stays; the staged file goes
+    std::error_code ec;
+    fs::remove(staged, ec);
+    throw;
   }
-  fs::rename(staged, target);
   return moved;
 }
 
@@ -104,12 +115,105 @@ void GoldenStore::write_metadata(const nlohmann::json& j) {
   fs::create_directories(dir_);
   fs::path p = fs::path(dir_) / "golden.json";
   fs::path tmp = fs::path(dir_) / fmt::format(".golden.json.tmp{}", getpid());
+  std::string text = j.dump(2) + "\n";  // before the temporary exists: a bad value leaves nothing behind
   {
     std::ofstream out(tmp);
-    out << j.dump(2) << "\n";
-    if (!out) throw GoldenError(fmt::format("{}: write failed", tmp.string()));
+    out << text;
+    out.close();
+    if (!out) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw GoldenError(fmt::format("{}: write failed", tmp.string()));
+    }
   }
   fs::rename(tmp, p);
+}
+
+nlohmann::json measure_noise_floor(Gpu& gpu, const Case& c, const CaseRender* first) {
+  uint32_t at = per_frame_references(c) ? evaluation_frames(c).back() : 0;
+  std::optional<CaseRender> a;
+  if (!first) first = &a.emplace(render_reference(gpu, c, 0, at));
+  CaseRender b = render_reference(gpu, c, 1000, at);
+  FlipOptions fo;
+  fo.ppd = c.ppd;
+  fo.mode = c.flip_mode == "ldr" ? FlipOptions::Mode::ldr : FlipOptions::Mode::hdr;
+  // An AOV that is black in both renders (e.g. indirect_diffuse of a scene with nothing to
+  // bounce from) has no noise: floor 0 (HDR-FLIP has no exposure range for an all-black image).
+  auto black = [](const FloatImage& img) {
+    for (uint32_t y = 0; y < img.height; ++y)
+      for (uint32_t x = 0; x < img.width; ++x)
+        for (uint32_t ch = 0; ch < std::min(3u, img.channels); ++ch)
+          if (img.at(x, y, ch) != 0.0f) return false;
+    return true;
+  };
+  nlohmann::json aovs = nlohmann::json::object();
+  for (auto& [aov, img] : first->aovs)
+    aovs[aov] = black(img) && black(b.aovs.at(aov)) ? 0.0 : flip(img, b.aovs.at(aov), fo).mean;
+  const DeviceInfo& d = gpu.info();
+  nlohmann::json floor = {{"flip", aovs.contains(c.output) ? aovs[c.output].get<double>() : flip(first->image, b.image, fo).mean},
+                          {"aov", c.output},
+                          {"aovs", aovs},
+                          {"spp", first->spp},
+                          {"seeds", {c.reference_seed, c.reference_seed + 1000}},
+                          {"device_class", device_class(d.driver_name, d.name)},
+                          {"device", d.name},
+                          {"driver", d.driver_name + " " + d.driver_info},
+                          {"date", utc_now_iso()}};
+  if (at) floor["at_frame"] = at;
+  return floor;
+}
+
+namespace {
+// The floor of `aov`: its own entry in "aovs", else "flip" when measured on that AOV (a floor
+// without "aov" was measured on the case's output). Null when none describes `aov`.
+std::optional<double> floor_of(const nlohmann::json& floor, const std::string& aov, const std::string& output) {
+  if (floor.contains("aovs") && floor["aovs"].contains(aov)) return floor["aovs"][aov].get<double>();
+  if (floor.value("aov", output) == aov && floor.contains("flip")) return floor["flip"].get<double>();
+  return std::nullopt;
+}
+}  // namespace
+
+void record_noise_floor(nlohmann::json& meta, const nlohmann::json& floor) {
+  meta["noise_floor"] = floor;
+  if (!meta.contains("files")) return;
+  for (auto& [name, rec] : meta["files"].items()) {
+    if (!rec.contains("aov")) continue;  // an approved technique output, not a reference
+    std::string aov = rec["aov"];
+    std::optional<double> f = floor_of(floor, aov, floor.value("aov", std::string()));
+    if (!f) continue;
+    rec["noise_floor"] = {{"flip", *f}, {"aov", aov}, {"spp", floor["spp"]}, {"seeds", floor["seeds"]}};
+    if (floor.contains("at_frame")) rec["noise_floor"]["at_frame"] = floor["at_frame"];
+  }
+}
+
+uint32_t recorded_reference_spp(const Case& c, const nlohmann::json& meta) {
+  uint32_t at = per_frame_references(c) ? evaluation_frames(c).back() : 0;
+  std::string name = GoldenStore::reference_stem(c.output, c.output, at) + ".exr";
+  if (meta.contains("files") && meta["files"].contains(name) && meta["files"][name].contains("spp"))
+    return meta["files"][name]["spp"].get<uint32_t>();
+  return c.reference_spp;
+}
+
+void check_noise_floor_bounds(const Case& c, const nlohmann::json& meta, const std::string& where) {
+  if (!meta.contains("noise_floor")) return;
+  const nlohmann::json& floor = meta["noise_floor"];
+  for (auto& run : c.techniques) {
+    std::string aov = run.compare_aov.empty() ? c.output : run.compare_aov;
+    std::optional<double> f = floor_of(floor, aov, c.output);
+    if (!f) continue;
+    // The floor is a whole-image mean: ROI bounds are not held to it.
+    for (auto& t : run.thresholds) {
+      if (t.metric != "flip" || t.against != "reference" || !t.roi.empty() || !t.max) continue;
+      double bound = kNoiseFloorFactor * *f;
+      if (*t.max >= bound * (1 - 1e-9)) continue;  // exactly 3x passes, whatever the rounding
+      throw CaseError(fmt::format(
+          "{}: run {} ({}): flip vs reference max {:.4g} is below 3 x the reference noise floor = 3 x {:.4g} = {:.4g} "
+          "({} AOV, {} spp, {}): a bound tighter than 3x the reference's own noise measures the reference, not "
+          "the technique",
+          c.file, run.technique, fmt::join(run.presets, ", "), *t.max, *f, bound, aov,
+          floor.contains("spp") ? floor["spp"].dump() : "?", where));
+    }
+  }
 }
 
 std::string renderer_revision() { return GIB_REVISION; }

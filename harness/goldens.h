@@ -12,6 +12,10 @@
 
 namespace gib {
 
+class Gpu;
+struct Case;
+struct CaseRender;
+
 struct GoldenError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
@@ -37,11 +41,39 @@ class GoldenStore {
   // golden.json: {"files": {"<file name>": {...metadata}}, "noise_floor": {...}}
   nlohmann::json metadata() const;  // {} when absent
   void write_metadata(const nlohmann::json& j);  // atomic
+  // The CI device class (lavapipe) and "" own the plain name; other classes get a suffix.
+  // Path-traced references are written with "" (one file for every device: a converged
+  // reference is the truth, whichever device rendered it).
   std::string file_name(const std::string& stem, const std::string& device_class) const;
 
  private:
   std::string root_, case_, dir_;
 };
+
+// The reference noise floor: FLIP (the case's flip_mode and ppd) between the reference rendered
+// with reference_seed and with reference_seed + 1000, at c.reference_spp (callers pass a copy of
+// the case with the spp they render at), at the last evaluation frame for per-frame references.
+// Measured on every AOV the reference produces; "flip" is the case's output AOV. Returns
+// {"flip", "aov", "aovs": {aov: flip}, "spp", "seeds", "device_class", "device", "driver",
+// "date"[, "at_frame"]}. `first`: the reference_seed render already made (update-goldens), or
+// null to render both here (run --noise-floor).
+nlohmann::json measure_noise_floor(Gpu& gpu, const Case& c, const CaseRender* first = nullptr);
+// Stores a measured floor in golden.json: the top-level "noise_floor" (what the check below
+// reads) and, on every path-traced reference file's entry (one with an "aov"), "noise_floor"
+// {"flip" (of that file's AOV), "aov", "spp", "seeds"}.
+void record_noise_floor(nlohmann::json& meta, const nlohmann::json& floor);
+// The spp golden.json records for the case's committed reference (output AOV; the last frame's
+// for per-frame references): the truth about the committed file. c.reference_spp when absent
+// (c.reference_spp is the default for re-rendering only).
+uint32_t recorded_reference_spp(const Case& c, const nlohmann::json& meta);
+
+// A bound tighter than 3x the reference's own noise measures the reference, not the technique.
+inline constexpr double kNoiseFloorFactor = 3.0;
+// Throws CaseError (one line naming the case file, the run, the threshold and 3 x the floor)
+// when a run's whole-image "flip" max against the reference is below kNoiseFloorFactor x the
+// noise floor recorded in `meta` (golden.json) for the AOV that run compares with. No floor
+// recorded (or none for that AOV): no check. `where` names golden.json in the message.
+void check_noise_floor_bounds(const Case& c, const nlohmann::json& meta, const std::string& where);
 
 std::string utc_now_iso();
 std::string renderer_revision();  // git revision the binary was built from

@@ -9,6 +9,8 @@
 #include "harness/render.h"
 #include "harness/runner.h"
 #include "harness/sweep.h"
+#include "harness/report_check.h"
+#include "harness/timing.h"
 
 namespace {
 
@@ -60,13 +62,35 @@ int main(int argc, char** argv) {
   auto* update = app.add_subcommand("update-goldens", "re-render and replace goldens (atomically, with history)");
   add_suite_options(update, up.suite);
   update->add_option("--technique", up.techniques, "only this technique's goldens (repeatable)");
-  update->add_flag("--reference", up.reference, "re-render the path-traced reference (and its noise floor)");
+  update->add_flag("--reference", up.reference, "re-render the path-traced reference");
+  update->add_option("--spp", up.spp, "with --reference: samples per pixel (default: the case's reference_spp)")
+      ->check(CLI::Range(1u, 1048576u));
+  update->add_flag("--noise-floor", up.noise_floor,
+                   "with --reference: also render seed + 1000 at the same spp, record the FLIP between them");
+  update->add_flag("--only-reference", up.only_reference,
+                   "with --reference: render no technique golden (e.g. references rendered on a GPU for every device)");
   update->add_option("--reason", up.reason, "why: recorded in golden.json")->required();
 
   gib::SuiteOptions sweep_opts;
   sweep_opts.out = "out/sweep";
   auto* sweep = app.add_subcommand("sweep", "error against GPU time for every technique x preset of a case");
   add_suite_options(sweep, sweep_opts);
+
+  gib::TimingOptions timing_opts;
+  auto* timing = app.add_subcommand(
+      "timing", "time one case x technique x preset as run, sweep and bench do: medians, spread, ratios, same work?");
+  add_suite_options(timing, timing_opts.suite);
+  timing->add_option("--technique", timing_opts.technique, "technique (default: the case's first run)");
+  timing->add_option("--preset", timing_opts.preset, "preset (default: the run's first)");
+  timing->add_option("--repeats", timing_opts.repeats, "renders per path, interleaved (default 3)");
+  timing->add_option("--frames", timing_opts.frames, "timed frames per render (default: the case's timing_frames)");
+  timing->add_option("--bench-warmup", timing_opts.bench_warmup, "bench's warm-up frames (default: the case's frames)");
+  timing->add_option("--json", timing_opts.json, "write every sample as JSON");
+
+  std::string report_dir = "out";
+  auto* check_report = app.add_subcommand(
+      "check-report", "open DIR/index.html in headless Chromium; exit 1 on an error banner or console output");
+  check_report->add_option("dir", report_dir, "the report's folder (default out)");
 
   gib::CompareOptions co;
   auto* compare = app.add_subcommand("compare", "FLIP, PSNR and relMSE of two images");
@@ -96,6 +120,8 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("run")) return gib::cmd_run(run_opts);
     if (app.got_subcommand("update-goldens")) return gib::cmd_update_goldens(up);
     if (app.got_subcommand("sweep")) return gib::cmd_sweep(sweep_opts);
+    if (app.got_subcommand("timing")) return gib::cmd_timing(timing_opts);
+    if (app.got_subcommand("check-report")) return gib::cmd_check_report(report_dir);
     if (app.got_subcommand("compare")) {
       if (force_hdr && force_ldr) throw std::invalid_argument("compare: expected at most one of --hdr and --ldr");
       if (force_hdr || force_ldr) co.hdr = force_hdr;

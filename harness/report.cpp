@@ -110,6 +110,13 @@ nlohmann::json suite_to_json(const SuiteResult& suite) {
                     {"gpu_ms", r.gpu_ms}, {"passes", passes}, {"device", r.device}, {"image", r.image_id}, {"reference_image", r.reference_id},
                     {"resource_bytes", r.plan.total_bytes()}});
     auto& row = rows.back();
+    if (!r.timing.frames.empty()) {  // where gpu_ms and the pass times come from
+      const perf::Summary f = r.timing.frame();
+      row["timing"] = {{"frames", r.timing.frames.size()}, {"warmup", r.timing.warmup}, {"source", r.timing.source},
+                       {"scan_free", r.timing.scan_free()}, {"scan_dispatches", r.timing.scan_dispatches},
+                       {"frame_ms", {{"median", f.median}, {"q1", f.q1}, {"q3", f.q3}, {"min", f.min}, {"max", f.max}}},
+                       {"frame_samples_ms", r.timing.frame_ms()}};
+    }
     if (!r.curve.empty()) {
       nlohmann::json curve = nlohmann::json::array();
       for (double v : r.curve) curve.push_back(finite_or_null(v));

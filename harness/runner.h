@@ -10,6 +10,7 @@
 #include "harness/case.h"
 #include "renderer/image/float_image.h"
 #include "harness/render.h"
+#include "perf/frame_timing.h"
 #include "renderer/graph/stability.h"
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -48,7 +49,8 @@ struct ResultRow {
   std::vector<std::string> messages;
   std::map<std::string, double> metrics;
   std::vector<CheckResult> checks;
-  double gpu_ms = 0;  // median per frame
+  double gpu_ms = 0;  // median per frame, over timing.frames
+  perf::FrameTiming timing;  // the frames GPU times come from (scan-free, after all reads)
   std::vector<double> curve;  // Case::convergence: ROI mean per frame
   double curve_target = 0;
   std::vector<uint32_t> eval_frames;  // frames the thresholds were evaluated at
@@ -75,6 +77,9 @@ struct UpdateOptions {
   SuiteOptions suite;
   std::vector<std::string> techniques;  // empty: all of the case's
   bool reference = false;               // (re)render the path-traced reference
+  uint32_t spp = 0;                     // with reference: spp of this render (0: the case's reference_spp)
+  bool noise_floor = false;             // with reference: also render seed + 1000, record the floor
+  bool only_reference = false;          // with reference: no technique golden is rendered
   std::string reason;
   bool yes = true;                      // no interactive confirmation (CI, scripts)
 };

@@ -13,6 +13,8 @@ struct SweepPoint {
   std::string technique, preset;
   double gpu_ms = 0, flip = 0;
   bool pareto = false;
+  uint32_t timed_frames = 0;  // frames gpu_ms comes from (CaseRender::timing; a reference: its sum)
+  bool scan_free = false;
 };
 
 // Marks points not dominated by any other (lower or equal time and error, one strictly lower).

@@ -1,7 +1,8 @@
 // `gibench update-goldens`: renders what was asked, prints old-vs-new FLIP for every golden it
 // replaces, writes atomically and keeps the old file in history/. golden.json records device,
-// driver, revision, settings hash, date and reason; with --reference also spp, seed and the
-// noise floor (FLIP between two renders with different seeds).
+// driver, revision, settings hash, date and reason; with --reference also spp (the case's
+// reference_spp, or --spp), seed, AOV and, with --noise-floor, the noise floor (FLIP between
+// two renders with different seeds; goldens.h measure_noise_floor).
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -57,6 +58,9 @@ void replace(GoldenStore& store, nlohmann::json& meta, const std::string& stem, 
 
 int cmd_update_goldens(const UpdateOptions& o) {
   if (o.reason.empty()) throw std::invalid_argument("--reason: expected why the goldens change (recorded in golden.json)");
+  if ((o.spp || o.noise_floor || o.only_reference) && !o.reference)
+    throw std::invalid_argument(
+        "--spp, --noise-floor, --only-reference: expected with --reference (they describe the reference render)");
   std::vector<Case> cases = select_cases(o.suite);
   auto gpu = Gpu::create({o.suite.device, o.suite.validate});
   std::string cls = device_class(gpu->info().driver_name, gpu->info().name);
@@ -66,30 +70,43 @@ int cmd_update_goldens(const UpdateOptions& o) {
     fmt::print("{}:\n", c.name);
     if (o.reference && c.reference_spp == 0) fmt::print("  no reference (reference_spp 0)\n");
     if (o.reference && c.reference_spp > 0) {
-      TechniqueRun ref_run{"reference", {"ultra"}, {}, "", {}, {}};
+      // The reference's configuration: the case's, at --spp when given. golden.json records the
+      // spp used; that, not reference_spp, describes the committed file.
+      Case rc = c;
+      if (o.spp) rc.reference_spp = o.spp;
+      if (uint32_t was = recorded_reference_spp(c, meta); was > rc.reference_spp)
+        fmt::print("  the committed reference has {} spp; this render has {} (--spp N keeps more)\n", was,
+                   rc.reference_spp);
       // A moving scene evaluated at several frames has one reference per frame (scene frozen
       // at that frame's time); otherwise one reference of the scene at time 0.
       std::vector<uint32_t> at = per_frame_references(c) ? evaluation_frames(c) : std::vector<uint32_t>{0};
       for (uint32_t f : at) {
-        CaseRender r = render_case(*gpu, c, ref_run, "ultra", 0, f);
+        CaseRender r = render_reference(*gpu, rc, 0, f);
         for (auto& [aov, img] : r.aovs) {
           nlohmann::json rec = file_record(*gpu, r, o.reason);
           rec["aov"] = aov;
           rec["seed"] = c.reference_seed;
           if (f) rec["at_frame"] = f;
-          replace(store, meta, GoldenStore::reference_stem(aov, c.output, f), cls, img, rec, c);
+          // "" class: one reference file for every device (goldens.h).
+          replace(store, meta, GoldenStore::reference_stem(aov, c.output, f), "", img, rec, c);
         }
-        if (f != at.back()) continue;
-        // Noise floor: the same reference with another seed; thresholds vs the reference must
-        // sit above it.
-        CaseRender r2 = render_case(*gpu, c, ref_run, "ultra", 1000, f);
-        double floor = flip(r.image, r2.image, flip_opts(c)).mean;
-        meta["noise_floor"] = {{"flip", floor}, {"spp", r.spp}, {"seeds", {c.reference_seed, c.reference_seed + 1000}},
-                               {"device_class", cls}, {"date", utc_now_iso()}};
-        fmt::print("  noise floor (FLIP between two seeds at {} spp): {:.6f}\n", r.spp, floor);
+        if (f != at.back() || !o.noise_floor) continue;
+        // Noise floor: the same reference with another seed; flip bounds vs the reference must
+        // sit at 3x or more (check_noise_floor_bounds).
+        nlohmann::json floor = measure_noise_floor(*gpu, rc, &r);
+        record_noise_floor(meta, floor);
+        fmt::print("  noise floor (FLIP between seeds {} and {} at {} spp, {} AOV): {:.6f}\n", c.reference_seed,
+                   c.reference_seed + 1000, r.spp, c.output, floor["flip"].get<double>());
+      }
+      if (!o.noise_floor && meta.contains("noise_floor")) {
+        fmt::print("  noise floor not measured (--noise-floor); the previous record ({:.6f} at {} spp) described the "
+                   "replaced reference and is removed\n",
+                   meta["noise_floor"].value("flip", 0.0), meta["noise_floor"].value("spp", 0u));
+        meta.erase("noise_floor");
       }
     }
     for (auto& run : c.techniques) {
+      if (o.only_reference) break;
       if (!o.techniques.empty() &&
           std::find(o.techniques.begin(), o.techniques.end(), run.technique) == o.techniques.end())
         continue;

@@ -608,7 +608,19 @@ FlipResult flip(const FloatImage& reference, const FloatImage& test, const FlipO
       }
       const float lmax = *std::max_element(lum.begin(), lum.end());
       std::nth_element(lum.begin(), lum.begin() + std::ptrdiff_t(n / 2), lum.end());
-      const float lmed = lum[n / 2];
+      float lmed = lum[n / 2];
+      if (!(lmed > 0.0f)) {
+        // More than half the reference is black (a noisy low-spp render, a night scene): the
+        // paper's median is 0 and the stop exposure infinite. Use the median of the lit pixels,
+        // the exposure at which the image's typical lit pixel maps to mid-grey.
+        std::vector<float> lit;
+        for (float v : lum)
+          if (v > 0.0f) lit.push_back(v);
+        if (!lit.empty()) {
+          std::nth_element(lit.begin(), lit.begin() + std::ptrdiff_t(lit.size() / 2), lit.end());
+          lmed = lit[lit.size() / 2];
+        }
+      }
       const double xmax = tonemapper_x_max(tm);
       start = std::log2(xmax / double(lmax));
       stop = std::log2(xmax / double(lmed));

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "perf/calibration.h"
+#include "perf/frame_timing.h"
 #include "perf/profiles.h"
 #include "perf/stats.h"
 #include "revision.h"
@@ -278,9 +279,9 @@ int cmd_bench(const BenchOptions& o) {
           r.passes.push_back(std::move(pr));
         }
       }
-      for (uint32_t f = 0; f < warmup; ++f) ex.run_frame();
-      for (uint32_t f = 0; f < frames; ++f) {
-        FrameResult fr = ex.run_frame();
+      // The timing every command shares (frame_timing.h): scan off, warm-up, timed frames.
+      const FrameTiming timed = time_frames(ex, warmup, frames);
+      for (const FrameResult& fr : timed.frames) {
         for (auto& pt : fr.passes)
           for (auto& pr : r.passes)
             if (pr.name == pt.name) {

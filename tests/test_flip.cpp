@@ -273,6 +273,22 @@ TEST(FlipSanity, HdrAutomaticExposureRange) {
   EXPECT_EQ(r.num_exposures, int(std::ceil(r.stop_exposure + 6.0)));
 }
 
+TEST(FlipSanity, HdrMostlyBlackReferenceUsesTheMedianOfLitPixels) {
+  // Five of eight pixels black (a 1-spp render): the median luminance is 0, so the stop
+  // exposure comes from the median of the lit pixels {1, 2, 8} = 2.
+  FloatImage ref(8, 1, 3);
+  const float vals[8] = {0, 0, 0, 0, 0, 1.0f, 2.0f, 8.0f};
+  for (uint32_t x = 0; x < 8; ++x)
+    for (uint32_t c = 0; c < 3; ++c) ref.at(x, 0, c) = vals[x];
+  FlipResult r = flip(ref, ref, hdr_options());
+  const double lsum = 0.2126 + 0.7152 + 0.0722;
+  EXPECT_NEAR(r.start_exposure, std::log2(2.1188723 / (8.0 * lsum)), 1e-5);
+  EXPECT_NEAR(r.stop_exposure, std::log2(2.1188723 / (2.0 * lsum)), 1e-5);
+  EXPECT_EQ(r.mean, 0.0);
+  // All black: no exposure maps anything to grey; the range must be given.
+  EXPECT_THROW(flip(FloatImage(8, 1, 3, 0.0f), ref, hdr_options()), std::invalid_argument);
+}
+
 TEST(FlipSanity, PpdAndSrgbDecode) {
   EXPECT_NEAR(flip_ppd(0.7, 0.7, 3840), 67.02064514160156, 1e-5);
   FloatImage lin = srgb8_to_linear({0, 128, 255}, 1, 1);

@@ -121,7 +121,7 @@ CpuKey cpu_cell_key(const float p[3], Vec3 camera, float cell_size, float lod_di
   h = pcg(uint32_t(c[1]) + h);
   h = pcg(uint32_t(c[2]) + h);
   h = pcg(side + h);
-  k.key = pcg(uint32_t(lod) + h) | 1u;
+  k.key = (pcg(uint32_t(lod) + h) & ~3u) | 1u;
   return k;
 }
 
@@ -167,7 +167,7 @@ FrameCheck check_frame(Executor& ex, const Scene& scene, uint32_t frame) {
     if (!c.key) continue;
     ++fc.occupied;
     present.insert(c.key);
-    if ((((i - ((c.key >> 1) & mask)) & mask)) >= rc(s).cache_max_probe) ++fc.misplaced;
+    if ((((i - ((c.key >> 2) & mask)) & mask)) >= rc(s).cache_max_probe) ++fc.misplaced;
     if (c.shaded_frame == frame + 1) ++fc.shaded_now;
     if (c.shaded_frame) {
       float rgb[3];

@@ -1,8 +1,9 @@
 // The HTML report of `gibench run`: a synthetic SuiteResult (two cases, passing and failing
 // rows, a negative control, a case error) written with write_suite_outputs, then loaded in
 // headless Chromium. The page sets body[data-gib-status] to "ok" once everything rendered and
-// every image loaded, or "error: <what>" on a failed image or a script error; the test reads it
-// from --dump-dom and checks Chromium's log for console output from the page.
+// every image loaded, or "error: <what>" on a failed image or a script error; the checker
+// (harness/report_check.h, also `gibench check-report` in ci/suite.sh) reads it from --dump-dom
+// and Chromium's log for console output from the page.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "harness/report.h"
+#include "harness/report_check.h"
 #include "harness/runner.h"
 
 namespace gib {
@@ -53,87 +55,10 @@ fs::path make_temp_dir(const std::string& tag) {
   return fs::path(buf.data());
 }
 
-std::string find_chromium() {
-  for (const char* name : {"chromium", "chromium-browser"}) {
-    FILE* p = popen((std::string("command -v ") + name + " 2>/dev/null").c_str(), "r");
-    if (!p) continue;
-    char line[4096] = {0};
-    std::string path = fgets(line, sizeof line, p) ? std::string(line) : std::string();
-    pclose(p);
-    while (!path.empty() && (path.back() == '\n' || path.back() == '\r')) path.pop_back();
-    if (!path.empty()) return path;
-  }
-  return "";
-}
-
 #define REQUIRE_CHROMIUM(var)                                                                              \
   const std::string var = find_chromium();                                                                 \
   ASSERT_FALSE(var.empty()) << "chromium is not installed (not on PATH): the report test needs headless Chromium; " \
                                "run ci/setup.sh (it installs the apt package `chromium`)"
-
-struct BrowserRun {
-  int exit_code = -1;
-  std::string out, err;
-  std::string status;                     // data-gib-status, "" when absent
-  std::vector<std::string> page_console;  // Chromium log lines with console output from the page
-  std::string err_file;                   // Chromium's full log (stderr)
-  // For failure messages: the status, the page's console lines and where the full log is.
-  std::string describe() const {
-    std::string s = "status '" + status + "', chromium exit " + std::to_string(exit_code) + ", log " + err_file;
-    for (auto& l : page_console) s += "\n  " + l;
-    return s;
-  }
-};
-
-std::string shell_quote(const std::string& s) {
-  std::string o = "'";
-  for (char c : s) o += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return o + "'";
-}
-
-// One headless Chromium run on dir/index.html: --dump-dom, or a screenshot when `screenshot`.
-BrowserRun run_chromium(const std::string& chromium, const fs::path& dir, const fs::path& screenshot = {}) {
-  fs::path profile = make_temp_dir("profile");
-  fs::path err_file = dir / (screenshot.empty() ? "chromium_dom.stderr" : "chromium_shot.stderr");
-  std::string cmd = shell_quote(chromium) +
-                    " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run"
-                    " --disable-background-networking --disable-component-update --disable-sync"
-                    " --user-data-dir=" + shell_quote(profile.string()) +
-                    " --allow-file-access-from-files --virtual-time-budget=5000 --enable-logging=stderr --v=0";
-  if (screenshot.empty())
-    cmd += " --dump-dom";
-  else
-    cmd += " --hide-scrollbars --window-size=1400,2000 --screenshot=" + shell_quote(screenshot.string());
-  cmd += " " + shell_quote("file://" + fs::absolute(dir / "index.html").string()) + " 2>" + shell_quote(err_file.string());
-
-  BrowserRun r;
-  r.err_file = err_file.string();
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) throw std::runtime_error("popen failed: " + cmd);
-  char buf[65536];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  int st = pclose(p);
-  r.exit_code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  r.err = read_file(err_file);
-  std::error_code ec;
-  fs::remove_all(profile, ec);
-
-  const std::string key = "data-gib-status=\"";
-  auto pos = r.out.find(key);
-  if (pos != std::string::npos) {
-    auto end = r.out.find('"', pos + key.size());
-    r.status = r.out.substr(pos + key.size(), end - pos - key.size());
-  }
-  // Console messages are logged as `...:CONSOLE:<line>] "<message>", source: file:///...`
-  // whatever their level; the report writes none unless something is wrong.
-  std::istringstream lines(r.err);
-  for (std::string line; std::getline(lines, line);)
-    if ((line.find(":CONSOLE") != std::string::npos && line.find("source: file://") != std::string::npos) ||
-        line.find("Uncaught") != std::string::npos)
-      r.page_console.push_back(line);
-  return r;
-}
 
 // A small image with a gradient and a bright patch (values above 1, for the exposure control).
 FloatImage synthetic_image(uint32_t w, uint32_t h, float tint, float noise) {
@@ -287,7 +212,7 @@ TEST(Report, RendersInHeadlessChromium) {
   EXPECT_EQ(html.find("<!--GIB_IMAGE_SCRIPTS-->"), std::string::npos);
   EXPECT_NE(html.find("<script src=\"img/cornell_box__reference.radiance.js\">"), std::string::npos);
 
-  BrowserRun r = run_chromium(chromium, dir);
+  BrowserRun r = run_chromium(chromium, dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.describe();
   EXPECT_EQ(r.status, "ok") << r.describe();
   expect_clean_console(r);
@@ -305,7 +230,7 @@ TEST(Report, RendersInHeadlessChromium) {
   EXPECT_NE(r.out.find("cornell_box__ssgi.low.flip.png"), std::string::npos);
 
   fs::path shot = dir / "shot.png";
-  BrowserRun s = run_chromium(chromium, dir, shot);
+  BrowserRun s = run_chromium(chromium, dir.string(), shot.string());
   EXPECT_EQ(s.exit_code, 0) << s.describe();
   expect_clean_console(s);
   ASSERT_TRUE(fs::exists(shot)) << s.describe();
@@ -317,7 +242,7 @@ TEST(Report, FallsBackToPngWithoutFloatData) {
   REQUIRE_CHROMIUM(chromium);
   fs::path dir = make_temp_dir("png");
   write_fixture(dir, /*float_data=*/false);
-  BrowserRun r = run_chromium(chromium, dir);
+  BrowserRun r = run_chromium(chromium, dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.describe();
   EXPECT_EQ(r.status, "ok") << r.describe();
   expect_clean_console(r);
@@ -331,11 +256,12 @@ TEST(Report, MissingImageIsAnError) {
   fs::path dir = make_temp_dir("missing");
   write_fixture(dir);
   ASSERT_TRUE(fs::remove(dir / "img" / "cornell_box__ssgi.low.flip.png"));
-  BrowserRun r = run_chromium(chromium, dir);
+  BrowserRun r = run_chromium(chromium, dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.describe();
   EXPECT_EQ(r.status.rfind("error:", 0), 0u) << "status '" << r.status << "'";
   EXPECT_NE(r.status.find("cornell_box__ssgi.low.flip.png"), std::string::npos) << r.status;
   EXPECT_FALSE(r.page_console.empty()) << "the page should log the failure with console.error";
+  EXPECT_NE(r.problem().find("error banner"), std::string::npos) << r.problem();  // gibench check-report's line
   std::error_code ec;
   fs::remove_all(dir, ec);
 }
@@ -345,7 +271,7 @@ TEST(Report, MissingResultsIsAnError) {
   fs::path dir = make_temp_dir("noresults");
   write_fixture(dir);
   ASSERT_TRUE(fs::remove(dir / "results.js"));
-  BrowserRun r = run_chromium(chromium, dir);
+  BrowserRun r = run_chromium(chromium, dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.describe();
   EXPECT_EQ(r.status.rfind("error:", 0), 0u) << "status '" << r.status << "'";
   std::error_code ec;
@@ -376,10 +302,14 @@ TEST(Report, RealRunWithoutTheScanLoadsCleanlyAndSkipsScanThresholds) {
   EXPECT_NE(results.find("\"status\": \"skipped\""), std::string::npos) << "the scan-only control is not skipped";
   EXPECT_NE(results.find("scan_saturated skipped: the stability scan did not run"), std::string::npos);
   EXPECT_EQ(results.find("r11g11b10-vs-rgb9e5__reference"), std::string::npos) << "a reference image it does not have";
-  BrowserRun r = run_chromium(chromium, dir);
+  // Every row's times come from scan-free timing frames (perf/frame_timing.h).
+  EXPECT_NE(results.find("\"scan_free\": true"), std::string::npos);
+  EXPECT_EQ(results.find("\"scan_free\": false"), std::string::npos);
+  BrowserRun r = run_chromium(chromium, dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.describe();
   EXPECT_EQ(r.status, "ok") << r.describe();
   expect_clean_console(r);
+  EXPECT_EQ(r.problem(), "");
   std::error_code ec;
   fs::remove_all(dir, ec);
 }

@@ -333,8 +333,11 @@
         return h('li', null, [h('span', { class: 'bar-name' }, p.name), h('span', { class: 'reason' }, p.reason || 'culled')]);
       })));
     }
+    var t = row.timing;
+    var timed = t ? ' (median of ' + t.frames + (t.scan_free ? ' scan-free' : ' scanned') + ' frames after ' + t.warmup + ')' : '';
     out.push(h('div', { class: 'plan-foot' }, [
-      ran.length + ' ran, ' + culled.length + ' culled \u00b7 frame ' + fmtMs(row.gpu_ms) + ' ms \u00b7 resources ' + fmtBytes(row.resource_bytes)
+      ran.length + ' ran, ' + culled.length + ' culled \u00b7 frame ' + fmtMs(row.gpu_ms) + ' ms' + timed +
+        ' \u00b7 resources ' + fmtBytes(row.resource_bytes)
     ]));
     return out;
   }

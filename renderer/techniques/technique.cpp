@@ -1,5 +1,7 @@
 #include "renderer/techniques/technique.h"
 
+#include "renderer/techniques/aov.h"
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -68,6 +70,19 @@ TechniqueOption common_option(std::string name, std::string description, double 
   return {std::move(name), std::move(description), min, max, integer, apply};
 }
 }  // namespace
+
+std::string contract_resource(const Technique& t, const std::string& aov) {
+  if (aov == kAovRadiance) return t.output;
+  auto it = t.contract_aovs.find(aov);
+  return it == t.contract_aovs.end() ? std::string() : it->second;
+}
+
+std::vector<std::string> contract_aov_names(const Technique& t) {
+  std::vector<std::string> names;
+  for (std::string_view a : kContractAovs)
+    if (!contract_resource(t, std::string(a)).empty()) names.emplace_back(a);
+  return names;
+}
 
 std::vector<TechniqueOption> with_common_options(std::vector<TechniqueOption> opts, std::vector<double> targets) {
   opts.push_back(common_option("nan_guards",

@@ -39,7 +39,10 @@ struct Technique {
   std::string description;
   std::vector<PassEntry> passes;     // in declaration order
   std::string output;                // the image the technique produces (its final radiance)
-  std::vector<std::string> aovs;     // other outputs that may be requested
+  std::vector<std::string> aovs;     // other outputs that may be requested (resources, e.g. for --dump)
+  // The contract AOVs (aov.h) it produces exactly, each with the resource holding it; radiance
+  // is always `output` and need not be listed. An AOV not listed is not comparable.
+  std::map<std::string, std::string> contract_aovs;
   std::vector<std::string> presets;  // in order of quality: low, medium, high, ultra
   std::vector<TechniqueOption> options;  // in a stable order
   // The technique's settings struct with its defaults, and the preset table applied to it
@@ -76,6 +79,12 @@ TechniqueOption option(std::string name, std::string description, double min, do
 // (the injection targets limited to `targets`, those the technique's passes write) and the
 // world offset.
 std::vector<TechniqueOption> with_common_options(std::vector<TechniqueOption> own, std::vector<double> targets);
+
+// The resource holding contract AOV `aov` (aov.h) for `t`, or "" when `t` does not declare it
+// (also "" for a name outside the contract).
+std::string contract_resource(const Technique& t, const std::string& aov);
+// The contract AOVs `t` declares, radiance first.
+std::vector<std::string> contract_aov_names(const Technique& t);
 
 const std::vector<Technique>& techniques();
 // Throws std::invalid_argument naming the known techniques when `name` is unknown.

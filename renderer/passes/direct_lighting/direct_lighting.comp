@@ -9,6 +9,7 @@ GIB_SCENE_BUFFERS(0, kBindSceneFirst)
 layout(constant_id = kDirectSpecSun) const bool kHasSun = true;
 layout(constant_id = kDirectSpecSky) const bool kHasSky = true;
 layout(constant_id = kDirectSpecLocal) const bool kHasLocal = true;
+layout(constant_id = kDirectSpecEmissive) const bool kHasEmissive = true;
 #define GIB_ALPHA_SPEC kDirectSpecAlpha
 #include "bvh_alpha.glsl"
 #include "lights.glsl"
@@ -65,14 +66,24 @@ void main() {
       if (!trace_any(gib_offset_ray(x, side), wi, 0.0, kShadowMax)) result += resp * gib_frame.sun_irradiance.rgb;
     }
   }
-  if (kHasSky && push.sky_rays > 0u) {
-    // Cosine-distributed visibility rays: each unoccluded one carries albedo * L_sky(wi).
+  if ((kHasSky || kHasEmissive) && push.sky_rays > 0u) {
+    // Cosine-distributed rays: each carries albedo * the radiance it finds straight away, the
+    // sky's where it escapes, an emissive surface's emission where it hits one (light that
+    // reaches this surface with no further bounce: direct, by the AOV contract).
     vec3 sky = vec3(0.0);
     for (uint i = 0u; i < push.sky_rays; ++i) {
       bool back = translucency > 0.0 && gib_next(rng) < translucency;
       vec3 side = back ? -n : n;
       vec3 wi = gib_cosine_hemisphere(side, gib_next2(rng));
-      if (!trace_any(gib_offset_ray(x, side), wi, 0.0, kShadowMax)) sky += gib_sky_radiance(wi);
+      if (kHasEmissive) {
+        GibHit hit;
+        if (!trace_closest(gib_offset_ray(x, side), wi, 0.0, kShadowMax, hit))
+          sky += kHasSky ? gib_sky_radiance(wi) : vec3(0.0);
+        else
+          sky += gib_materials[gib_surface(hit.triangle, hit.u, hit.v, push.nan_guards != 0u).material].emissive;
+      } else if (!trace_any(gib_offset_ray(x, side), wi, 0.0, kShadowMax)) {
+        sky += gib_sky_radiance(wi);
+      }
     }
     result += albedo * sky / float(push.sky_rays);
   }

@@ -37,7 +37,8 @@ class DirectLightingPass final : public Pass {
                          .spec_constants = {{kDirectSpecSun, f.has(Feature::sun)},
                                             {kDirectSpecSky, f.has(Feature::sky)},
                                             {kDirectSpecLocal, f.has(Feature::local_lights)},
-                                            {kDirectSpecAlpha, f.has(Feature::alpha_tested)}}});
+                                            {kDirectSpecAlpha, f.has(Feature::alpha_tested)},
+                                            {kDirectSpecEmissive, f.has(Feature::emissive)}}});
   }
 };
 

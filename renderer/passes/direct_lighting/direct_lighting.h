@@ -1,6 +1,8 @@
 // direct_lighting: lights every G-buffer pixel from the sun (one shadow ray per pixel into a
-// cone of the sun's angular radius), the sky (`sky_rays` cosine-distributed visibility rays)
-// and every local light (point and spot, one shadow ray each), plus emission; Lambertian, with
+// cone of the sun's angular radius), the sky and emissive surfaces (`sky_rays` cosine-distributed
+// rays: the sky where one escapes, the emission of what it hits) and every local light (point
+// and spot, one shadow ray each), plus emission: the `direct` AOV of the contract
+// (renderer/techniques/aov.h) exactly, for every light type. Lambertian, with
 // diffuse transmission for translucent materials (light from the back face scaled by
 // translucency). Sky pixels get the sky radiance. Output is linear HDR (RGBA32F).
 // Slots: reads gbuffer_albedo, gbuffer_normal, gbuffer_position, gbuffer_emissive; writes direct_light.
@@ -20,7 +22,7 @@ namespace gib {
 // Settings of direct_lighting: the settings struct of every technique that runs it derives
 // from this (the pass reads Settings::params<DirectLightingParams>()).
 struct DirectLightingParams {
-  uint32_t sky_rays = 4;  // cosine-distributed sky visibility rays per pixel (0: no sky light)
+  uint32_t sky_rays = 4;  // cosine rays per pixel for sky and emissive-surface light (0: neither)
 };
 
 std::unique_ptr<Pass> make_direct_lighting_pass();

@@ -13,8 +13,9 @@ GIB_CONST(uint, kDirectSpecSun, 0)
 GIB_CONST(uint, kDirectSpecSky, 1)
 GIB_CONST(uint, kDirectSpecLocal, 2)
 GIB_CONST(uint, kDirectSpecAlpha, 3)
+GIB_CONST(uint, kDirectSpecEmissive, 4)
 struct DirectPush {
-  uint sky_rays;    // cosine rays per pixel for sky visibility
+  uint sky_rays;    // cosine rays per pixel: sky and emissive surfaces seen from the pixel
   uint nan_guards;  // 1: a non-finite G-buffer normal is replaced by the direction to the camera
   uint pad1, pad2;
 };

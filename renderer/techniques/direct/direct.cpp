@@ -24,6 +24,9 @@ Technique direct_technique() {
               {"gbuffer", make_gbuffer_pass},
               {"direct_lighting", make_direct_lighting_pass}};
   t.output = "direct_light";
+  // Only direct light: its output is the contract's `direct` exactly (and its radiance); it has
+  // no indirect_diffuse to declare.
+  t.contract_aovs = {{"direct", "direct_light"}};
   t.aovs = {"vbuffer", "depth", "gbuffer_albedo", "gbuffer_normal", "gbuffer_position", "gbuffer_emissive"};
   define_settings<DirectSettings>(t, kPresets, apply_preset_row);
   t.options = with_common_options(

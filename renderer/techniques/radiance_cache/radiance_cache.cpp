@@ -37,6 +37,10 @@ void apply_preset_row(RadianceCacheSettings& s, const Preset& p) {
 using S = RadianceCacheSettings;
 std::vector<TechniqueOption> own_options() {
   return {
+      option("sky_rays",
+             "direct_lighting's cosine rays per pixel for the sky's and emissive surfaces' direct light; the final "
+             "gather then keeps only light that bounced (the AOV contract; >= 1)",
+             1, 64, &DirectLightingParams::sky_rays),
       option("visibility_test", "leak mitigation: Chebyshev test on probe distance moments (0/1)", 0, 1,
              &S::visibility_test),
       option("normal_bias", "leak mitigation: metres along the normal before sampling probes", 0, 10, &S::normal_bias),
@@ -93,6 +97,7 @@ Technique radiance_cache_technique() {
               {"gi_upscale", make_gi_upscale_pass},
               {"composite", make_composite_pass}};
   t.output = "final_color";
+  t.contract_aovs = {{"direct", "direct_light"}, {"indirect_diffuse", "indirect_diffuse"}};
   t.aovs = {"indirect_diffuse", "gi_irradiance",    "direct_light",     "probe_irradiance", "probe_visibility",
             "gather_sh_r",      "gbuffer_albedo",   "gbuffer_normal",   "gbuffer_position"};
   define_settings<RadianceCacheSettings>(t, kPresets, apply_preset_row);

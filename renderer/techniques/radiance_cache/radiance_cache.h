@@ -10,9 +10,9 @@
 namespace gib {
 
 struct RadianceCacheSettings : TechniqueSettingsOf<RadianceCacheSettings>, DirectLightingParams {
-  // The sky reaches surfaces through the GI (gather misses return it, in the SH), so
-  // direct_lighting must not add it again.
-  RadianceCacheSettings() { sky_rays = 0; }
+  // sky_rays (DirectLightingParams, default 4): direct_lighting traces the sky's and emissive
+  // surfaces' light that reaches the visible surface straight away (the AOV contract's `direct`,
+  // renderer/techniques/aov.h); the final gather then carries only light that bounced once more.
   uint32_t cascades = 3;            // irradiance-volume cascades (16^3 probes each), one updated per frame
   float probe_spacing = 0.5f;       // metres between cascade-0 probes; doubles per cascade
   uint32_t rays_per_probe = 32;     // visibility rays per updated probe (16 / 32 / 64)

@@ -23,6 +23,7 @@ Technique reference_technique() {
   t.passes = {{"path_trace", make_path_trace_pass}, {"path_trace_resolve", make_path_trace_resolve_pass}};
   t.output = "radiance";
   t.aovs = {"direct", "indirect_diffuse"};
+  t.contract_aovs = {{"direct", "direct"}, {"indirect_diffuse", "indirect_diffuse"}};
   define_settings<ReferenceSettings>(t, kPresets, apply_preset_row);
   t.options = with_common_options(
       {

@@ -124,16 +124,20 @@ void main() {
     GibSurface s = gib_surface(hit.triangle, hit.u, hit.v, rc.flags.y != 0u);
     vec3 n_hit = dot(s.normal, d) > 0.0 ? -s.normal : s.normal;  // the side the ray hit
     // multi_bounce 0: no screen cache (last frame's image holds every bounce so far).
+    GpuMaterial m = gib_materials[s.material];
     if (push.screen_cache != 0u && rc.flags.z != 0u && screen_cache(s.position, n_hit, radiance)) {
       served = kGatherStatScreen;
     } else if (rc_lookup(s.position, rc_facing_normal(hit.triangle, d), radiance)) {
       served = kGatherStatWorld;
     } else {
-      GpuMaterial m = gib_materials[s.material];
       vec3 albedo = gib_material_albedo(m, s.uv);
       radiance = rc_sample_irradiance(s.position, n_hit, -d) * albedo + m.emissive;
       served = kGatherStatVolume;
     }
+    // The hit's own emission reaches the gather pixel with no further bounce: `direct` by the
+    // AOV contract, which direct_lighting's rays already add when it traces them (push.sky 0).
+    // The gather keeps only light that bounced at the hit.
+    if (push.sky == 0u) radiance = max(radiance - m.emissive, vec3(0.0));
   }
   // Guard: the world cache and the volumes are RGB9E5 (always finite), but a non-finite answer
   // from any source is treated as a miss that returns nothing.

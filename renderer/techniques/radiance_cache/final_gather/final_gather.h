@@ -11,7 +11,9 @@
 //   2. world: rc_lookup at the hit (a shaded radiance-cache cell);
 //   3. irradiance volumes: rc_sample_irradiance at the hit x hit albedo + emission;
 //   a miss: the sky, when Settings::sky_rays == 0; otherwise direct_lighting already adds the
-//   sky's first bounce with its own visibility rays and a miss returns 0 (no double count).
+//   sky's and emissive surfaces' light with its own rays, so a miss returns 0 and a hit only
+//   the light that bounced there (its emission subtracted): the gather then carries exactly
+//   the AOV contract's indirect_diffuse (renderer/techniques/aov.h), with no double count.
 // The radiance goes into 2-band SH per channel: L1 = L Y1(d) pi / cos(theta), the cosine-pdf
 // Monte Carlo projection (cos clamped to >= 0.02); L0 is set so that the SH's irradiance / pi at
 // the gather normal (gib_sh2_irradiance) is exactly L, the cosine-sampled estimate there (this

@@ -45,7 +45,7 @@ GIB_CONST(float, kGatherMinCos, 0.02)
 struct GatherPush {
   uint divisor;       // 2 or 4
   uint screen_cache;  // 0: skip the screen cache (first frame: last frame's image is empty)
-  uint sky;           // 1: a miss returns the sky; 0: direct_lighting already traces sky rays
+  uint sky;           // 1: a miss returns the sky, a hit its emission too; 0: direct_lighting traces both
   uint pad;
 };
 GIB_SHARED_END

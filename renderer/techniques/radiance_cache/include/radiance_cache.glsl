@@ -6,9 +6,15 @@
 //   LOD  = 2^floor(log2(1 + |p - camera| / cache.y))       (1, 2, 4, ...)
 //   cell = floor(p / (cache.x * LOD))                      (ivec3)
 //   h    = pcg(LOD + pcg(cell.z + pcg(cell.y + pcg(cell.x))))   (gib_pcg, hash.glsl; uint wrap)
-//   key  = h | 1 (0 marks an empty cell), first slot (key >> 1) & (2^cache.z - 1), then linear
-//          probing over at most cache.w slots. Cells are never removed, so an empty slot ends a
-//          search.
+//   key  = (h & ~3) | 1 (0 marks an empty cell; low bits 2 and 3 mark a pending insertion bid),
+//          first slot (key >> 2) & (2^cache.z - 1), then linear probing over at most cache.w
+//          slots. Cells are never removed, so an empty slot ends a search.
+//
+// Insertion (radiance_cache_update.comp) is deterministic: in round r every key not yet in the
+// table bids for the r-th slot of its probe sequence with (h & ~3) | (2 + r % 2) if that slot is
+// empty or holds only this round's bids; atomicMax picks the largest, the winner commits it
+// (low bits -> 1) in round r + 1, losers move on. Which key ends in which slot, and which keys
+// are dropped when the sequence is full, depend only on the frame's set of keys and the table.
 // The C++ mirror in tests/test_radiance_cache_world.cpp repeats these operations.
 //
 // Use (push constants named `rc` and frame.glsl first):
@@ -75,10 +81,10 @@ uint rc_cell_hash(vec3 p, vec3 n, out float lod) {
   return gib_pcg(uint(lod) + h);
 }
 
-uint rc_cell_key(vec3 p, vec3 n, out float lod) { return rc_cell_hash(p, n, lod) | 1u; }
+uint rc_cell_key(vec3 p, vec3 n, out float lod) { return (rc_cell_hash(p, n, lod) & ~3u) | 1u; }
 
-// First slot of a key's probe sequence (bit 0 of a key is always set, so skip it).
-uint rc_cell_first_slot(uint key) { return (key >> 1u) & rc_cell_mask(); }
+// First slot of a key's probe sequence (bits 0-1 are the insertion tag, so skip them).
+uint rc_cell_first_slot(uint key) { return (key >> 2u) & rc_cell_mask(); }
 
 // Index of the cell holding key, or 0xffffffff when the probe sequence holds none.
 uint rc_find_cell(uint key) {

@@ -29,7 +29,7 @@ struct ProbeHit {
 
 // ---- world radiance cache: open-addressing hash table of cells, 16 bytes each
 struct RcCell {
-  uint key;           // 0: empty; else hash(quantised position, lod) | 1
+  uint key;           // 0: empty; else (hash(quantised position, lod) & ~3) | 1 (2, 3: insertion bid)
   uint radiance;      // RGB9E5 outgoing diffuse radiance of the cell
   uint shaded_frame;  // frame + 1 when last shaded (0: never)
   uint hit_index;     // probe hit record that inserted it this frame (shading input)

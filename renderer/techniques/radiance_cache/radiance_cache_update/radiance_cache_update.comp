@@ -17,37 +17,56 @@ RC_CELL_BUFFER(kRcUpdateBindCells, coherent)
 
 const uint kNoCell = 0xffffffffu;
 
-void insert_hit(uint id) {
+// The probe hit `id`'s committed key, or 0 for a miss / an id past the hit records.
+uint hit_key(uint id) {
   uint rays = rc_rays_per_probe();
-  if (id >= kProbeGridDim * kProbeGridDim * kProbeGridDim * rays) return;
+  if (id >= kProbeGridDim * kProbeGridDim * kProbeGridDim * rays) return 0u;
   ProbeHit h = probe_hits[id];
-  if (h.triangle_plus1 == 0u) return;
+  if (h.triangle_plus1 == 0u) return 0u;
   uint probe = id / rays, ray = id - probe * rays;
-  uint c = rc_updated_cascade();
-  vec3 o = rc_probe_position(c, rc_probe_coord(probe));
+  vec3 o = rc_probe_position(rc_updated_cascade(), rc_probe_coord(probe));
   vec3 d = rc_ray_direction(ray, rays, rc_frame_rotation(rc.misc.x));
-  vec3 p = rc_hit_position(o, d, h.distance);
   float lod;
-  uint key = rc_cell_key(p, rc_facing_normal(h.triangle_plus1 - 1u, d), lod);
-  uint mask = rc_cell_mask(), first = rc_cell_first_slot(key), n = rc_max_probe();
-  uint cell = kNoCell, steps = 0u;
-  bool inserted = false;
-  for (uint s = 0u; s < n; ++s) {
+  return rc_cell_key(rc_hit_position(o, d, h.distance), rc_facing_normal(h.triangle_plus1 - 1u, d), lod);
+}
+
+// Deterministic insertion (radiance_cache.glsl, "Insertion"): kernel `round` r = 0..max_probe-1
+// lets every hit whose key is not yet in the table bid for slot first + r of its probe sequence;
+// a bid is the key tagged with the round's parity (2 | r & 1) and the largest bid wins
+// (atomicMax), so the winner depends on the set of keys, not on thread order. Kernel r first
+// looks for the key in slots first .. first + r - 1 (settled by earlier rounds) and commits its
+// own winning bid of round r - 1 (tag -> 1). The last kernel (r = max_probe) only settles: keys
+// still unplaced are dropped, placed ones are queued for shading. Returns the hit's cell, or
+// kNoCell when it is not placed (yet).
+uint insert_round(uint key, uint round) {
+  uint mask = rc_cell_mask(), first = rc_cell_first_slot(key), hash = key & ~3u;
+  uint bid = hash | (2u + (round & 1u)), last_bid = hash | (2u + ((round + 1u) & 1u));
+  for (uint s = 0u; s < round; ++s) {
     uint i = (first + s) & mask;
-    uint prev = atomicCompSwap(rc_cells[i].key, 0u, key);
-    if (prev == 0u || prev == key) {
-      cell = i;
-      inserted = prev == 0u;
-      break;
+    uint v = rc_cells[i].key;
+    if (v == key) return i;
+    if (v == last_bid && s + 1u == round) {
+      // Our bid of the previous round won: commit it (one of the key's hits counts it).
+      if (atomicCompSwap(rc_cells[i].key, v, key) == v) atomicAdd(counters.insertions, 1u);
+      return i;
     }
-    ++steps;
+    if (s + 1u == round) atomicAdd(counters.collisions, 1u);  // passed last round's slot
   }
-  if (steps > 0u) atomicAdd(counters.collisions, steps);
-  if (cell == kNoCell) {
+  if (round == rc_max_probe()) {
     atomicAdd(counters.drops, 1u);
-    return;
+    return kNoCell;
   }
-  if (inserted) atomicAdd(counters.insertions, 1u);
+  uint i = (first + round) & mask;
+  uint v = rc_cells[i].key;
+  if (v == key) return i;  // committed in an earlier frame
+  // Empty, or holding this round's bids (same parity tag): bid. Anything else (a committed key or
+  // the previous round's winner) is occupied: the next round tries the next slot.
+  if (v == 0u || (v & 3u) == (bid & 3u)) atomicMax(rc_cells[i].key, bid);
+  return kNoCell;
+}
+
+// After the last round: queue a placed hit's cell for shading unless it was shaded recently.
+void queue_cell(uint cell) {
   uint now = rc.misc.x + 1u;
   uint shaded = atomicAdd(rc_cells[cell].shaded_frame, 0u);
   if (shaded == now) return;  // queued this frame by another hit
@@ -64,17 +83,18 @@ void insert_hit(uint id) {
   rc_cells[cell].hit_index = 0xffffffffu;
 }
 
+void insert_hit(uint id) {
+  uint key = hit_key(id);
+  if (key == 0u) return;
+  uint cell = insert_round(key, extra.y);
+  if (extra.y == rc_max_probe() && cell != kNoCell) queue_cell(cell);
+}
+
 // Second kernel: every hit of a cell queued this frame offers its id; the smallest wins.
 void pick_hit(uint id) {
-  uint rays = rc_rays_per_probe();
-  if (id >= kProbeGridDim * kProbeGridDim * kProbeGridDim * rays) return;
-  ProbeHit h = probe_hits[id];
-  if (h.triangle_plus1 == 0u) return;
-  uint probe = id / rays, ray = id - probe * rays;
-  vec3 d = rc_ray_direction(ray, rays, rc_frame_rotation(rc.misc.x));
-  vec3 p = rc_hit_position(rc_probe_position(rc_updated_cascade(), rc_probe_coord(probe)), d, h.distance);
-  float lod;
-  uint cell = rc_find_cell(rc_cell_key(p, rc_facing_normal(h.triangle_plus1 - 1u, d), lod));
+  uint key = hit_key(id);
+  if (key == 0u) return;
+  uint cell = rc_find_cell(key);
   if (cell == kNoCell || rc_cells[cell].shaded_frame != rc.misc.x + 1u) return;
   atomicMin(rc_cells[cell].hit_index, id);
 }

@@ -55,16 +55,22 @@ class RadianceCacheUpdatePass final : public Pass {
                                              {kRcUpdateBindCells, "rc_cells"},
                                              {kRcUpdateBindActive, "rc_active"},
                                              {kRcUpdateBindCounters, "rc_counters"}};
+    // Insertion in cache_max_probe + 1 rounds (radiance_cache_update.comp): round r bids for the
+    // r-th slot of each unplaced key's probe sequence; the last round settles and queues.
     ctx.cmd.begin_label("radiance_cache_update/insert");
-    uint32_t hits = kProbesPerCascade * ctx.settings.params<RadianceCacheSettings>().rays_per_probe;
-    record_compute(ctx, {.shader = "radiance_cache_update.comp",
-                         .groups_x = div_up(hits, kRcUpdateGroup),
-                         .push = &push,
-                         .push_bytes = sizeof(push),
-                         .spec_constants = {{kRcUpdateSpecKernel, kRcUpdateKernelInsert}},
-                         .buffers = buffers});
+    const RadianceCacheSettings& r = ctx.settings.params<RadianceCacheSettings>();
+    uint32_t hits = kProbesPerCascade * r.rays_per_probe;
+    for (uint32_t round = 0; round <= r.cache_max_probe; ++round) {
+      push.extra.y = round;
+      record_compute(ctx, {.shader = "radiance_cache_update.comp",
+                           .groups_x = div_up(hits, kRcUpdateGroup),
+                           .push = &push,
+                           .push_bytes = sizeof(push),
+                           .spec_constants = {{kRcUpdateSpecKernel, kRcUpdateKernelInsert}},
+                           .buffers = buffers});
+      ctx.cmd.barrier(kStageCompute, kStageCompute);
+    }
     ctx.cmd.end_label();
-    ctx.cmd.barrier(kStageCompute, kStageCompute);
 
     ctx.cmd.begin_label("radiance_cache_update/pick");
     record_compute(ctx, {.shader = "radiance_cache_update.comp",

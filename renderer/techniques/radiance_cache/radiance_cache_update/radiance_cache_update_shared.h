@@ -4,7 +4,7 @@
 #include "frame_shared.h"
 #include "renderer/techniques/radiance_cache/include/radiance_cache_shared.h"
 GIB_SHARED_BEGIN
-GIB_CONST(uint, kRcUpdateGroup, 64)          // insert: one thread per probe hit record
+GIB_CONST(uint, kRcUpdateGroup, 64)          // insert/pick: one thread per probe hit record
 GIB_CONST(uint, kRcUpdateBindHits, 8)        // readonly ProbeHit probe_hits[]
 GIB_CONST(uint, kRcUpdateBindCells, 9)       // coherent RcCell rc_cells[2^cache_log2_cells]
 GIB_CONST(uint, kRcUpdateBindActive, 10)     // uint rc_active[capacity]: queued cell indices
@@ -18,7 +18,7 @@ GIB_CONST(uint, kRcUpdateKernelPick, 2)  // lowest hit id of each queued cell (d
 GIB_CONST(uint, kRcActivePerProbe, 64)
 struct RcUpdatePush {
   RcParams rc;
-  uvec4 extra;  // x: active-list capacity (entries)
+  uvec4 extra;  // x: active-list capacity (entries), y: insertion round (0 .. cache_max_probe)
 };
 GIB_SHARED_END
 #endif

@@ -1,0 +1,262 @@
+// Goldens and references (issue 12 section 2): the 3x noise-floor rule on flip bounds against the
+// reference, what update-goldens --reference records in golden.json (spp, seed, device, driver,
+// noise floor per file), the --spp override and the spp split, atomic golden writes.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "harness/case.h"
+#include "harness/case_render.h"
+#include "harness/goldens.h"
+#include "harness/runner.h"
+#include "tests/gpu_fixture.h"
+
+#ifndef GIB_SOURCE_DIR
+#error "GIB_SOURCE_DIR must point at the source tree"
+#endif
+
+namespace gib {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+// A fresh directory per test, removed afterwards.
+class TempDir {
+ public:
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = fs::temp_directory_path() /
+            ("gib_goldens_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" + std::to_string(::getpid()));
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  fs::path path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// ---------------------------------------------------------------- the 3x rule (no GPU)
+
+Case rule_case(double flip_max, const std::string& compare_aov = "", const std::string& roi = "") {
+  Case c;
+  c.name = "rule";
+  c.file = "cases/rule.json";
+  c.output = "radiance";
+  TechniqueRun run;
+  run.technique = "radiance-cache";
+  run.presets = {"medium"};
+  run.compare_aov = compare_aov;
+  Threshold t;
+  t.metric = "flip";
+  t.against = "reference";
+  t.roi = roi;
+  t.max = flip_max;
+  run.thresholds = {t};
+  c.techniques = {run};
+  return c;
+}
+
+std::string rule_error(const Case& c, const json& meta) {
+  try {
+    check_noise_floor_bounds(c, meta, "goldens/rule/golden.json");
+  } catch (const CaseError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(NoiseFloorRule, ExactlyThreeTimesPassesBelowFailsNamingBothNumbers) {
+  json meta = {{"noise_floor", {{"flip", 0.01}, {"aov", "radiance"}, {"spp", 65536}}}};
+  EXPECT_EQ(rule_error(rule_case(0.03), meta), "") << "a bound at exactly 3x the floor is allowed";
+  EXPECT_EQ(rule_error(rule_case(0.2), meta), "");
+  std::string msg = rule_error(rule_case(0.0299), meta);
+  SCOPED_TRACE(msg);
+  ASSERT_FALSE(msg.empty()) << "a bound below 3x the floor must be rejected";
+  EXPECT_EQ(msg.find('\n'), std::string::npos) << "one line";
+  EXPECT_EQ(msg.rfind("cases/rule.json: ", 0), 0u) << "names the case file first";
+  for (const char* part : {"radiance-cache (medium)", "max 0.0299", "3 x 0.01 = 0.03", "65536 spp",
+                           "goldens/rule/golden.json", "measures the reference, not the technique"})
+    EXPECT_NE(msg.find(part), std::string::npos) << "missing: " << part;
+}
+
+TEST(NoiseFloorRule, NoFloorOrOtherAovOrRoiIsNotChecked) {
+  EXPECT_EQ(rule_error(rule_case(0.0001), json::object()), "") << "golden.json without a noise floor: no check";
+  // A floor written before floors named their AOV was measured on the case's output.
+  json legacy = {{"noise_floor", {{"flip", 0.088}, {"spp", 256}}}};
+  EXPECT_NE(rule_error(rule_case(0.25), legacy), "") << "0.25 < 3 x 0.088 on the output AOV";
+  EXPECT_EQ(rule_error(rule_case(0.25, "direct"), legacy), "") << "no floor measured on the direct AOV";
+  json per_aov = {{"noise_floor", {{"flip", 0.088}, {"aov", "radiance"}, {"aovs", {{"direct", 0.05}}}, {"spp", 256}}}};
+  EXPECT_EQ(rule_error(rule_case(0.15, "direct"), per_aov), "");
+  std::string msg = rule_error(rule_case(0.14, "direct"), per_aov);
+  EXPECT_NE(msg.find("3 x 0.05 = 0.15"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("direct AOV"), std::string::npos) << msg;
+  EXPECT_EQ(rule_error(rule_case(0.001, "", "room"), per_aov), "") << "the floor is a whole-image mean";
+}
+
+// ---------------------------------------------------------------- atomic writes (no GPU)
+
+TEST(GoldenWrites, FailedMetadataWriteKeepsTheOldFile) {
+  TempDir dir;
+  GoldenStore store(dir.path().string(), "c");
+  store.write_metadata({{"files", {{"reference.exr", {{"spp", 256}}}}}});
+  fs::path p = dir.path() / "c" / "golden.json";
+  std::string before = read_text(p);
+  // Invalid UTF-8 cannot be serialised: the write fails before anything replaces golden.json.
+  EXPECT_ANY_THROW(store.write_metadata({{"reason", std::string("bad \xff byte")}}));
+  EXPECT_EQ(read_text(p), before);
+  for (auto& e : fs::directory_iterator(dir.path() / "c"))
+    EXPECT_EQ(e.path().filename(), "golden.json") << "left behind: " << e.path();
+}
+
+TEST(GoldenWrites, FailedImageWriteKeepsTheOldFileAndNoStagedFile) {
+  TempDir dir;
+  GoldenStore store(dir.path().string(), "c");
+  store.write("reference", "", FloatImage(4, 2, 4, 0.5f));
+  fs::path target = dir.path() / "c" / "reference.exr";
+  ASSERT_TRUE(fs::exists(target));
+  std::string before = read_text(target);
+  // history/ cannot be made (a file is in the way): the replacement fails after staging.
+  std::ofstream(dir.path() / "c" / "history") << "in the way";
+  EXPECT_ANY_THROW(store.write("reference", "", FloatImage(4, 2, 4, 2.0f)));
+  EXPECT_EQ(read_text(target), before);
+  for (auto& e : fs::directory_iterator(dir.path() / "c"))
+    EXPECT_TRUE(e.path().filename() == "reference.exr" || e.path().filename() == "history") << "left behind: " << e.path();
+}
+
+// ---------------------------------------------------------------- update-goldens (lavapipe)
+
+// A 16x8 Cornell box, 4 spp by default; one technique row (the reference at low) with a loose
+// flip bound against the reference.
+void write_tiny_case(const fs::path& cases) {
+  fs::create_directories(cases);
+  json c = {{"description", "tiny reference case for the goldens tests"},
+            {"scene", std::string(GIB_SOURCE_DIR) + "/cases/scenes/cornell.json"},
+            {"width", 16},
+            {"height", 8},
+            {"reference_spp", 4},
+            {"techniques", {{{"technique", "reference"},
+                             {"presets", {"low"}},
+                             {"spp", 4},
+                             {"thresholds", {{{"metric", "flip"}, {"max", 0.95}}}}}}}};
+  std::ofstream(cases / "tiny.json") << c.dump(2);
+}
+
+TEST(UpdateGoldens, ReferenceRecordsSppSeedDeviceDriverAndNoiseFloor) {
+  TempDir dir;
+  write_tiny_case(dir.path() / "cases");
+  UpdateOptions o;
+  o.suite.cases_dir = (dir.path() / "cases").string();
+  o.suite.goldens_dir = (dir.path() / "goldens").string();
+  o.suite.validate = true;
+  o.reference = true;
+  o.reason = "test";
+  o.spp = 1024;  // above 512: 32 spp per frame x 32 frames (the GPU split)
+  o.noise_floor = true;
+  ASSERT_EQ(cmd_update_goldens(o), 0);
+  GoldenStore store(o.suite.goldens_dir, "tiny");
+  json meta = store.metadata();
+  SCOPED_TRACE(meta.dump(2));
+  ASSERT_TRUE(meta.contains("noise_floor"));
+  const json& nf = meta["noise_floor"];
+  EXPECT_EQ(nf["spp"], 1024);
+  EXPECT_EQ(nf["seeds"], json({1, 1001}));
+  EXPECT_EQ(nf["aov"], "radiance");
+  EXPECT_GT(nf["flip"].get<double>(), 0.0) << "two seeds of a noisy image differ";
+  EXPECT_EQ(nf["aovs"]["radiance"], nf["flip"]);
+  for (const char* name : {"reference.exr", "reference.direct.exr", "reference.indirect_diffuse.exr"}) {
+    SCOPED_TRACE(name);
+    ASSERT_TRUE(meta["files"].contains(name));
+    const json& f = meta["files"][name];
+    EXPECT_EQ(f["spp"], 1024) << "the --spp override, not the case's 4";
+    EXPECT_EQ(f["frames"], 32);
+    EXPECT_EQ(f["seed"], 1);
+    EXPECT_FALSE(f["device"].get<std::string>().empty());
+    EXPECT_FALSE(f["driver"].get<std::string>().empty());
+    for (const char* k : {"revision", "settings_hash", "date", "reason", "aov"}) EXPECT_TRUE(f.contains(k)) << k;
+    ASSERT_TRUE(f.contains("noise_floor"));
+    EXPECT_EQ(f["noise_floor"]["spp"], 1024);
+    EXPECT_EQ(f["noise_floor"]["seeds"], json({1, 1001}));
+    EXPECT_EQ(f["noise_floor"]["aov"], f["aov"]);
+    EXPECT_EQ(f["noise_floor"]["flip"], nf["aovs"][f["aov"].get<std::string>()]);
+    EXPECT_TRUE(fs::exists(fs::path(store.dir()) / name)) << "references have one file for every device";
+  }
+  // The technique golden of the reference row keeps the case's budget.
+  ASSERT_TRUE(meta["files"].contains("reference.low.exr"));
+  EXPECT_EQ(meta["files"]["reference.low.exr"]["spp"], 4);
+  EXPECT_FALSE(meta["files"]["reference.low.exr"].contains("noise_floor"));
+  Case c = load_case((dir.path() / "cases" / "tiny.json").string());
+  EXPECT_EQ(recorded_reference_spp(c, meta), 1024u);
+
+  // A run uses the committed 1024 spp reference as it is: no re-render, no hash check; the
+  // 0.95 bound sits above 3x the floor.
+  SuiteOptions run = o.suite;
+  run.out = (dir.path() / "out").string();
+  run.stability_scan = false;
+  EXPECT_EQ(cmd_run(run), 0);
+
+  // Again at the case's spp without --noise-floor: the stale floor goes, the old file is kept.
+  std::string hash = meta["files"]["reference.exr"]["settings_hash"];
+  o.spp = 0;
+  o.noise_floor = false;
+  ASSERT_EQ(cmd_update_goldens(o), 0);
+  json again = store.metadata();
+  EXPECT_FALSE(again.contains("noise_floor"));
+  const json& f = again["files"]["reference.exr"];
+  EXPECT_EQ(f["spp"], 4);
+  EXPECT_EQ(f["frames"], 1);
+  EXPECT_FALSE(f.contains("noise_floor"));
+  EXPECT_NE(f["settings_hash"], hash);
+  EXPECT_TRUE(f.contains("flip_vs_previous"));
+  ASSERT_TRUE(f.contains("previous"));
+  EXPECT_TRUE(fs::exists(fs::path(store.dir()) / "history" / f["previous"].get<std::string>()));
+}
+
+TEST(UpdateGoldens, SppAndNoiseFloorNeedReference) {
+  UpdateOptions o;
+  o.reason = "test";
+  o.spp = 64;
+  EXPECT_THROW(cmd_update_goldens(o), std::invalid_argument);
+  o.spp = 0;
+  o.noise_floor = true;
+  EXPECT_THROW(cmd_update_goldens(o), std::invalid_argument);
+}
+
+class SppSplit : public test::GpuTest {};
+
+// Up to 512 spp the split is today's (at most 16 per frame: the committed references stay
+// reproducible); above, about sqrt(spp) per frame.
+TEST_F(SppSplit, SmallBudgetsUnchangedLargeOnesUseFewerFrames) {
+  TempDir dir;
+  write_tiny_case(dir.path() / "cases");
+  Case c = load_case((dir.path() / "cases" / "tiny.json").string());
+  TechniqueRun row{"reference", {"ultra"}, {}, "", {}, {}, {}, 0};
+  for (auto [spp, frames] : std::vector<std::pair<uint32_t, uint32_t>>{{12, 1}, {24, 2}, {512, 32}, {600, 25}, {1024, 32}}) {
+    c.reference_spp = spp;
+    CaseRender r = render_reference(gpu(), c);
+    EXPECT_EQ(r.spp, spp);
+    EXPECT_EQ(r.frames, frames) << spp << " spp";
+    // A reference row of the case renders its own spp, not the committed reference's budget.
+    row.spp = 24;
+    CaseRender rr = render_case(gpu(), c, row, "ultra");
+    EXPECT_EQ(rr.spp, 24u);
+    EXPECT_EQ(rr.frames, 2u);
+  }
+}
+
+}  // namespace
+}  // namespace gib
