@@ -391,7 +391,15 @@ TechniqueRun read_run(const Node& n, const Case& c, bool negative) {
   }
   if (Node kf = n["known_failure"]; kf.present()) {
     if (negative) kf.fail("no \"known_failure\" in a negative control (it must fail anyway)");
-    run.known_failure = read_nonempty_string(kf);
+    if (kf.v->is_object()) {
+      const std::vector<std::string> classes = {"lavapipe", "nvidia", "amd", "intel", "other"};
+      require_object(kf, classes);
+      if (kf.v->empty()) kf.fail("a string, or an object of device class -> string with at least one key");
+      for (auto it = kf.v->begin(); it != kf.v->end(); ++it) run.known_failure[it.key()] = read_nonempty_string(kf[it.key()]);
+    } else {
+      run.known_failure["*"] = read_string(kf, "a non-empty string, or an object of device class -> string");
+      if (run.known_failure["*"].empty()) kf.fail("a non-empty string, or an object of device class -> string");
+    }
   }
   if (Node aov = n["compare_aov"]; aov.present())
     run.compare_aov = read_choice(aov, reference_outputs(), "one of the reference outputs");

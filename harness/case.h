@@ -77,8 +77,16 @@ struct TechniqueRun {
   std::map<std::string, std::map<std::string, double>> variants;
   // Non-empty: a defect known to make this run fail, in words (with the issue or note that
   // tracks it). A failing run is reported as "known_failure" and does not fail the suite; a
-  // run that passes fails it ("remove known_failure"), so the mark cannot go stale.
-  std::string known_failure;
+  // run that passes fails it ("remove known_failure"), so the mark cannot go stale. Keyed by
+  // device class (harness/goldens.h device_class), "*" for every class: a defect may show on
+  // one class of device only (a precision-dependent leak, a driver's rounding).
+  std::map<std::string, std::string> known_failure;
+  // The known failure that applies on `device_class` ("" if none).
+  std::string known_failure_on(const std::string& device_class) const {
+    auto it = known_failure.find(device_class);
+    if (it == known_failure.end()) it = known_failure.find("*");
+    return it == known_failure.end() ? "" : it->second;
+  }
   // A reference (path tracer) row's samples per pixel, split over frames like a committed
   // reference's; independent of Case::reference_spp (the committed reference's budget, often
   // 65536+ and rendered on a GPU). 0: the case's frames at the preset's spp per frame.

@@ -445,14 +445,14 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
   for (auto& [name, vr] : variants)
     save_images(ctx.o, row.image_id + ".variant-" + name, image_at(vr, last, c), ref, c);
   row.status = failed ? "fail" : "pass";
-  if (!run.known_failure.empty() && kind == "technique") {
+  if (std::string known = run.known_failure_on(ctx.cls); !known.empty() && kind == "technique") {
     if (failed) {
       row.status = "known_failure";
-      row.messages.insert(row.messages.begin(), "known failure: " + run.known_failure);
+      row.messages.insert(row.messages.begin(), "known failure: " + known);
     } else {
       row.status = "fail";
-      row.messages.push_back("marked known_failure but every check passed: remove \"known_failure\" from the case (" +
-                             run.known_failure + ")");
+      row.messages.push_back(fmt::format("marked known_failure on {} but every check passed: remove it from the case ({})",
+                                         ctx.cls, known));
     }
   }
   return row;

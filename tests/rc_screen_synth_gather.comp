@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Writes gather_sh_* (L0 = low or high by the gather pixel's surface height, plus per-pixel
-// noise; L1 = 0) and a constant gather_hit_distance, so gi_denoise can be tested on known input.
+// noise; L1 = 0), gather_direct (rgb = the same value) and a constant gather_hit_distance, so
+// gi_denoise can be tested on known input.
 #include "tests/rc_screen_synth_gather_shared.h"
 #include "hash.glsl"
 layout(local_size_x = kSynthGroup, local_size_y = kSynthGroup) in;
@@ -10,6 +11,7 @@ layout(set = 0, binding = kSynthBindShR, rgba16f) uniform writeonly image2D out_
 layout(set = 0, binding = kSynthBindShG, rgba16f) uniform writeonly image2D out_g;
 layout(set = 0, binding = kSynthBindShB, rgba16f) uniform writeonly image2D out_b;
 layout(set = 0, binding = kSynthBindHit, r32f) uniform writeonly image2D out_hit;
+layout(set = 0, binding = kSynthBindDirect, rgba16f) uniform writeonly image2D out_direct;
 layout(push_constant) uniform Push { SynthPush push; };
 void main() {
   ivec2 g = ivec2(gl_GlobalInvocationID.xy);
@@ -22,5 +24,6 @@ void main() {
   imageStore(out_r, g, v);
   imageStore(out_g, g, v);
   imageStore(out_b, g, v);
+  imageStore(out_direct, g, vec4(v.xxx, 0.0));
   imageStore(out_hit, g, vec4(pos.w == 0.0 ? 0.0 : 1.0));
 }

@@ -9,6 +9,7 @@ GIB_CONST(uint, kSynthBindShR, 1)
 GIB_CONST(uint, kSynthBindShG, 2)
 GIB_CONST(uint, kSynthBindShB, 3)
 GIB_CONST(uint, kSynthBindHit, 4)
+GIB_CONST(uint, kSynthBindDirect, 5)  // gather_direct: rgb = the same value as L0
 struct SynthPush {
   uint divisor;
   float split_y;      // gather pixels whose surface lies above this height get `high`

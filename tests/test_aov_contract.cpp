@@ -1,6 +1,6 @@
 // The AOV contract (renderer/techniques/aov.h) checked on every technique: direct +
-// indirect_diffuse == radiance where a technique declares both; on four one-source scenes
-// (sun, sky, point light, emissive quad) each technique's `direct` agrees with the reference's
+// indirect_diffuse == radiance where a technique declares both; on five one-source scenes
+// (sun, sky, point light, emissive quad, sky on a curved mesh) each technique's `direct` agrees with the reference's
 // within their noise; on a sky-lit plane both AOVs equal the analytic values.
 #include <gtest/gtest.h>
 
@@ -56,6 +56,15 @@ std::vector<OneSource> one_source_scenes() {
                                   {"primitive", {{"type", "quad"}, {"size", {6, 6}}, {"facing", "-y"}}},
                                   {"material", "lamp"},
                                   {"transform", {{"translate", {0, 2, 0}}}}}})}}},
+      // Sky on a coarse (6-segment) smooth-shaded sphere: interpolated normals lean past the faces,
+      // so rays that leave along them start inside the mesh unless they leave as the reference's
+      // do (without the face-normal mirror: direct 0.674 vs 0.716, 12 sigma; with it: 0.717).
+      {"sky_sphere",
+       {{"sky", {{"type", "constant"}, {"radiance", {1.5, 1.5, 1.5}}}},
+        {"objects", json::array({{{"name", "ball"},
+                                  {"primitive", {{"type", "sphere"}, {"radius", 0.4}, {"segments", 6}}},
+                                  {"material", "grey"},
+                                  {"transform", {{"translate", {0, 0.4, 0}}}}}})}}},
   };
 }
 
@@ -204,7 +213,9 @@ TEST_F(AovContract, OneSourceDirectAgreesWithReference) {
       FloatImage a = render_mean(gpu(), scene, t.name, {res}, 8, 1, "medium", 4)[res];
       FloatImage b = render_mean(gpu(), scene, t.name, {res}, 8, 1001, "medium", 4)[res];
       double mean = image_mean(a), var = mean_variance(a, b);
-      double tol = 4.0 * std::sqrt(var + ref_var) + 1e-5 * ref_mean;
+      // 4 sigma, plus 1e-4 of the mean for float arithmetic (sums in another order, the GPU's
+      // approximate transcendentals: an H100 reads 5e-5 apart on the noiseless sun floor).
+      double tol = 4.0 * std::sqrt(var + ref_var) + 1e-4 * ref_mean;
       std::printf("%-13s %-14s direct mean %.5f, reference %.5f (diff %+.5f, tolerance %.5f = 4 sigma)\n", src.name,
                   t.name.c_str(), mean, ref_mean, mean - ref_mean, tol);
       EXPECT_NEAR(mean, ref_mean, tol) << src.name << " " << t.name;

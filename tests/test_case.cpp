@@ -14,6 +14,7 @@
 #include <string>
 
 #include "harness/case.h"
+#include "tests/temp_dir.h"
 #include "harness/runner.h"
 #include "renderer/techniques/technique.h"
 #include "tests/technique_settings.h"
@@ -31,28 +32,8 @@ using json = nlohmann::json;
 const std::string kCases = std::string(GIB_SOURCE_DIR) + "/cases";
 
 // A fresh directory per test, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() /
-            ("gib_case_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" + std::to_string(::getpid()));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string write(const std::string& name, const std::string& text) const {
-    std::string p = (path_ / name).string();
-    std::ofstream(p, std::ios::binary) << text;
-    return p;
-  }
-  std::string str() const { return path_.string(); }
-
- private:
-  fs::path path_;
+struct TempDir : test::TempDir {
+  TempDir() : test::TempDir("gib_case_") {}
 };
 
 // A small valid case with an inline scene; each malformed test breaks one thing in it.
@@ -116,17 +97,17 @@ TEST(CaseLoad, Cornell) {
   const TechniqueRun& direct = c.techniques[0];
   EXPECT_EQ(direct.technique, "direct");
   EXPECT_EQ(direct.compare_aov, "direct");
-  std::optional<double> flip_max;
-  bool psnr_min = false;
-  for (const Threshold& t : direct.thresholds) {
-    if (t.metric == "flip" && t.against == "reference") flip_max = t.max;
-    if (t.metric == "psnr" && t.against == "reference") psnr_min = t.min.has_value();
-  }
-  ASSERT_TRUE(flip_max);
-  EXPECT_TRUE(psnr_min);
+  // Same light paths as the reference's direct AOV: the image mean within [0.95, 1.05].
+  std::optional<double> all_min, all_max;
+  for (const Threshold& t : direct.thresholds)
+    if (t.metric == "roi_ratio" && t.against == "reference" && t.roi == "all") all_min = t.min, all_max = t.max;
+  ASSERT_TRUE(all_min && all_max);
+  EXPECT_EQ(*all_min, 0.95);
+  EXPECT_EQ(*all_max, 1.05);
   EXPECT_EQ(c.techniques[1].technique, "reference");
   ASSERT_FALSE(c.techniques[1].thresholds.empty());
-  EXPECT_EQ(c.techniques[1].thresholds[0].against, "golden");
+  EXPECT_EQ(c.techniques[1].thresholds[0].against, "reference");
+  EXPECT_EQ(c.techniques[1].spp, 256u);
 
   ASSERT_EQ(c.negative_controls.size(), 1u);
   const TechniqueRun& nc = c.negative_controls[0].run;
@@ -134,9 +115,11 @@ TEST(CaseLoad, Cornell) {
   ASSERT_EQ(nc.presets.size(), 1u);
   EXPECT_EQ(nc.compare_aov, "radiance");
   EXPECT_EQ(nc.options.at("sky_rays"), 0.0);
-  ASSERT_EQ(nc.thresholds.size(), 1u);
-  EXPECT_EQ(nc.thresholds[0].metric, "flip");
-  EXPECT_EQ(nc.thresholds[0].max, flip_max) << "the control must be held to the positive's bound";
+  ASSERT_FALSE(nc.thresholds.empty());
+  EXPECT_EQ(nc.thresholds[0].metric, "roi_ratio");
+  EXPECT_EQ(nc.thresholds[0].roi, "all");
+  EXPECT_EQ(nc.thresholds[0].min, all_min) << "the control must be held to the positive's bound";
+  EXPECT_EQ(nc.thresholds[0].max, all_max);
   Settings s = apply_options(find_technique(nc.technique), apply_preset(find_technique("direct"), nc.presets[0], {}),
                              nc.options);
   EXPECT_EQ(sky_rays(s), 0u);
@@ -147,7 +130,7 @@ TEST(CaseLoad, WhiteFurnace) {
   EXPECT_EQ(c.name, "white-furnace");
   EXPECT_EQ(c.width, 96u);
   EXPECT_EQ(c.height, 54u);
-  EXPECT_EQ(c.reference_spp, 256u);
+  EXPECT_EQ(c.reference_spp, 65536u);
   ASSERT_TRUE(c.analytic_value);
   EXPECT_EQ(*c.analytic_value, 1.0);
   ASSERT_EQ(c.techniques.size(), 1u);
@@ -275,6 +258,31 @@ TEST(CaseErrors, TechniquesPresetsOptions) {
   d = valid_case();
   d["techniques"].push_back({{"technique", "direct"}, {"presets", {"high", "medium"}}});
   expect_error(dir, d, "/techniques/2/presets/1", "/techniques/0");
+}
+
+TEST(CaseLoad, KnownFailureEverywhereOrPerDeviceClass) {
+  TempDir dir;
+  json d = valid_case();
+  d["techniques"][0]["known_failure"] = "loses light (issue 19)";
+  Case c = load_case(dir.write("kf.json", d.dump()));
+  EXPECT_EQ(c.techniques[0].known_failure_on("lavapipe"), "loses light (issue 19)");
+  EXPECT_EQ(c.techniques[0].known_failure_on("nvidia"), "loses light (issue 19)");
+  EXPECT_EQ(c.techniques[1].known_failure_on("nvidia"), "") << "an unmarked run";
+  d["techniques"][0]["known_failure"] = {{"nvidia", "leaks on NVIDIA only"}};
+  c = load_case(dir.write("kf.json", d.dump()));
+  EXPECT_EQ(c.techniques[0].known_failure_on("nvidia"), "leaks on NVIDIA only");
+  EXPECT_EQ(c.techniques[0].known_failure_on("lavapipe"), "") << "not marked on the other classes";
+
+  d["techniques"][0]["known_failure"] = "";
+  expect_error(dir, d, "/techniques/0/known_failure", "non-empty string, or an object of device class");
+  d["techniques"][0]["known_failure"] = json::object();
+  expect_error(dir, d, "/techniques/0/known_failure", "at least one key");
+  d["techniques"][0]["known_failure"] = {{"nvdia", "typo"}};
+  expect_error(dir, d, "/techniques/0/known_failure/nvdia", "lavapipe, nvidia, amd, intel, other");
+  d["techniques"][0]["known_failure"] = {{"nvidia", ""}};
+  expect_error(dir, d, "/techniques/0/known_failure/nvidia", "non-empty string");
+  d["techniques"][0]["known_failure"] = 3;
+  expect_error(dir, d, "/techniques/0/known_failure", "got 3");
 }
 
 TEST(CaseErrors, Thresholds) {

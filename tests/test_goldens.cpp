@@ -10,6 +10,7 @@
 #include <string>
 
 #include "harness/case.h"
+#include "tests/temp_dir.h"
 #include "harness/case_render.h"
 #include "harness/goldens.h"
 #include "harness/runner.h"
@@ -26,23 +27,8 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 // A fresh directory per test, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() /
-            ("gib_goldens_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" + std::to_string(::getpid()));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  fs::path path() const { return path_; }
-
- private:
-  fs::path path_;
+struct TempDir : test::TempDir {
+  TempDir() : test::TempDir("gib_goldens_") {}
 };
 
 std::string read_text(const fs::path& p) {
@@ -224,6 +210,54 @@ TEST(UpdateGoldens, ReferenceRecordsSppSeedDeviceDriverAndNoiseFloor) {
   EXPECT_TRUE(f.contains("flip_vs_previous"));
   ASSERT_TRUE(f.contains("previous"));
   EXPECT_TRUE(fs::exists(fs::path(store.dir()) / "history" / f["previous"].get<std::string>()));
+}
+
+// A known_failure mark: a failing run is reported as known_failure and passes the suite; a
+// passing run marked on this device's class fails it; a mark for another class is ignored.
+TEST(KnownFailure, FailingRunIsKnownPassingRunGoesStaleOtherClassIgnored) {
+  TempDir dir;
+  fs::path cases = dir.path() / "cases";
+  write_tiny_case(cases);
+  UpdateOptions o;
+  o.suite.cases_dir = cases.string();
+  o.suite.goldens_dir = (dir.path() / "goldens").string();
+  o.reference = true;
+  o.reason = "test";
+  ASSERT_EQ(cmd_update_goldens(o), 0);
+  json c = json::parse(read_text(cases / "tiny.json"));
+  SuiteOptions run = o.suite;
+  run.out = (dir.path() / "out").string();
+  run.stability_scan = false;
+  auto run_with = [&](const json& known, bool impossible_bound) {
+    json d = c;
+    d["techniques"][0]["known_failure"] = known;
+    if (impossible_bound) {
+      d["rois"] = {{{"name", "all"}, {"box", {0, 0, 1, 1}}}};
+      d["techniques"][0]["thresholds"].push_back({{"metric", "roi_mean"}, {"roi", "all"}, {"min", 1e9}});
+    }
+    std::ofstream(cases / "tiny.json") << d.dump(2);
+    int rc = cmd_run(run);
+    json row = json::parse(read_text(fs::path(run.out) / "results.json"))["results"][0];
+    return std::make_pair(rc, row);
+  };
+  auto [rc, row] = run_with("a defect", true);
+  EXPECT_EQ(rc, 0) << row.dump(2);
+  EXPECT_EQ(row["status"], "known_failure");
+  EXPECT_NE(row.dump().find("known failure: a defect"), std::string::npos) << row.dump(2);
+
+  std::tie(rc, row) = run_with("a defect", false);
+  EXPECT_NE(rc, 0) << "a marked run that passes fails the suite";
+  EXPECT_EQ(row["status"], "fail");
+  EXPECT_NE(row.dump().find("marked known_failure on "), std::string::npos) << row.dump(2);
+
+  std::string cls = json::parse(read_text(fs::path(run.out) / "results.json"))["device"]["class"];
+  std::string other = cls == "amd" ? "intel" : "amd";
+  std::tie(rc, row) = run_with({{other, "another device's defect"}}, false);
+  EXPECT_EQ(rc, 0) << row.dump(2);
+  EXPECT_EQ(row["status"], "pass");
+  std::tie(rc, row) = run_with({{cls, "this device's defect"}}, true);
+  EXPECT_EQ(rc, 0) << row.dump(2);
+  EXPECT_EQ(row["status"], "known_failure");
 }
 
 TEST(UpdateGoldens, SppAndNoiseFloorNeedReference) {

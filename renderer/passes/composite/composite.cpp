@@ -16,8 +16,10 @@ class CompositePass final : public Pass {
     d.slots = {{"direct_light", Access::read},
                {"gbuffer_albedo", Access::read},
                {"gi_irradiance", Access::read},
+               {"gi_direct_irradiance", Access::read},
                {"final_color", Access::write, color},
-               {"indirect_diffuse", Access::write, ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values())}};
+               {"indirect_diffuse", Access::write, ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values())},
+               {"direct_radiance", Access::write, ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values())}};
     return d;
   }
 
@@ -28,7 +30,9 @@ class CompositePass final : public Pass {
                                     {kCompositeBindAlbedo, "gbuffer_albedo"},
                                     {kCompositeBindIrradiance, "gi_irradiance"},
                                     {kCompositeBindColor, "final_color"},
-                                    {kCompositeBindIndirect, "indirect_diffuse"}},
+                                    {kCompositeBindIndirect, "indirect_diffuse"},
+                                    {kCompositeBindGiDirect, "gi_direct_irradiance"},
+                                    {kCompositeBindDirectOut, "direct_radiance"}},
                          .groups_x = div_up(ctx.width("final_color"), kCompositeGroup),
                          .groups_y = div_up(ctx.height("final_color"), kCompositeGroup),
                          .scene = false});

@@ -1,10 +1,12 @@
-// composite: the radiance-cache technique's output. final_color = direct_light + albedo x
-// gi_irradiance (gi_irradiance is irradiance / pi, so albedo x gi_irradiance is the Lambertian
-// indirect radiance); indirect_diffuse = albedo x gi_irradiance (the AOV the reference's
-// indirect_diffuse is compared with).
-// Slots: reads direct_light, gbuffer_albedo, gi_irradiance; writes final_color (RGBA32F,
-// persistent: final_gather reads last frame's copy as its screen cache, so the graph keeps two)
-// and indirect_diffuse (RGBA32F).
+// composite: the radiance-cache technique's output, split by the AOV contract
+// (renderer/techniques/aov.h). direct_radiance = direct_light (emission seen by the camera, sun,
+// local lights) + albedo x gi_direct_irradiance (sky and emissive surfaces the gather reached
+// with no further bounce); indirect_diffuse = albedo x gi_irradiance (bounce light; both are
+// irradiance / pi, so albedo x E is the Lambertian radiance); final_color = direct_radiance +
+// indirect_diffuse.
+// Slots: reads direct_light, gbuffer_albedo, gi_irradiance, gi_direct_irradiance; writes
+// final_color (RGBA32F, persistent: final_gather reads last frame's copy as its screen cache, so
+// the graph keeps two), indirect_diffuse and direct_radiance (RGBA32F).
 // Seed: the idTech 8 "Global Illumination" talk, "Denoise and Upscale Passes" (step 4: adding direct
 // lighting).
 // Limits: diffuse only (no indirect specular / reflection probes); translucent surfaces get no

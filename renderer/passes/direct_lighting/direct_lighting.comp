@@ -22,6 +22,7 @@ layout(set = 0, binding = kDirectBindNormal, rgba16f) uniform readonly image2D g
 layout(set = 0, binding = kDirectBindPosition, rgba32f) uniform readonly image2D gb_position;
 layout(set = 0, binding = kDirectBindEmissive, rgba16f) uniform readonly image2D gb_emissive;
 layout(set = 0, binding = kDirectBindOut, rgba32f) uniform writeonly image2D out_direct;
+layout(set = 0, binding = kDirectBindVbuffer, rg32ui) uniform readonly uimage2D vbuffer;
 layout(push_constant) uniform Push { DirectPush push; };
 
 const float kShadowMax = 3.4e38;
@@ -70,18 +71,30 @@ void main() {
     // Cosine-distributed rays: each carries albedo * the radiance it finds straight away, the
     // sky's where it escapes, an emissive surface's emission where it hits one (light that
     // reaches this surface with no further bounce: direct, by the AOV contract).
+    // The rays leave as the reference's path continuation does (path_trace.comp): a direction
+    // below the face (the interpolated normal leans past it on curved meshes) is mirrored back
+    // across the face plane, and the origin is offset along the face normal, so no ray starts
+    // inside the mesh and loses its light to a self-hit.
+    vec3 ng = n;
+    uint ids = imageLoad(vbuffer, p).x;
+    if (ids != kVisibilityNone) {
+      vec3 o, d;
+      gib_camera_ray(vec2(p) + 0.5, o, d);
+      ng = gib_face_normal_facing(ids - 1u, d, n);
+    }
     vec3 sky = vec3(0.0);
     for (uint i = 0u; i < push.sky_rays; ++i) {
       bool back = translucency > 0.0 && gib_next(rng) < translucency;
-      vec3 side = back ? -n : n;
-      vec3 wi = gib_cosine_hemisphere(side, gib_next2(rng));
+      vec3 side = back ? -n : n, side_g = back ? -ng : ng;
+      vec3 wi = gib_above_face(gib_cosine_hemisphere(side, gib_next2(rng)), side_g);
+      vec3 origin = gib_offset_ray(x, side_g);
       if (kHasEmissive) {
         GibHit hit;
-        if (!trace_closest(gib_offset_ray(x, side), wi, 0.0, kShadowMax, hit))
+        if (!trace_closest(origin, wi, 0.0, kShadowMax, hit))
           sky += kHasSky ? gib_sky_radiance(wi) : vec3(0.0);
         else
           sky += gib_materials[gib_surface(hit.triangle, hit.u, hit.v, push.nan_guards != 0u).material].emissive;
-      } else if (!trace_any(gib_offset_ray(x, side), wi, 0.0, kShadowMax)) {
+      } else if (!trace_any(origin, wi, 0.0, kShadowMax)) {
         sky += gib_sky_radiance(wi);
       }
     }

@@ -10,7 +10,8 @@ class DirectLightingPass final : public Pass {
   PassDecl declare(const Scene&, const Settings& s) const override {
     PassDecl d;
     d.name = "direct_lighting";
-    d.slots = {{"gbuffer_albedo", Access::read},
+    d.slots = {{"vbuffer", Access::read},
+               {"gbuffer_albedo", Access::read},
                {"gbuffer_normal", Access::read},
                {"gbuffer_position", Access::read},
                {"gbuffer_emissive", Access::read},
@@ -25,7 +26,8 @@ class DirectLightingPass final : public Pass {
     DirectPush push{ctx.settings.params<DirectLightingParams>().sky_rays, ctx.settings.nan_guards ? 1u : 0u, 0, 0};
     static_assert(sizeof(push) == 16, "DirectPush must match direct_lighting.comp's push block");
     record_compute(ctx, {.shader = "direct_lighting.comp",
-                         .images = {{kDirectBindAlbedo, "gbuffer_albedo"},
+                         .images = {{kDirectBindVbuffer, "vbuffer"},
+                                    {kDirectBindAlbedo, "gbuffer_albedo"},
                                     {kDirectBindNormal, "gbuffer_normal"},
                                     {kDirectBindPosition, "gbuffer_position"},
                                     {kDirectBindEmissive, "gbuffer_emissive"},

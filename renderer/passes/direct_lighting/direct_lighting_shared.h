@@ -1,6 +1,7 @@
 #ifndef GIB_DIRECT_LIGHTING_SHARED_H
 #define GIB_DIRECT_LIGHTING_SHARED_H
 #include "frame_shared.h"
+#include "vbuffer_shared.h"
 GIB_SHARED_BEGIN
 GIB_CONST(uint, kDirectGroup, 8)
 GIB_CONST(uint, kDirectBindAlbedo, 8)
@@ -8,6 +9,7 @@ GIB_CONST(uint, kDirectBindNormal, 9)
 GIB_CONST(uint, kDirectBindPosition, 10)
 GIB_CONST(uint, kDirectBindEmissive, 11)
 GIB_CONST(uint, kDirectBindOut, 12)  // rgba32f direct radiance (HDR)
+GIB_CONST(uint, kDirectBindVbuffer, 13)  // triangle ids: the face normal for sky rays
 // Specialization constants: which light types the scene has (dead code elimination).
 GIB_CONST(uint, kDirectSpecSun, 0)
 GIB_CONST(uint, kDirectSpecSky, 1)

@@ -56,4 +56,24 @@ vec3 gib_offset_ray(vec3 p, vec3 n) {
               abs(p.y) < kOrigin ? p.y + kFloatScale * n.y : pi.y,
               abs(p.z) < kOrigin ? p.z + kFloatScale * n.z : pi.z);
 }
+// Unit face normal of triangle tri on the side `view` comes from (view: a direction towards the
+// surface, e.g. the camera ray); `fallback` when the triangle has no area or is not finite.
+vec3 gib_face_normal_facing(uint tri, vec3 view, vec3 fallback) {
+  GpuTriangle t = gib_triangles[tri];
+  vec3 a = gib_vertices[t.i0].position;
+  vec3 g = cross(gib_vertices[t.i1].position - a, gib_vertices[t.i2].position - a);
+  if (!(dot(g, g) > 0.0) || !gib_finite(g)) return fallback;
+  g = normalize(g);
+  return dot(g, view) > 0.0 ? -g : g;
+}
+
+// A direction sampled around an interpolated normal, leaving a surface whose face normal (on
+// the leaving side) is ng: one below the face is mirrored back across the face plane, as the
+// reference path tracer continues its paths; with the origin offset along ng no ray starts
+// inside the mesh and loses its light to a self-hit.
+vec3 gib_above_face(vec3 d, vec3 ng) {
+  float below = dot(d, ng);
+  return below <= 0.0 ? normalize(d - 2.0 * below * ng) : d;
+}
+
 #endif

@@ -37,10 +37,6 @@ void apply_preset_row(RadianceCacheSettings& s, const Preset& p) {
 using S = RadianceCacheSettings;
 std::vector<TechniqueOption> own_options() {
   return {
-      option("sky_rays",
-             "direct_lighting's cosine rays per pixel for the sky's and emissive surfaces' direct light; the final "
-             "gather then keeps only light that bounced (the AOV contract; >= 1)",
-             1, 64, &DirectLightingParams::sky_rays),
       option("visibility_test", "leak mitigation: Chebyshev test on probe distance moments (0/1)", 0, 1,
              &S::visibility_test),
       option("normal_bias", "leak mitigation: metres along the normal before sampling probes", 0, 10, &S::normal_bias),
@@ -61,6 +57,10 @@ std::vector<TechniqueOption> own_options() {
       option("gather_divisor", "final gather at 1/2 or 1/4 resolution (2 or 4)", 2, 4, &S::gather_divisor),
       option("cache_log2_cells", "radiance cache capacity, log2 cells", 4, 24, &S::cache_log2_cells),
       option("cache_reuse_frames", "frames a shaded cache cell is reused", 1, 1024, &S::cache_reuse_frames),
+      option("denoise_hit_weight",
+             "gi_denoise weighs the bounce SH's taps by hit-distance similarity too, as the seed (0/1; default 0: the "
+             "weight depends on the values and biases the mean; the direct part always takes geometry weights only)",
+             0, 1, &S::denoise_hit_weight),
       option("denoise_radius", "bilateral half-width in gather pixels (0: off)", 0, 16, &S::denoise_radius),
       option("probe_hysteresis", "weight of last frame's probe texel when blending (0: no history)", 0, 0.999,
              &S::probe_hysteresis),
@@ -97,9 +97,10 @@ Technique radiance_cache_technique() {
               {"gi_upscale", make_gi_upscale_pass},
               {"composite", make_composite_pass}};
   t.output = "final_color";
-  t.contract_aovs = {{"direct", "direct_light"}, {"indirect_diffuse", "indirect_diffuse"}};
-  t.aovs = {"indirect_diffuse", "gi_irradiance",    "direct_light",     "probe_irradiance", "probe_visibility",
-            "gather_sh_r",      "gbuffer_albedo",   "gbuffer_normal",   "gbuffer_position"};
+  t.contract_aovs = {{"direct", "direct_radiance"}, {"indirect_diffuse", "indirect_diffuse"}};
+  t.aovs = {"indirect_diffuse", "direct_radiance",  "gi_irradiance",  "gi_direct_irradiance", "direct_light",
+            "probe_irradiance", "probe_visibility", "gather_sh_r",    "gather_direct",        "gbuffer_albedo",
+            "gbuffer_normal",   "gbuffer_position"};
   define_settings<RadianceCacheSettings>(t, kPresets, apply_preset_row);
   t.options = with_common_options(own_options(), {0, 1, 2});
   return t;

@@ -10,9 +10,10 @@
 namespace gib {
 
 struct RadianceCacheSettings : TechniqueSettingsOf<RadianceCacheSettings>, DirectLightingParams {
-  // sky_rays (DirectLightingParams, default 4): direct_lighting traces the sky's and emissive
-  // surfaces' light that reaches the visible surface straight away (the AOV contract's `direct`,
-  // renderer/techniques/aov.h); the final gather then carries only light that bounced once more.
+  // The sky and emissive surfaces reach surfaces through the final gather, which keeps that
+  // part (the AOV contract's `direct`, renderer/techniques/aov.h) apart from bounce light, so
+  // direct_lighting must not trace them again.
+  RadianceCacheSettings() { sky_rays = 0; }
   uint32_t cascades = 3;            // irradiance-volume cascades (16^3 probes each), one updated per frame
   float probe_spacing = 0.5f;       // metres between cascade-0 probes; doubles per cascade
   uint32_t rays_per_probe = 32;     // visibility rays per updated probe (16 / 32 / 64)
@@ -34,6 +35,7 @@ struct RadianceCacheSettings : TechniqueSettingsOf<RadianceCacheSettings>, Direc
   uint32_t history_format = 0;      // 0 RGB9E5 (R32_UINT), 1 RGBA16F, 2 R11G11B10F, 3 RGBA32F
   uint32_t history_max_frames = 16; // n_max of the temporal filter
   uint32_t denoise_radius = 3;      // bilateral half-width in gather pixels
+  uint32_t denoise_hit_weight = 0;  // gi_denoise: 1 = SH taps also weigh hit-distance similarity (the seed's; biased, radiance_cache.md)
   bool multi_bounce = true;         // 0: no cache feeds back on itself (single bounce; white-furnace negative control)
   bool pre_exposure = true;         // screen-space GI works on radiance x P (exposure pass); 0: P = 1 (negative control)
 };

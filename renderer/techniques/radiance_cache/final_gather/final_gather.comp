@@ -36,6 +36,8 @@ layout(set = 0, binding = kGatherBindShR, rgba16f) uniform writeonly image2D out
 layout(set = 0, binding = kGatherBindShG, rgba16f) uniform writeonly image2D out_sh_g;
 layout(set = 0, binding = kGatherBindShB, rgba16f) uniform writeonly image2D out_sh_b;
 layout(set = 0, binding = kGatherBindHitDistance, r32f) uniform writeonly image2D out_hit;
+layout(set = 0, binding = kGatherBindDirect, rgba16f) uniform writeonly image2D out_direct;
+layout(set = 0, binding = kGatherBindVbuffer, rg32ui) uniform readonly uimage2D vbuffer;
 // Pre-exposure (exposure pass): float[4], P this frame at kGatherExposureNow.
 layout(set = 0, binding = kGatherBindExposure, std430) readonly buffer Exposure { float exposure[4]; };
 
@@ -79,10 +81,11 @@ vec4 sample_sh(float radiance, vec4 basis_d, vec4 basis_n, float weight) {
   return gib_clamp_keep_nan(vec4(l0, l1), -kHalfMax, kHalfMax);
 }
 
-void write_out(ivec2 g, vec4 r, vec4 gg, vec4 b, float distance) {
+void write_out(ivec2 g, vec4 r, vec4 gg, vec4 b, vec3 direct, float distance) {
   imageStore(out_sh_r, g, r);
   imageStore(out_sh_g, g, gg);
   imageStore(out_sh_b, g, b);
+  imageStore(out_direct, g, vec4(direct, 0.0));
   imageStore(out_hit, g, vec4(distance, 0.0, 0.0, 0.0));
 }
 
@@ -94,14 +97,14 @@ void main() {
   ivec2 p = min(g * div + div / 2, full - 1);  // the gather pixel's representative
   vec4 pos = imageLoad(gb_position, p);
   if (pos.w == 0.0) {  // sky: no surface to gather for
-    write_out(g, vec4(0.0), vec4(0.0), vec4(0.0), 0.0);
+    write_out(g, vec4(0.0), vec4(0.0), vec4(0.0), vec3(0.0), 0.0);
     return;
   }
   vec3 n = normalize(imageLoad(gb_normal, p).xyz);
   if (rc.flags.y != 0u && !gib_finite(n)) {
     // Guard: no direction to gather around (broken G-buffer normal): an empty sample, which
     // gi_denoise and gi_upscale then skip as a tap (its normal is not finite either).
-    write_out(g, vec4(0.0), vec4(0.0), vec4(0.0), kGatherMissDistance);
+    write_out(g, vec4(0.0), vec4(0.0), vec4(0.0), vec3(0.0), kGatherMissDistance);
     return;
   }
 
@@ -112,13 +115,26 @@ void main() {
   vec2 u = vec2(bits >> 8u) * (1.0 / 16777216.0);
   vec3 d = gib_cosine_hemisphere(n, u);
   float cos_t = sqrt(max(0.0, 1.0 - u.x));
+  // Leave as the reference's paths do (surface.glsl gib_above_face): mirrored above the face,
+  // offset along the face normal. cos_t (the sample's pdf) is the unmirrored direction's.
+  vec3 ng = n;
+  uint ids = imageLoad(vbuffer, p).x;
+  if (ids != kVisibilityNone) {
+    vec3 o, view;
+    gib_camera_ray(vec2(p) + 0.5, o, view);
+    ng = gib_face_normal_facing(ids - 1u, view, n);
+  }
+  d = gib_above_face(d, ng);
 
-  vec3 radiance;
+  // The ray's radiance in two parts (the AOV contract, renderer/techniques/aov.h): `direct`,
+  // what reaches the gather point with no further bounce (the sky where the ray escapes, the
+  // emission of the surface it hits), and the rest, light that bounced at the hit.
+  vec3 radiance = vec3(0.0), direct = vec3(0.0);
   float distance = kGatherMissDistance;
   uint served = kGatherStatSky;
   GibHit hit;
-  if (!trace_closest(gib_offset_ray(pos.xyz, n), d, 0.0, kFar, hit)) {
-    radiance = push.sky != 0u ? gib_sky_radiance(d) : vec3(0.0);
+  if (!trace_closest(gib_offset_ray(pos.xyz, ng), d, 0.0, kFar, hit)) {
+    direct = gib_sky_radiance(d);
   } else {
     distance = hit.t;
     GibSurface s = gib_surface(hit.triangle, hit.u, hit.v, rc.flags.y != 0u);
@@ -134,20 +150,23 @@ void main() {
       radiance = rc_sample_irradiance(s.position, n_hit, -d) * albedo + m.emissive;
       served = kGatherStatVolume;
     }
-    // The hit's own emission reaches the gather pixel with no further bounce: `direct` by the
-    // AOV contract, which direct_lighting's rays already add when it traces them (push.sky 0).
-    // The gather keeps only light that bounced at the hit.
-    if (push.sky == 0u) radiance = max(radiance - m.emissive, vec3(0.0));
+    // Every source's answer includes the hit's own emission: that part is direct.
+    direct = m.emissive;
+    radiance = max(radiance - m.emissive, vec3(0.0));
   }
   // Guard: the world cache and the volumes are RGB9E5 (always finite), but a non-finite answer
   // from any source is treated as a miss that returns nothing.
   if (rc.flags.y != 0u && !gib_finite(radiance)) radiance = vec3(0.0);
+  if (rc.flags.y != 0u && !gib_finite(direct)) direct = vec3(0.0);
+  if (push.sky == 0u) direct = vec3(0.0);  // direct_lighting's own rays count it (sky_rays > 0)
   atomicAdd(gather_stats[served], 1u);
   // Pre-exposure: the SH (RGBA16F) hold radiance x P, P ~ 1 / the frame's typical luminance,
   // so bright skies do not clamp at the format's maximum; gi_upscale divides it out.
   radiance = gib_max0_keep_nan(radiance * exposure[kGatherExposureNow]);
+  // The direct part is a cosine-sampled estimate of irradiance / pi at the gather normal.
+  direct = gib_clamp_keep_nan(vec4(direct * exposure[kGatherExposureNow], 0.0), 0.0, kHalfMax).rgb;
   float weight = GIB_PI / max(cos_t, kGatherMinCos);
   vec4 bd = gib_sh2_basis(d), bn = gib_sh2_basis(n);
   write_out(g, sample_sh(radiance.r, bd, bn, weight), sample_sh(radiance.g, bd, bn, weight),
-            sample_sh(radiance.b, bd, bn, weight), distance);
+            sample_sh(radiance.b, bd, bn, weight), direct, distance);
 }

@@ -19,7 +19,8 @@ class FinalGatherPass final : public Pass {
     stats.bytes = glsl::kGatherStatCount * sizeof(uint32_t);
     PassDecl d;
     d.name = "final_gather";
-    d.slots = {{"gbuffer_normal", Access::read},
+    d.slots = {{"vbuffer", Access::read},
+               {"gbuffer_normal", Access::read},
                {"gbuffer_position", Access::read},
                {"gbuffer_position", Access::read_prev},
                {"final_color", Access::read_prev},
@@ -30,6 +31,7 @@ class FinalGatherPass final : public Pass {
                {"gather_sh_r", Access::write, sh},
                {"gather_sh_g", Access::write, sh},
                {"gather_sh_b", Access::write, sh},
+               {"gather_direct", Access::write, ResourceDesc{Format::rgba16_float, size}.with(non_negative_values())},
                {"gather_hit_distance", Access::write, ResourceDesc{Format::r32_float, size}.with(non_negative_values())},
                {"gather_stats", Access::write, stats}};
     const double g = std::max(1u, s.params<RadianceCacheSettings>().gather_divisor);
@@ -73,6 +75,8 @@ class FinalGatherPass final : public Pass {
     image(kGatherBindShG, ctx.image("gather_sh_g"));
     image(kGatherBindShB, ctx.image("gather_sh_b"));
     image(kGatherBindHitDistance, ctx.image("gather_hit_distance"));
+    image(kGatherBindDirect, ctx.image("gather_direct"));
+    image(kGatherBindVbuffer, ctx.image("vbuffer"));
 
     ctx.cmd.fill(ctx.buffer("gather_stats"), 0);
     ctx.cmd.barrier(kStageTransfer, kStageCompute);

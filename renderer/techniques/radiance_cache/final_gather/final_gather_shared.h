@@ -5,6 +5,7 @@
 #ifndef GIB_FINAL_GATHER_SHARED_H
 #define GIB_FINAL_GATHER_SHARED_H
 #include "frame_shared.h"
+#include "vbuffer_shared.h"
 #include "renderer/techniques/radiance_cache/include/radiance_cache_shared.h"
 GIB_SHARED_BEGIN
 GIB_CONST(uint, kGatherGroup, 8)
@@ -21,6 +22,8 @@ GIB_CONST(uint, kGatherBindShG, 17)
 GIB_CONST(uint, kGatherBindShB, 18)
 GIB_CONST(uint, kGatherBindHitDistance, 19)  // gather_hit_distance (r32f)
 GIB_CONST(uint, kGatherBindExposure, 20)     // exposure (float[4], exposure_shared.h: P_now at 0)
+GIB_CONST(uint, kGatherBindDirect, 21)       // gather_direct (rgba16f: rgb the direct part, a 0)
+GIB_CONST(uint, kGatherBindVbuffer, 22)      // vbuffer (rg32ui): the face normal rays leave along
 GIB_CONST(uint, kGatherExposureNow, 0)
 GIB_CONST(uint, kGatherSpecAlpha, 0)
 
@@ -45,7 +48,8 @@ GIB_CONST(float, kGatherMinCos, 0.02)
 struct GatherPush {
   uint divisor;       // 2 or 4
   uint screen_cache;  // 0: skip the screen cache (first frame: last frame's image is empty)
-  uint sky;           // 1: a miss returns the sky, a hit its emission too; 0: direct_lighting traces both
+  uint sky;           // 1: the gather's direct part (sky on a miss, a hit's emission) is kept;
+                      // 0 (direct_lighting traces them, sky_rays > 0): it is dropped, no double count
   uint pad;
 };
 GIB_SHARED_END

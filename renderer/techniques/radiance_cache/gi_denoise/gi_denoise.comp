@@ -1,6 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// One direction of the separable bilateral gaussian over the gather SH (see gi_denoise.h).
+// One direction of the separable bilateral gaussian over the gather SH and the gather's direct
+// part, with the same weights (see gi_denoise.h).
 #include "renderer/techniques/radiance_cache/gi_denoise/gi_denoise_shared.h"
 #include "finite.glsl"
 
@@ -14,6 +15,8 @@ layout(set = 0, binding = kDenoiseBindInB, rgba16f) uniform readonly image2D in_
 layout(set = 0, binding = kDenoiseBindOutR, rgba16f) uniform writeonly image2D out_r;
 layout(set = 0, binding = kDenoiseBindOutG, rgba16f) uniform writeonly image2D out_g;
 layout(set = 0, binding = kDenoiseBindOutB, rgba16f) uniform writeonly image2D out_b;
+layout(set = 0, binding = kDenoiseBindInDirect, rgba16f) uniform readonly image2D in_direct;
+layout(set = 0, binding = kDenoiseBindOutDirect, rgba16f) uniform writeonly image2D out_direct;
 layout(push_constant) uniform Push { DenoisePush push; };
 
 // Geometry of gather pixel g: its representative full-res pixel's position (w: distance to the
@@ -36,14 +39,15 @@ void main() {
     imageStore(out_r, g, vec4(0.0));
     imageStore(out_g, g, vec4(0.0));
     imageStore(out_b, g, vec4(0.0));
+    imageStore(out_direct, g, vec4(0.0));
     return;
   }
   float h_c = imageLoad(in_hit, g).x;
   int radius = int(push.radius);
   float inv_two_sigma2 = radius > 0 ? 2.0 / float(radius * radius) : 0.0;  // sigma = radius / 2
   ivec2 axis = ivec2(push.axis_x, push.axis_y);
-  vec4 sum_r = vec4(0.0), sum_g = vec4(0.0), sum_b = vec4(0.0);
-  float sum_w = 0.0;
+  vec4 sum_r = vec4(0.0), sum_g = vec4(0.0), sum_b = vec4(0.0), sum_d = vec4(0.0);
+  float sum_w = 0.0, sum_wd = 0.0;
   for (int k = -radius; k <= radius; ++k) {
     ivec2 q = g + k * axis;
     if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
@@ -52,20 +56,27 @@ void main() {
     gather_geometry(q, pos_q, n_q);
     if (pos_q.w == 0.0) continue;
     float h_q = imageLoad(in_hit, q).x;
-    float w = exp(-float(k * k) * inv_two_sigma2);
-    w *= pow(max(0.0, dot(n_c, n_q)), kDenoiseNormalPower);
-    w *= exp(-abs(dot(n_c, pos_q.xyz - pos_c.xyz)) / (pos_c.w * kDenoiseDepthSigma));
-    float dh = abs(h_q - h_c) / max(max(h_q, h_c), 1e-6);
-    w *= exp(-(dh * dh) / (kDenoiseHitSigma * kDenoiseHitSigma));
-    if (w <= 0.0) continue;
-    vec4 tr = imageLoad(in_r, q), tg = imageLoad(in_g, q), tb = imageLoad(in_b, q);
+    float wd = exp(-float(k * k) * inv_two_sigma2);  // geometry: the direct part's weight
+    wd *= pow(max(0.0, dot(n_c, n_q)), kDenoiseNormalPower);
+    wd *= exp(-abs(dot(n_c, pos_q.xyz - pos_c.xyz)) / (pos_c.w * kDenoiseDepthSigma));
+    float w = wd;
+    if (push.hit_weight != 0u) {
+      float dh = abs(h_q - h_c) / max(max(h_q, h_c), 1e-6);
+      w *= exp(-(dh * dh) / (kDenoiseHitSigma * kDenoiseHitSigma));
+    }
+    if (wd <= 0.0) continue;
+    vec4 tr = imageLoad(in_r, q), tg = imageLoad(in_g, q), tb = imageLoad(in_b, q), td = imageLoad(in_direct, q);
     // Guard: skip a tap whose weight (a NaN normal) or value is not finite: weight 0 would
     // not do, 0 x NaN is NaN.
-    if (push.nan_guards != 0u && !(gib_finite(w) && gib_finite(tr) && gib_finite(tg) && gib_finite(tb))) continue;
+    if (push.nan_guards != 0u &&
+        !(gib_finite(w) && gib_finite(wd) && gib_finite(tr) && gib_finite(tg) && gib_finite(tb) && gib_finite(td)))
+      continue;
     sum_r += w * tr;
     sum_g += w * tg;
     sum_b += w * tb;
     sum_w += w;
+    sum_d += wd * td;
+    sum_wd += wd;
   }
   // The centre's own weight is 1 (k = 0, identical geometry), so sum_w >= 1, unless guards
   // skipped it (then every tap may be gone and the result is 0).
@@ -73,4 +84,5 @@ void main() {
   imageStore(out_r, g, sum_r * inv);
   imageStore(out_g, g, sum_g * inv);
   imageStore(out_b, g, sum_b * inv);
+  imageStore(out_direct, g, sum_d / max(sum_wd, 1e-6));
 }

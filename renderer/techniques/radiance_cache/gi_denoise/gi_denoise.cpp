@@ -9,9 +9,10 @@ namespace {
 class GiDenoisePass final : public Pass {
  public:
   PassDecl declare(const Scene&, const Settings& s) const override {
+    const SizeRule size = s.params<RadianceCacheSettings>().gather_divisor >= 4 ? SizeRule::quarter : SizeRule::half;
     const ResourceDesc sh =  // x L0, yzw L1
-        ResourceDesc{Format::rgba16_float, s.params<RadianceCacheSettings>().gather_divisor >= 4 ? SizeRule::quarter : SizeRule::half}.with(
-            non_negative_values().allow_negative(kChannelG | kChannelB | kChannelA));
+        ResourceDesc{Format::rgba16_float, size}.with(non_negative_values().allow_negative(kChannelG | kChannelB | kChannelA));
+    const ResourceDesc direct = ResourceDesc{Format::rgba16_float, size}.with(non_negative_values());
     PassDecl d;
     d.name = "gi_denoise";
     d.slots = {{"gather_sh_r", Access::read},      {"gather_sh_g", Access::read},
@@ -19,7 +20,9 @@ class GiDenoisePass final : public Pass {
                {"gbuffer_normal", Access::read},   {"gbuffer_position", Access::read},
                {"gi_denoise_tmp_r", Access::write, sh}, {"gi_denoise_tmp_g", Access::write, sh},
                {"gi_denoise_tmp_b", Access::write, sh}, {"gi_sh_r", Access::write, sh},
-               {"gi_sh_g", Access::write, sh},          {"gi_sh_b", Access::write, sh}};
+               {"gi_sh_g", Access::write, sh},          {"gi_sh_b", Access::write, sh},
+               {"gather_direct", Access::read},         {"gi_denoise_tmp_direct", Access::write, direct},
+               {"gi_direct", Access::write, direct}};
     return d;
   }
 
@@ -28,10 +31,11 @@ class GiDenoisePass final : public Pass {
     const RadianceCacheSettings& r = ctx.settings.params<RadianceCacheSettings>();
     const uint32_t divisor = r.gather_divisor >= 4 ? 4u : 2u;
     const uint32_t radius = r.denoise_radius;
-    auto run = [&](const char* label, int ax, int ay, const char* in, const char* out) {
+    auto run = [&](const char* label, int ax, int ay, const char* in, const char* in_direct, const char* out) {
       const std::string ir = std::string(in) + "_r", ig = std::string(in) + "_g", ib = std::string(in) + "_b";
       const std::string o_r = std::string(out) + "_r", og = std::string(out) + "_g", ob = std::string(out) + "_b";
-      DenoisePush push{ax, ay, radius, divisor, ctx.settings.nan_guards ? 1u : 0u, 0, 0, 0};
+      const std::string id = std::string(in_direct), od = std::string(out) == "gi_sh" ? "gi_direct" : std::string(out) + "_direct";
+      DenoisePush push{ax, ay, radius, divisor, ctx.settings.nan_guards ? 1u : 0u, r.denoise_hit_weight ? 1u : 0u, 0, 0};
       static_assert(sizeof(push) == 32, "DenoisePush must match gi_denoise.comp's push block");
       ctx.cmd.begin_label(std::string("gi_denoise/") + label);
       record_compute(ctx, {.shader = "gi_denoise.comp",
@@ -43,7 +47,9 @@ class GiDenoisePass final : public Pass {
                                       {kDenoiseBindInB, ib.c_str()},
                                       {kDenoiseBindOutR, o_r.c_str()},
                                       {kDenoiseBindOutG, og.c_str()},
-                                      {kDenoiseBindOutB, ob.c_str()}},
+                                      {kDenoiseBindOutB, ob.c_str()},
+                                      {kDenoiseBindInDirect, id.c_str()},
+                                      {kDenoiseBindOutDirect, od.c_str()}},
                            .groups_x = div_up(ctx.width("gi_sh_r"), kDenoiseGroup),
                            .groups_y = div_up(ctx.height("gi_sh_r"), kDenoiseGroup),
                            .push = &push,
@@ -51,9 +57,9 @@ class GiDenoisePass final : public Pass {
                            .scene = false});
       ctx.cmd.end_label();
     };
-    run("horizontal", 1, 0, "gather_sh", "gi_denoise_tmp");
+    run("horizontal", 1, 0, "gather_sh", "gather_direct", "gi_denoise_tmp");
     ctx.cmd.barrier(kStageCompute, kStageCompute);
-    run("vertical", 0, 1, "gi_denoise_tmp", "gi_sh");
+    run("vertical", 0, 1, "gi_denoise_tmp", "gi_denoise_tmp_direct", "gi_sh");
   }
 };
 

@@ -3,15 +3,19 @@
 // (gi_denoise_tmp_* -> gi_sh_*), 2 * denoise_radius + 1 taps each. A tap's weight is the
 // gaussian (sigma = radius / 2) times edge stops on the normal (pow(max(0, dot), 32)), the
 // depth (distance from the centre's tangent plane relative to its view distance, e^(-rel/0.02))
-// and the gather hit-distance delta (relative, e^(-dh^2): a hit at 1 m vs 3 m keeps 0.64, a hit
-// vs a miss 0.37; mild, since with one ray per pixel the distance is itself noisy); constants
+// and, only with the option denoise_hit_weight 1 (the seed's; default 0, it biases the mean:
+// radiance_cache.md), the gather hit-distance delta of the SH taps (relative, e^(-dh^2): a hit at
+// 1 m vs 3 m keeps 0.64, a hit vs a miss 0.37); constants
 // and formulas in gi_denoise_shared.h. A gather pixel's geometry is the G-buffer sample of its representative
 // full-res pixel g * divisor + divisor / 2 (final_gather's convention). Sky gather pixels are
 // skipped as taps and written as 0.
-// Slots: reads gather_sh_r/g/b, gather_hit_distance, gbuffer_normal, gbuffer_position; writes
-// gi_denoise_tmp_r/g/b (horizontal result) and gi_sh_r/g/b (RGBA16F, gather resolution).
+// Slots: reads gather_sh_r/g/b, gather_direct, gather_hit_distance, gbuffer_normal,
+// gbuffer_position; writes gi_denoise_tmp_r/g/b/direct (horizontal result), gi_sh_r/g/b and
+// gi_direct (RGBA16F, gather resolution). The direct part (final_gather.h, the AOV contract)
+// always takes the geometry weights only.
 // Seed: the idTech 8 "Global Illumination" talk, "Denoise + Upscale" (spatial denoise at final-gather
 // resolution, separable bilateral gaussian weighted by normal/depth and hit-distance deltas).
+// Departure: the hit-distance weight is off by default (see above).
 // Limits: no group-shared preload (each tap reads the images; the seed preloads to LDS in FP16);
 // the vertical pass weighs hit distances of the unfiltered gather, as the horizontal one does.
 // radius 0 copies.

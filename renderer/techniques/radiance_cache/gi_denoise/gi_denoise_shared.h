@@ -12,6 +12,8 @@ GIB_CONST(uint, kDenoiseBindInB, 13)
 GIB_CONST(uint, kDenoiseBindOutR, 14)      // horizontal: gi_denoise_tmp_*; vertical: gi_sh_*
 GIB_CONST(uint, kDenoiseBindOutG, 15)
 GIB_CONST(uint, kDenoiseBindOutB, 16)
+GIB_CONST(uint, kDenoiseBindInDirect, 17)  // horizontal: gather_direct; vertical: gi_denoise_tmp_direct
+GIB_CONST(uint, kDenoiseBindOutDirect, 18) // horizontal: gi_denoise_tmp_direct; vertical: gi_direct
 // Edge-stopping weights of a tap q for the centre g (gather pixels; geometry from their
 // representative full-res pixels g * divisor + divisor / 2, as final_gather):
 //   normal    pow(max(0, dot(n_g, n_q)), kDenoiseNormalPower)
@@ -19,6 +21,10 @@ GIB_CONST(uint, kDenoiseBindOutB, 16)
 //             the tap from the centre's tangent plane, relative to the centre's view distance)
 //   hit       exp(-(dh / kDenoiseHitSigma)^2), dh = |h_q - h_g| / max(h_q, h_g)
 //   spatial   exp(-k^2 / (2 sigma^2)), sigma = radius / 2
+// The gather's direct part (gather_direct) takes the geometry weights only (normal, depth,
+// spatial): a weight that depends on the hit distance depends on the sample's value (misses
+// carry the sky, hits the bounce), which pulls the mean towards the centre's class and biases
+// it towards the majority class (an emissive panel's direct light read +2.8%).
 GIB_CONST(float, kDenoiseNormalPower, 32.0)
 GIB_CONST(float, kDenoiseDepthSigma, 0.02)
 GIB_CONST(float, kDenoiseHitSigma, 1.0)
@@ -27,7 +33,8 @@ struct DenoisePush {
   uint radius;         // taps either side
   uint divisor;        // gather divisor (2 or 4)
   uint nan_guards;     // 1: taps with a non-finite weight or value are skipped
-  uint pad0, pad1, pad2;
+  uint hit_weight;     // 1: the SH taps also weigh hit-distance similarity (the seed's); 0: geometry only
+  uint pad1, pad2;
 };
 GIB_SHARED_END
 #endif

@@ -46,12 +46,17 @@ class GiUpscalePass final : public Pass {
                {"gbuffer_position", Access::read},
                {"gbuffer_normal", Access::read_prev},
                {"gbuffer_position", Access::read_prev},
+               {"gi_direct", Access::read},
                {"gi_history", Access::write, history},
                {"gi_history", Access::read_prev},
+               {"gi_history_direct", Access::write, history},
+               {"gi_history_direct", Access::read_prev},
                {"gi_history_frames", Access::write, frames},
                {"gi_history_frames", Access::read_prev},
                {"exposure", Access::read},
-               {"gi_irradiance", Access::write, ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values())}};
+               {"gi_irradiance", Access::write, ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values())},
+               {"gi_direct_irradiance", Access::write,
+                ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values())}};
     return d;
   }
 
@@ -82,6 +87,10 @@ class GiUpscalePass final : public Pass {
     image(kUpscaleBindHistory, ctx.image("gi_history"));
     image(kUpscaleBindFrames, ctx.image("gi_history_frames"));
     image(kUpscaleBindIrradiance, ctx.image("gi_irradiance"));
+    image(kUpscaleBindDirect, ctx.image("gi_direct"));
+    image(kUpscaleBindPrevHistoryDirect, ctx.prev_image("gi_history_direct"));
+    image(kUpscaleBindHistoryDirect, ctx.image("gi_history_direct"));
+    image(kUpscaleBindDirectIrradiance, ctx.image("gi_direct_irradiance"));
     desc.bindings.push_back({kUpscaleBindExposure, DescriptorKind::storage_buffer});
     binds.push_back({kUpscaleBindExposure, &ctx.buffer("exposure"), nullptr});
     auto pipeline = ctx.gpu.compute_pipeline(desc);

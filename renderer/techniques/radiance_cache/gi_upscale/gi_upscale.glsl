@@ -18,59 +18,70 @@ layout(set = 0, binding = kUpscaleBindShB, rgba16f) uniform readonly image2D sh_
 layout(set = 0, binding = kUpscaleBindPrevFrames, r32f) uniform readonly image2D prev_frames;
 layout(set = 0, binding = kUpscaleBindFrames, r32f) uniform writeonly image2D out_frames;
 layout(set = 0, binding = kUpscaleBindIrradiance, rgba32f) uniform writeonly image2D out_irradiance;
+layout(set = 0, binding = kUpscaleBindDirect, rgba16f) uniform readonly image2D gi_direct;
+layout(set = 0, binding = kUpscaleBindDirectIrradiance, rgba32f) uniform writeonly image2D out_direct_irradiance;
 layout(push_constant) uniform Push { UpscalePush push; };
 // Pre-exposure (exposure pass): the gather SH and the history hold irradiance / pi x P; P_now
 // is this frame's P, P_prev the one last frame's history was stored with.
 layout(set = 0, binding = kUpscaleBindExposure, std430) readonly buffer Exposure { float exposure[4]; };
 
-// History storage. store_history returns exactly what a later load returns: values are
-// quantised here with a known rounding (the codec's or packHalf2x16), so the image's own
-// conversion on store is exact.
+// History storage, one pair of functions per history image (the bounce light's gi_history and
+// the direct part's gi_history_direct, same format). STORE returns exactly what a later LOAD
+// returns: values are quantised here with a known rounding (the codec's or packHalf2x16), so
+// the image's own conversion on store is exact.
 #if GI_HISTORY_FORMAT == 0
-layout(set = 0, binding = kUpscaleBindPrevHistory, r32ui) uniform readonly uimage2D prev_history;
-layout(set = 0, binding = kUpscaleBindHistory, r32ui) uniform writeonly uimage2D out_history;
-vec3 load_history(ivec2 q) { return gib_unpack_rgb9e5(imageLoad(prev_history, q).x); }
-vec3 store_history(ivec2 p, vec3 v) {
-  uint e = gib_pack_rgb9e5(v);
-  imageStore(out_history, p, uvec4(e, 0u, 0u, 0u));
-  return gib_unpack_rgb9e5(e);
-}
+#define GI_HISTORY_IO(PREV, OUT, PREV_BIND, OUT_BIND, LOAD, STORE)                            \
+  layout(set = 0, binding = PREV_BIND, r32ui) uniform readonly uimage2D PREV;                 \
+  layout(set = 0, binding = OUT_BIND, r32ui) uniform writeonly uimage2D OUT;                  \
+  vec3 LOAD(ivec2 q) { return gib_unpack_rgb9e5(imageLoad(PREV, q).x); }                      \
+  vec3 STORE(ivec2 p, vec3 v) {                                                               \
+    uint e = gib_pack_rgb9e5(v);                                                              \
+    imageStore(OUT, p, uvec4(e, 0u, 0u, 0u));                                                 \
+    return gib_unpack_rgb9e5(e);                                                              \
+  }
 #elif GI_HISTORY_FORMAT == 1
-layout(set = 0, binding = kUpscaleBindPrevHistory, rgba16f) uniform readonly image2D prev_history;
-layout(set = 0, binding = kUpscaleBindHistory, rgba16f) uniform writeonly image2D out_history;
-vec3 load_history(ivec2 q) { return imageLoad(prev_history, q).rgb; }
-vec3 store_history(ivec2 p, vec3 v) {
-  // min() keeps a NaN for the guards to decide (gib_clamp_keep_nan, finite.glsl).
-  v = vec3(gib_clamp_keep_nan(v.x, -65504.0, 65504.0), gib_clamp_keep_nan(v.y, -65504.0, 65504.0),
-           gib_clamp_keep_nan(v.z, -65504.0, 65504.0));
-  vec3 h = vec3(unpackHalf2x16(packHalf2x16(v.rg)), unpackHalf2x16(packHalf2x16(vec2(v.b, 0.0))).x);
-  imageStore(out_history, p, vec4(h, 1.0));
-  return h;
-}
+// min() keeps a NaN for the guards to decide (gib_clamp_keep_nan, finite.glsl).
+#define GI_HISTORY_IO(PREV, OUT, PREV_BIND, OUT_BIND, LOAD, STORE)                            \
+  layout(set = 0, binding = PREV_BIND, rgba16f) uniform readonly image2D PREV;                \
+  layout(set = 0, binding = OUT_BIND, rgba16f) uniform writeonly image2D OUT;                 \
+  vec3 LOAD(ivec2 q) { return imageLoad(PREV, q).rgb; }                                       \
+  vec3 STORE(ivec2 p, vec3 v) {                                                               \
+    v = gib_clamp_keep_nan(vec4(v, 0.0), -65504.0, 65504.0).rgb;                              \
+    vec3 h = vec3(unpackHalf2x16(packHalf2x16(v.rg)), unpackHalf2x16(packHalf2x16(vec2(v.b, 0.0))).x); \
+    imageStore(OUT, p, vec4(h, 1.0));                                                         \
+    return h;                                                                                 \
+  }
 #elif GI_HISTORY_FORMAT == 2
-layout(set = 0, binding = kUpscaleBindPrevHistory, r11f_g11f_b10f) uniform readonly image2D prev_history;
-layout(set = 0, binding = kUpscaleBindHistory, r11f_g11f_b10f) uniform writeonly image2D out_history;
-vec3 load_history(ivec2 q) { return imageLoad(prev_history, q).rgb; }
-vec3 store_history(ivec2 p, vec3 v) {
-  vec3 h = gib_unpack_r11g11b10(gib_pack_r11g11b10(v));
-  imageStore(out_history, p, vec4(h, 1.0));
-  return h;
-}
+#define GI_HISTORY_IO(PREV, OUT, PREV_BIND, OUT_BIND, LOAD, STORE)                            \
+  layout(set = 0, binding = PREV_BIND, r11f_g11f_b10f) uniform readonly image2D PREV;         \
+  layout(set = 0, binding = OUT_BIND, r11f_g11f_b10f) uniform writeonly image2D OUT;          \
+  vec3 LOAD(ivec2 q) { return imageLoad(PREV, q).rgb; }                                       \
+  vec3 STORE(ivec2 p, vec3 v) {                                                               \
+    vec3 h = gib_unpack_r11g11b10(gib_pack_r11g11b10(v));                                     \
+    imageStore(OUT, p, vec4(h, 1.0));                                                         \
+    return h;                                                                                 \
+  }
 #else
-layout(set = 0, binding = kUpscaleBindPrevHistory, rgba32f) uniform readonly image2D prev_history;
-layout(set = 0, binding = kUpscaleBindHistory, rgba32f) uniform writeonly image2D out_history;
-vec3 load_history(ivec2 q) { return imageLoad(prev_history, q).rgb; }
-vec3 store_history(ivec2 p, vec3 v) {
-  imageStore(out_history, p, vec4(v, 1.0));
-  return v;
-}
+#define GI_HISTORY_IO(PREV, OUT, PREV_BIND, OUT_BIND, LOAD, STORE)                            \
+  layout(set = 0, binding = PREV_BIND, rgba32f) uniform readonly image2D PREV;                \
+  layout(set = 0, binding = OUT_BIND, rgba32f) uniform writeonly image2D OUT;                 \
+  vec3 LOAD(ivec2 q) { return imageLoad(PREV, q).rgb; }                                       \
+  vec3 STORE(ivec2 p, vec3 v) {                                                               \
+    imageStore(OUT, p, vec4(v, 1.0));                                                         \
+    return v;                                                                                 \
+  }
 #endif
+GI_HISTORY_IO(prev_history, out_history, kUpscaleBindPrevHistory, kUpscaleBindHistory, load_history, store_history)
+GI_HISTORY_IO(prev_history_direct, out_history_direct, kUpscaleBindPrevHistoryDirect, kUpscaleBindHistoryDirect,
+              load_history_direct, store_history_direct)
 
-// value is pre-exposed (x P_now) and stored so; gi_irradiance is in absolute units.
-void write_out(ivec2 p, vec3 value, float frames) {
-  vec3 stored = store_history(p, value);
+// value (bounce) and direct are pre-exposed (x P_now) and stored so; gi_irradiance and
+// gi_direct_irradiance are in absolute units.
+void write_out(ivec2 p, vec3 value, vec3 direct, float frames) {
+  vec3 stored = store_history(p, value), stored_direct = store_history_direct(p, direct);
   imageStore(out_frames, p, vec4(frames, 0.0, 0.0, 0.0));
   imageStore(out_irradiance, p, vec4(stored / exposure[kUpscaleExposureNow], 1.0));
+  imageStore(out_direct_irradiance, p, vec4(stored_direct / exposure[kUpscaleExposureNow], 1.0));
 }
 
 // How much gather sample g (a gather-res pixel) lies on the surface at x with normal n: normal
@@ -88,19 +99,23 @@ float tap_similarity(ivec2 g, vec3 x, vec3 n, float dist) {
   return s;
 }
 
-// Gather sample g's SH (r, g, b); false when the guards are on and one is not finite (such a
-// tap is not on any surface).
-bool tap_sh(ivec2 g, out vec4 r, out vec4 gg, out vec4 b) {
+// Gather sample g's SH (r, g, b) and direct part; false when the guards are on and one is not
+// finite (such a tap is not on any surface).
+bool tap_sh(ivec2 g, out vec4 r, out vec4 gg, out vec4 b, out vec3 d) {
   r = imageLoad(sh_r, g);
   gg = imageLoad(sh_g, g);
   b = imageLoad(sh_b, g);
-  return push.nan_guards == 0u || (gib_finite(r) && gib_finite(gg) && gib_finite(b));
+  d = imageLoad(gi_direct, g).rgb;
+  return push.nan_guards == 0u || (gib_finite(r) && gib_finite(gg) && gib_finite(b) && gib_finite(d));
 }
 
-// 4-tap bilateral upscale of the denoised gather SH, evaluated with the full-res normal.
+// 4-tap bilateral upscale of the denoised gather SH, evaluated with the full-res normal, and of
+// the direct part with the same weights (it is irradiance / pi at the gather normals already).
 // Returns false when no gather sample around p lies on p's surface.
-bool upscale(ivec2 p, vec3 x, vec3 n, float dist, out vec3 irradiance) {
+bool upscale(ivec2 p, vec3 x, vec3 n, float dist, out vec3 irradiance, out vec3 direct) {
   irradiance = vec3(0.0);
+  direct = vec3(0.0);
+  vec3 acc_d = vec3(0.0);
   int div = int(push.divisor);
   ivec2 gsize = imageSize(sh_r);
   vec2 xg = (vec2(p) - float(div / 2)) / float(div);
@@ -115,7 +130,8 @@ bool upscale(ivec2 p, vec3 x, vec3 n, float dist, out vec3 irradiance) {
     float similar = tap_similarity(g, x, n, dist);
     if (push.nan_guards != 0u && similar == 0.0) continue;  // 0 x NaN would still be NaN
     vec4 r, gg, b;
-    if (!tap_sh(g, r, gg, b)) continue;
+    vec3 d;
+    if (!tap_sh(g, r, gg, b, d)) continue;
     if (similar > best) {
       best = similar;
       best_g = g;
@@ -124,12 +140,14 @@ bool upscale(ivec2 p, vec3 x, vec3 n, float dist, out vec3 irradiance) {
     acc_r += w * r;
     acc_g += w * gg;
     acc_b += w * b;
+    acc_d += w * d;
     acc_w += w;
   }
   if (acc_w > 1e-4) {
     acc_r /= acc_w;
     acc_g /= acc_w;
     acc_b /= acc_w;
+    acc_d /= acc_w;
   } else {
     // The bilinear weight sits on other surfaces: take the most similar of the 4 taps, or on
     // thin silhouettes, where none of them lies on this surface (their gather pixels saw the
@@ -144,18 +162,20 @@ bool upscale(ivec2 p, vec3 x, vec3 n, float dist, out vec3 irradiance) {
             best_g = g;
           }
         }
-    if (best <= 1e-3 || !tap_sh(best_g, acc_r, acc_g, acc_b)) return false;
+    if (best <= 1e-3 || !tap_sh(best_g, acc_r, acc_g, acc_b, acc_d)) return false;
   }
   vec3 e = vec3(gib_sh2_irradiance(acc_r, n), gib_sh2_irradiance(acc_g, n), gib_sh2_irradiance(acc_b, n));
   if (push.nan_guards != 0u && !gib_finite(e)) return false;
   irradiance = gib_max0_keep_nan(e);  // gib_sh2_irradiance returns irradiance / pi
+  direct = gib_max0_keep_nan(acc_d);
   return true;
 }
 
 // Last frame's history at x: bilinear over the 4 texels around its reprojection, each kept
 // only if it passes the disocclusion tests. Returns false when none does or x was off screen.
-bool reproject(vec3 x, vec3 n, out vec3 prev, out float frames) {
+bool reproject(vec3 x, vec3 n, out vec3 prev, out vec3 prev_direct, out float frames) {
   prev = vec3(0.0);
+  prev_direct = vec3(0.0);
   frames = 0.0;
   if (push.history_valid == 0u) return false;
   vec4 clip = gib_frame.prev_view_proj * vec4(x, 1.0);
@@ -166,7 +186,7 @@ bool reproject(vec3 x, vec3 n, out vec3 prev, out float frames) {
   vec2 px = (ndc * 0.5 + 0.5) * vec2(full) - 0.5;  // texel centres at integers
   ivec2 q0 = ivec2(floor(px));
   vec2 f = px - vec2(q0);
-  vec3 sum = vec3(0.0);
+  vec3 sum = vec3(0.0), sum_d = vec3(0.0);
   float sum_n = 0.0, sum_w = 0.0;
   for (int i = 0; i < 4; ++i) {
     ivec2 o = ivec2(i & 1, i >> 1);
@@ -182,17 +202,20 @@ bool reproject(vec3 x, vec3 n, out vec3 prev, out float frames) {
       if (dot(n, qn) < kUpscaleNormalCos) continue;
       if (push.nan_guards != 0u && !gib_finite(qn)) continue;  // the NaN compares above pass
     }
-    vec3 h = load_history(q);
+    vec3 h = load_history(q), hd = load_history_direct(q);
     float hn = imageLoad(prev_frames, q).x;
     // Guard: a non-finite history texel is dropped (formats 1-3 can hold NaN and Inf; RGB9E5 cannot).
-    if (push.nan_guards != 0u && !(gib_finite(h) && gib_finite(hn))) continue;
+    if (push.nan_guards != 0u && !(gib_finite(h) && gib_finite(hd) && gib_finite(hn))) continue;
     sum += w * h;
+    sum_d += w * hd;
     sum_n += w * hn;
     sum_w += w;
   }
   if (sum_w < 1e-2) return false;
   // Last frame's history was stored x P_prev: bring it to this frame's P_now.
-  prev = sum / sum_w * (exposure[kUpscaleExposureNow] / exposure[kUpscaleExposurePrev]);
+  float rescale = exposure[kUpscaleExposureNow] / exposure[kUpscaleExposurePrev];
+  prev = sum / sum_w * rescale;
+  prev_direct = sum_d / sum_w * rescale;
   frames = sum_n / sum_w;
   return true;
 }
@@ -202,20 +225,21 @@ void main() {
   if (any(greaterThanEqual(p, imageSize(out_irradiance)))) return;
   vec4 pos = imageLoad(gb_position, p);
   if (pos.w == 0.0) {  // sky
-    write_out(p, vec3(0.0), 0.0);
+    write_out(p, vec3(0.0), vec3(0.0), 0.0);
     return;
   }
   vec3 n = normalize(imageLoad(gb_normal, p).xyz);
-  vec3 curr = vec3(0.0), prev;
+  vec3 curr = vec3(0.0), curr_d = vec3(0.0), prev, prev_d;
   float frames;
   // Guard: no upscale around a broken (non-finite) normal; the pixel keeps its history.
-  bool have_curr = (push.nan_guards == 0u || gib_finite(n)) && upscale(p, pos.xyz, n, pos.w, curr);
-  bool have_prev = reproject(pos.xyz, n, prev, frames);
+  bool have_curr = (push.nan_guards == 0u || gib_finite(n)) && upscale(p, pos.xyz, n, pos.w, curr, curr_d);
+  bool have_prev = reproject(pos.xyz, n, prev, prev_d, frames);
   if (!have_prev) frames = 0.0;  // rejected: restart the average
   if (!have_curr) {
-    write_out(p, prev, frames);  // nothing new here this frame: keep what history says
+    write_out(p, prev, prev_d, frames);  // nothing new here this frame: keep what history says
     return;
   }
-  // New = (n Prev + Curr) / (n + 1), n = min(n + 1, n_max)  [Mattauch 2010]
-  write_out(p, (frames * prev + curr) / (frames + 1.0), min(frames + 1.0, push.max_frames));
+  // New = (n Prev + Curr) / (n + 1), n = min(n + 1, n_max)  [Mattauch 2010], both parts alike.
+  write_out(p, (frames * prev + curr) / (frames + 1.0), (frames * prev_d + curr_d) / (frames + 1.0),
+            min(frames + 1.0, push.max_frames));
 }

@@ -15,11 +15,14 @@
 // rescaled by P_now / P_prev (word 0 and 1 of the `exposure` buffer) before the blend, the
 // history is stored x P_now, and gi_irradiance is divided by P_now (absolute units). Every
 // threshold here is on weights or geometry, none on values, so P changes none of them.
-// Slots: reads gi_sh_r/g/b, gbuffer_normal, gbuffer_position, read_prev gbuffer_position,
-// read_prev gbuffer_normal, read_prev gi_history, read_prev gi_history_frames, exposure; writes
-// gi_history (persistent ping-pong; history_format 0 RGB9E5 in R32_UINT, 1 RGBA16F,
-// 2 R11G11B10F (b10g11r11_float), 3 RGBA32F), gi_history_frames (R32F n, persistent ping-pong)
-// and gi_irradiance (RGBA32F, irradiance / pi; 0 on sky pixels).
+// The direct part (gi_direct, final_gather.h) takes the same bilateral weights and the same
+// temporal filter (its own history, gi_history_direct, in the same format and with the same n),
+// without SH evaluation: it is irradiance / pi at the gather normals already.
+// Slots: reads gi_sh_r/g/b, gi_direct, gbuffer_normal, gbuffer_position, read_prev gbuffer_position,
+// read_prev gbuffer_normal, read_prev gi_history(_direct), read_prev gi_history_frames, exposure; writes
+// gi_history and gi_history_direct (persistent ping-pong; history_format 0 RGB9E5 in R32_UINT,
+// 1 RGBA16F, 2 R11G11B10F (b10g11r11_float), 3 RGBA32F), gi_history_frames (R32F n, persistent
+// ping-pong), gi_irradiance and gi_direct_irradiance (RGBA32F, irradiance / pi; 0 on sky pixels).
 // Seed: the idTech 8 "Global Illumination" talk, "Denoise + Upscale" (bilateral upscale weighted by
 // normal/depth, temporal filter with a valid-fragment frame counter, RGB9E5 or RGBA16F history)
 // and "RGB9E5 vs R11G11B10F".

@@ -16,6 +16,10 @@ GIB_CONST(uint, kUpscaleBindHistory, 17)      // gi_history (format: history_for
 GIB_CONST(uint, kUpscaleBindFrames, 18)       // gi_history_frames (r32f: n)
 GIB_CONST(uint, kUpscaleBindIrradiance, 19)   // gi_irradiance (rgba32f: irradiance / pi)
 GIB_CONST(uint, kUpscaleBindExposure, 20)     // exposure (float[4], exposure_shared.h: P_now, P_prev)
+GIB_CONST(uint, kUpscaleBindDirect, 21)             // gi_direct (gather resolution, rgb)
+GIB_CONST(uint, kUpscaleBindPrevHistoryDirect, 22)  // last frame's gi_history_direct
+GIB_CONST(uint, kUpscaleBindHistoryDirect, 23)      // gi_history_direct (format: history_format)
+GIB_CONST(uint, kUpscaleBindDirectIrradiance, 24)   // gi_direct_irradiance (rgba32f: irradiance / pi)
 GIB_CONST(uint, kUpscaleExposureNow, 0)
 GIB_CONST(uint, kUpscaleExposurePrev, 1)
 // Upscale weights of gather sample g for full-res pixel p (normal n_p, position x_p, view
