@@ -1,4 +1,5 @@
-// Shared by the calibration kernels (bench/calibrate_fma.comp, bench/calibrate_copy.comp) and
+// Shared by the calibration kernels (bench/calibrate_fma.comp, calibrate_fma_scalar.comp,
+// calibrate_copy.comp) and
 // perf/calibration.cpp: the device's achieved FP32 FMA rate and copy bandwidth, which
 // the console-scaling model divides pass costs by (bench/README.md).
 #ifndef GIB_CALIBRATION_SHARED_H
@@ -7,6 +8,8 @@
 GIB_SHARED_BEGIN
 GIB_CONST(uint, kCalibGroup, 256)
 GIB_CONST(uint, kCalibFmaChains, 8)   // independent vec4 FMA chains per thread (latency hiding)
+GIB_CONST(uint, kCalibScalarChains, 32)  // calibrate_fma_scalar: independent scalar chains (same 32 FMAs a step)
+GIB_CONST(uint, kCalibScalarGroup, 128)
 GIB_CONST(uint, kCalibBindOut, 0)     // fma: one float per thread (keeps the chains live)
 GIB_CONST(uint, kCalibBindSrc, 0)     // copy: source vec4 buffer
 GIB_CONST(uint, kCalibBindDst, 1)     // copy: destination vec4 buffer

@@ -1,4 +1,4 @@
-// Calibration micro-kernels (bench/calibrate_fma.comp, bench/calibrate_copy.comp): the
+// Calibration micro-kernels (bench/calibrate_fma.comp, calibrate_fma_scalar.comp, calibrate_copy.comp): the
 // measuring device's achieved FP32 FMA rate and copy bandwidth, median of repeats. Every
 // `gibench bench` run records them, since the console-scaling model divides by them.
 #pragma once
@@ -18,15 +18,19 @@ struct Calibration {
   uint32_t repeats = 0;
   uint64_t fma_threads = 0, fma_iterations = 0;
   double fma_flops = 0;         // per dispatch
-  std::vector<double> fma_ms;   // every repeat
+  std::vector<double> fma_ms;   // every repeat (calibrate_fma.comp: vec4 chains)
+  std::vector<double> fma_scalar_ms;  // every repeat, interleaved (calibrate_fma_scalar.comp: scalar chains)
+  double fma_gflops = 0, fma_scalar_gflops = 0;  // each kernel's median rate; fp32_gflops is the larger
   uint64_t copy_bytes = 0;      // per dispatch (read + write)
   std::vector<double> copy_ms;
   nlohmann::json to_json() const;
   static Calibration from_json(const nlohmann::json& j);
 };
 
-// Times one dispatch of each kernel `repeats` times after tuning its size to a few ms (GPU) or
-// ~100 ms (CPU device); the rates come from the median time.
+// Times one dispatch of each kernel `repeats` times after tuning its size to ~20 ms (GPU, after
+// ~0.5 s of warm-up so the clocks have ramped) or ~100 ms (CPU device); the rates come from the
+// median time. FP32 is measured by two differently written kernels, interleaved; the device's
+// rate is the larger median and both are recorded (they should agree within a few percent).
 Calibration calibrate(Gpu& gpu, uint32_t repeats = 7);
 
 }  // namespace gib::perf

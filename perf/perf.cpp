@@ -196,8 +196,11 @@ int cmd_bench(const BenchOptions& o) {
   std::fflush(stdout);
   Calibration cal = calibrate(*gpu, o.calibration_repeats);
   const DeviceThroughput thr = cal.throughput;
-  fmt::print("calibration: FP32 {:.1f} GFLOP/s (FMA kernel, {}), copy bandwidth {:.1f} GB/s ({:.0f} MiB moved/dispatch)\n",
-             thr.fp32_gflops, cal.timing, thr.bandwidth_gbs, cal.copy_bytes / 1048576.0);
+  fmt::print("calibration: FP32 {:.1f} GFLOP/s (the faster of two FMA kernels, {}: vec4 chains {:.1f}, scalar chains "
+             "{:.1f}, ratio {:.3f}), copy bandwidth {:.1f} GB/s ({:.0f} MiB moved/dispatch)\n",
+             thr.fp32_gflops, cal.timing, cal.fma_gflops, cal.fma_scalar_gflops,
+             cal.fma_scalar_gflops > 0 ? cal.fma_gflops / cal.fma_scalar_gflops : 0.0, thr.bandwidth_gbs,
+             cal.copy_bytes / 1048576.0);
 
   // Workloads: one per distinct target resolution; profiles sharing one share the measurement.
   std::vector<Workload> workloads;

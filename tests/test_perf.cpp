@@ -8,9 +8,11 @@
 #include <functional>
 #include <random>
 
+#include "perf/calibration.h"
 #include "perf/perf.h"
 #include "perf/profiles.h"
 #include "perf/stats.h"
+#include "tests/gpu_fixture.h"
 
 #ifndef GIB_SOURCE_DIR
 #error "GIB_SOURCE_DIR must point at the source tree"
@@ -302,6 +304,29 @@ TEST(PerfVariants, MalformedVariantsNameTheFlagAndTheExpectedForm) {
       EXPECT_NE(m.find("expected"), std::string::npos) << m;
     }
   }
+}
+}  // namespace
+}  // namespace gib::perf
+
+namespace gib::perf {
+namespace {
+// The calibration measures FP32 with two differently written kernels, interleaved, and keeps
+// the faster; both are recorded and survive the JSON round trip. (Whether they agree within a
+// few percent is a speed figure: `gibench bench` prints both and their ratio.)
+class PerfCalibration : public test::GpuTest {};
+TEST_F(PerfCalibration, BothFmaKernelsAreTimedAndTheFasterCounts) {
+  Calibration c = calibrate(gpu(), 2);
+  ASSERT_EQ(c.fma_ms.size(), 2u);
+  ASSERT_EQ(c.fma_scalar_ms.size(), 2u);
+  EXPECT_GT(c.fma_gflops, 0.0);
+  EXPECT_GT(c.fma_scalar_gflops, 0.0);
+  EXPECT_EQ(c.throughput.fp32_gflops, std::max(c.fma_gflops, c.fma_scalar_gflops));
+  EXPECT_GT(c.throughput.bandwidth_gbs, 0.0);
+  Calibration back = Calibration::from_json(c.to_json());
+  EXPECT_EQ(back.fma_gflops, c.fma_gflops);
+  EXPECT_EQ(back.fma_scalar_gflops, c.fma_scalar_gflops);
+  EXPECT_EQ(back.fma_scalar_ms, c.fma_scalar_ms);
+  EXPECT_EQ(back.throughput.fp32_gflops, c.throughput.fp32_gflops);
 }
 }  // namespace
 }  // namespace gib::perf
