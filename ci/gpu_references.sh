@@ -3,7 +3,7 @@
 # goldens/<case>/reference*.exr) to a measured noise floor: for each case with a reference,
 # `gibench update-goldens --reference --only-reference --noise-floor` at START spp; while the
 # floor (FLIP between seeds reference_seed and reference_seed + 1000, the case's flip_mode and
-# ppd, output AOV) is above TARGET, again at 4x the spp, up to MAX. golden.json records spp,
+# ppd, the worst of the AOVs the case commits) is above TARGET, again at 4x the spp, up to MAX. golden.json records spp,
 # seed, device, driver and the floor. Prints one line per case: spp, floor, seconds.
 #
 #   ci/gpu_references.sh [--gibench CMD] [--start N] [--max N] [--target F] [CASE...]

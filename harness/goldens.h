@@ -67,6 +67,8 @@ void record_noise_floor(nlohmann::json& meta, const nlohmann::json& floor);
 // (c.reference_spp is the default for re-rendering only).
 uint32_t recorded_reference_spp(const Case& c, const nlohmann::json& meta);
 
+// A committed reference is converged when two seeds differ by at most this FLIP at the case's size.
+inline constexpr double kReferenceNoiseFloorMax = 0.01;
 // A bound tighter than 3x the reference's own noise measures the reference, not the technique.
 inline constexpr double kNoiseFloorFactor = 3.0;
 // Throws CaseError (one line naming the case file, the run, the threshold and 3 x the floor)
