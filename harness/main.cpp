@@ -8,6 +8,7 @@
 #include "perf/cli.h"
 #include "harness/render.h"
 #include "harness/runner.h"
+#include "harness/shard.h"
 #include "harness/sweep.h"
 #include "harness/report_check.h"
 #include "harness/timing.h"
@@ -29,7 +30,10 @@ int main(int argc, char** argv) {
   CLI::App app{"gibench: rendering test and benchmark harness for real-time GI"};
   app.require_subcommand(1);
 
-  app.add_subcommand("devices", "list Vulkan devices and which one is the default");
+  std::string resource_spec;
+  app.add_subcommand("devices", "list Vulkan devices and which one is the default")
+      ->add_option("--ctest-resource-spec", resource_spec,
+                   "also write a CTest resource spec (one 'gpus' slot per GPU) for the sharded suite");
 
   gib::RenderOptions ro;
   auto* render = app.add_subcommand("render", "render a scene with a technique");
@@ -55,6 +59,10 @@ int main(int argc, char** argv) {
   add_suite_options(run, run_opts);
   run->add_flag("!--no-stability-scan", run_opts.stability_scan,
                 "skip the GPU scan of every resource each pass writes for NaN, Inf, negative and out-of-bound values");
+  run->add_option("--shard", run_opts.shard,
+                  "K/N: run the rows i with i % N == K (0-based; default: GTEST_SHARD_INDEX/GTEST_TOTAL_SHARDS if set)");
+  run->add_option("--golden-class", run_opts.golden_class,
+                  "compare with this device class's approved goldens (lavapipe, nvidia, ...; default: the device's)");
   run->add_flag("--noise-floor", run_opts.noise_floor,
                 "render each reference twice (two seeds), record the FLIP between them in golden.json");
 
@@ -92,6 +100,11 @@ int main(int argc, char** argv) {
       "check-report", "open DIR/index.html in headless Chromium; exit 1 on an error banner or console output");
   check_report->add_option("dir", report_dir, "the report's folder (default out)");
 
+  gib::MergeOptions mo;
+  auto* merge = app.add_subcommand("merge", "merge the outputs of `run --shard K/N` into one results.json, junit.xml and report");
+  merge->add_option("--out", mo.out, "output folder (default out)");
+  merge->add_option("shards", mo.shard_dirs, "the shards' output folders")->required();
+
   gib::CompareOptions co;
   auto* compare = app.add_subcommand("compare", "FLIP, PSNR and relMSE of two images");
   compare->add_option("reference", co.reference, "reference image (EXR or PNG)")->required();
@@ -115,13 +128,18 @@ int main(int argc, char** argv) {
     return app.exit(e);
   }
   try {
-    if (app.got_subcommand("devices")) return gib::cmd_devices();
+    if (app.got_subcommand("devices")) return gib::cmd_devices(resource_spec);
     if (int rc = gib::perf::run_perf_commands(perf); rc >= 0) return rc;
-    if (app.got_subcommand("run")) return gib::cmd_run(run_opts);
+    if (app.got_subcommand("run")) {
+      if (gib::Shard s = gib::shard_from(run_opts.shard); s.active())
+        run_opts.shard = std::to_string(s.index) + "/" + std::to_string(s.count);
+      return gib::cmd_run(run_opts);
+    }
     if (app.got_subcommand("update-goldens")) return gib::cmd_update_goldens(up);
     if (app.got_subcommand("sweep")) return gib::cmd_sweep(sweep_opts);
     if (app.got_subcommand("timing")) return gib::cmd_timing(timing_opts);
     if (app.got_subcommand("check-report")) return gib::cmd_check_report(report_dir);
+    if (app.got_subcommand("merge")) return gib::cmd_merge(mo);
     if (app.got_subcommand("compare")) {
       if (force_hdr && force_ldr) throw std::invalid_argument("compare: expected at most one of --hdr and --ldr");
       if (force_hdr || force_ldr) co.hdr = force_hdr;

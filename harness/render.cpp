@@ -140,11 +140,27 @@ RenderRun render(const RenderOptions& o) {
   return run;
 }
 
-int cmd_devices() {
-  for (auto& d : Gpu::list_devices())
+int cmd_devices(const std::string& ctest_resource_spec) {
+  std::vector<DeviceInfo> devices = Gpu::list_devices();
+  for (auto& d : devices)
     fmt::print("{} {}: {} ({}, driver {} {}, Vulkan {}, subgroup {}){}\n", d.is_default ? "*" : " ", d.index, d.name,
                d.type, d.driver_name, d.driver_info, d.api_version, d.subgroup_size,
                d.is_default ? "  [default]" : "");
+  if (ctest_resource_spec.empty()) return 0;
+  bool hardware = std::any_of(devices.begin(), devices.end(), [](auto& d) { return !d.is_software(); });
+  nlohmann::json gpus = nlohmann::json::array();
+  for (auto& d : devices)
+    if (!hardware || !d.is_software()) gpus.push_back({{"id", std::to_string(d.index)}, {"slots", 1}});
+  nlohmann::json spec = {{"version", {{"major", 1}, {"minor", 0}}}, {"local", {{{"gpus", gpus}}}}};
+  std::string tmp = ctest_resource_spec + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << spec.dump(2) << "\n";
+    if (!out) throw std::runtime_error(fmt::format("{}: expected a writable path for the resource spec", ctest_resource_spec));
+  }
+  std::filesystem::rename(tmp, ctest_resource_spec);
+  fmt::print("wrote {}: {} GPU resource{} for ctest --resource-spec-file\n", ctest_resource_spec, gpus.size(),
+             gpus.size() == 1 ? "" : "s");
   return 0;
 }
 

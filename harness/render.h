@@ -48,7 +48,10 @@ struct RenderRun {
 // Renders and returns the result; the CLI wrapper prints and writes files.
 RenderRun render(const RenderOptions& options);
 int cmd_render(const RenderOptions& options);  // returns the process exit code
-int cmd_devices();
+// Lists the Vulkan devices. With `ctest_resource_spec`, also writes a CTest resource spec file
+// there: one "gpus" resource per hardware device (every device when there is none, e.g.
+// lavapipe alone), id = the device index `--device` takes (CMakeLists.txt, GIB_SUITE_SHARDS).
+int cmd_devices(const std::string& ctest_resource_spec = "");
 
 std::vector<PassStats> summarize(const std::vector<FrameResult>& frames);
 // "NAME=VALUE" strings to technique options; throws std::invalid_argument naming the bad one.

@@ -82,8 +82,10 @@ void write_report_error_map(const std::string& stem, const FloatImage& error_map
 nlohmann::json suite_to_json(const SuiteResult& suite) {
   nlohmann::json j;
   j["device"] = {{"name", suite.device.name}, {"type", suite.device.type}, {"driver", suite.device.driver_name},
-                 {"driver_info", suite.device.driver_info}, {"class", suite.device_class}};
+                 {"driver_info", suite.device.driver_info}, {"class", suite.device_class},
+                 {"golden_class", suite.golden_class}};
   j["psnr_definition"] = metrics::psnr_description();
+  if (!suite.shard.is_null()) j["shard"] = suite.shard;
   j["case_errors"] = suite.case_errors;
   auto& rows = j["results"] = nlohmann::json::array();
   for (auto& r : suite.rows) {
@@ -108,6 +110,7 @@ nlohmann::json suite_to_json(const SuiteResult& suite) {
                     {"negative_control", r.control_name}, {"why", r.control_why}, {"options", r.options},
                     {"status", r.status}, {"messages", r.messages}, {"metrics", m}, {"checks", checks},
                     {"gpu_ms", r.gpu_ms}, {"passes", passes}, {"device", r.device}, {"image", r.image_id}, {"reference_image", r.reference_id},
+                    {"golden_class", r.golden_class},
                     {"resource_bytes", r.plan.total_bytes()}});
     auto& row = rows.back();
     if (!r.timing.frames.empty()) {  // where gpu_ms and the pass times come from
@@ -116,6 +119,11 @@ nlohmann::json suite_to_json(const SuiteResult& suite) {
                        {"scan_free", r.timing.scan_free()}, {"scan_dispatches", r.timing.scan_dispatches},
                        {"frame_ms", {{"median", f.median}, {"q1", f.q1}, {"q3", f.q3}, {"min", f.min}, {"max", f.max}}},
                        {"frame_samples_ms", r.timing.frame_ms()}};
+      if (r.timing.clock.measured())
+        row["timing"]["clock"] = {{"fastest_probe_ms", r.timing.clock.fastest_probe_ms},
+                                  {"before_probe_ms", r.timing.clock.before_probe_ms},
+                                  {"after_probe_ms", r.timing.clock.after_probe_ms},
+                                  {"ratio", r.timing.clock.ratio()}};
     }
     if (!r.curve.empty()) {
       nlohmann::json curve = nlohmann::json::array();
@@ -156,7 +164,6 @@ nlohmann::json suite_to_json(const SuiteResult& suite) {
 }
 
 void write_suite_outputs(const std::string& out_dir, const SuiteResult& suite, const std::vector<Case>& cases) {
-  fs::path out(out_dir);
   nlohmann::json j = suite_to_json(suite);
   nlohmann::json case_info = nlohmann::json::array();
   for (auto& c : cases) {
@@ -166,38 +173,48 @@ void write_suite_outputs(const std::string& out_dir, const SuiteResult& suite, c
                          {"output", c.output}, {"rois", rois}});
   }
   j["cases"] = case_info;
+  write_report_files(out_dir, j);
+}
+
+void write_report_files(const std::string& out_dir, const nlohmann::json& j) {
+  fs::path out(out_dir);
   write_text(out / "results.json", j.dump(2) + "\n");
   write_text(out / "results.js", "window.GIB_RESULTS=" + j.dump() + ";\n");
 
   std::string xml = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites>\n";
-  for (auto& c : cases) {
+  for (auto& c : j["cases"]) {
+    const std::string name = c.value("name", "");
     std::string body;
     int tests = 0, fails = 0;
-    for (auto& r : suite.rows) {
-      if (r.case_name != c.name) continue;
+    for (auto& r : j["results"]) {
+      if (r.value("case", "") != name) continue;
       ++tests;
-      std::string name = r.kind == "negative_control" ? "negative:" + r.control_name : r.technique + "." + r.preset;
-      body += fmt::format("    <testcase classname=\"{}\" name=\"{}\" time=\"{:.3f}\">", xml_escape(c.name),
-                          xml_escape(name), r.gpu_ms / 1000.0);
-      if (r.status == "known_failure" || r.status == "skipped") {
-        body += fmt::format("<skipped message=\"{}\"/>", xml_escape(r.messages.empty() ? r.status : r.messages[0]));
-      } else if (r.status != "pass") {
+      const std::string status = r.value("status", "error");
+      std::vector<std::string> messages = r.value("messages", std::vector<std::string>{});
+      std::string test = r.value("kind", "") == "negative_control" ? "negative:" + r.value("negative_control", "")
+                                                                    : r.value("technique", "") + "." + r.value("preset", "");
+      body += fmt::format("    <testcase classname=\"{}\" name=\"{}\" time=\"{:.3f}\">", xml_escape(name),
+                          xml_escape(test), r.value("gpu_ms", 0.0) / 1000.0);
+      if (status == "known_failure" || status == "skipped") {
+        body += fmt::format("<skipped message=\"{}\"/>", xml_escape(messages.empty() ? status : messages[0]));
+      } else if (status != "pass") {
         ++fails;
         std::string msg;
-        for (auto& m : r.messages) msg += m + "\n";
-        body += fmt::format("<failure message=\"{}\">{}</failure>", xml_escape(r.messages.empty() ? "failed" : r.messages[0]),
+        for (auto& m : messages) msg += m + "\n";
+        body += fmt::format("<failure message=\"{}\">{}</failure>", xml_escape(messages.empty() ? "failed" : messages[0]),
                             xml_escape(msg));
       }
       body += "</testcase>\n";
     }
-    for (auto& e : suite.case_errors)
-      if (e.rfind(c.name + ":", 0) == 0) {
-        ++tests;
-        ++fails;
-        body += fmt::format("    <testcase classname=\"{}\" name=\"case\"><error message=\"{}\"/></testcase>\n",
-                            xml_escape(c.name), xml_escape(e));
-      }
-    xml += fmt::format("  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\">\n{}  </testsuite>\n", xml_escape(c.name),
+    for (auto& e : j["case_errors"]) {
+      const std::string text = e.get<std::string>();
+      if (text.rfind(name + ":", 0) != 0) continue;
+      ++tests;
+      ++fails;
+      body += fmt::format("    <testcase classname=\"{}\" name=\"case\"><error message=\"{}\"/></testcase>\n",
+                          xml_escape(name), xml_escape(text));
+    }
+    xml += fmt::format("  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\">\n{}  </testsuite>\n", xml_escape(name),
                        tests, fails, body);
   }
   xml += "</testsuites>\n";
@@ -206,12 +223,13 @@ void write_suite_outputs(const std::string& out_dir, const SuiteResult& suite, c
   // The report: static assets compiled into the binary; data from results.js and img/*.js.
   std::string img_scripts;
   std::set<std::string> ids;
-  for (auto& r : suite.rows) {
-    ids.insert(r.image_id);
-    ids.insert(r.reference_id);
+  for (auto& r : j["results"]) {
+    ids.insert(r.value("image", ""));
+    ids.insert(r.value("reference_image", ""));
   }
   for (auto& id : ids)
-    if (fs::exists(out / "img" / (id + ".js"))) img_scripts += fmt::format("<script src=\"img/{}.js\"></script>\n", id);
+    if (!id.empty() && fs::exists(out / "img" / (id + ".js")))
+      img_scripts += fmt::format("<script src=\"img/{}.js\"></script>\n", id);
   std::string html = kReportHtml;
   auto pos = html.find("<!--GIB_IMAGE_SCRIPTS-->");
   if (pos != std::string::npos) html.replace(pos, std::string("<!--GIB_IMAGE_SCRIPTS-->").size(), img_scripts);

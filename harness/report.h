@@ -10,6 +10,9 @@ namespace gib {
 
 nlohmann::json suite_to_json(const SuiteResult& suite);
 void write_suite_outputs(const std::string& out_dir, const SuiteResult& suite, const std::vector<Case>& cases);
+// results.json, results.js, junit.xml and the HTML report from a suite's JSON (suite_to_json
+// plus "cases"): one writer for `run` and for `merge`.
+void write_report_files(const std::string& out_dir, const nlohmann::json& j);
 void print_suite_table(const SuiteResult& suite);
 // <stem>.png (sRGB preview, exposure 0) and <stem>.js (float data for the report's exposure
 // control: window.GIB_IMG[id] = {w, h, data: base64 float32 RGB}).

@@ -10,6 +10,7 @@
 
 #include "harness/case_render.h"
 #include "harness/goldens.h"
+#include "harness/shard.h"
 
 #include <cstring>
 #include "harness/image_io.h"
@@ -229,7 +230,8 @@ namespace {
 struct CaseContext {
   const Case& c;
   GoldenStore store;
-  std::string cls;
+  std::string cls;         // the device's class: known failures
+  std::string golden_cls;  // whose approved technique goldens rows are compared with
   std::map<std::string, FloatImage> references;  // by AOV
   std::optional<FloatImage> analytic;
   const SuiteOptions& o;
@@ -318,6 +320,13 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
   CaseRender r = render_case(gpu, c, run, preset, 0, 0, ctx.o.stability_scan);
   row.gpu_ms = r.frame_median_ms;
   row.timing = r.timing;
+  // A GPU that lowered its clock during the timed frames inflates their times: say so (the
+  // verdict does not depend on times).
+  if (r.timing.clock.measured() && r.timing.clock.ratio() > kClockDropWarn)
+    row.messages.push_back(fmt::format(
+        "GPU clock below its peak around the timed frames: a fixed probe dispatch ran {:.2f}x slower than its fastest "
+        "on this device, so these GPU times may be inflated up to that factor (perf/clock_probe.h)",
+        r.timing.clock.ratio()));
   row.scanned = r.scanned;
   row.stability = r.stability;
 
@@ -360,7 +369,7 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
   std::optional<FloatImage> golden;
   if (kind == "technique") {
     std::string stem = GoldenStore::technique_stem(run.technique, preset);
-    std::string path = ctx.store.find(stem, ctx.cls);
+    std::string path = ctx.store.find(stem, ctx.golden_cls);
     if (path.empty()) {
       row.messages.push_back(fmt::format(
           "{}/{}.exr: golden missing; create it with: gibench update-goldens --case {} --technique {} --reason \"initial golden\"",
@@ -368,6 +377,13 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
       failed = true;
     } else {
       golden = ctx.store.read(path);
+      row.golden_class =
+          fs::path(path).filename() == ctx.store.file_name(stem, ctx.golden_cls) ? ctx.golden_cls : "lavapipe";
+      if (row.golden_class != ctx.golden_cls)
+        row.messages.push_back(fmt::format(
+            "compared with the {} golden ({}): no {} golden is approved for this run; approve one on a device of that class with: "
+            "gibench update-goldens --case {} --technique {} --reason \"...\"",
+            row.golden_class, fs::path(path).filename().string(), ctx.golden_cls, c.name, run.technique));
       Threshold gt{"flip", "golden", "", c.golden_flip_max, std::nullopt};
       CheckResult cr = check_value(gt, compute_metric(c, "flip", r.image, &*golden, nullptr), 0);
       row.metrics["flip_vs_golden"] = cr.value;
@@ -486,19 +502,41 @@ int cmd_run(const SuiteOptions& o) {
   SuiteResult suite;
   suite.device = gpu->info();
   suite.device_class = device_class(suite.device.driver_name, suite.device.name);
-  fmt::print("device: {} ({} {}), golden class {}\n", suite.device.name, suite.device.driver_name,
-             suite.device.driver_info, suite.device_class);
+  suite.golden_class = o.golden_class.empty() ? suite.device_class : o.golden_class;
+  fmt::print("device: {} ({} {}), device class {}, golden class {}\n", suite.device.name, suite.device.driver_name,
+             suite.device.driver_info, suite.device_class, suite.golden_class);
+  // Sharding: row i of the plan runs in shard i % N; a case none of whose rows is ours is skipped
+  // whole (no reference read).
+  const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
+  const std::vector<std::string> plan = plan_rows(cases);
+  std::set<std::string> ours;
+  for (size_t i = 0; i < plan.size(); ++i)
+    if (i % shard.count == shard.index) ours.insert(plan[i]);
+  if (shard.active()) {
+    suite.shard = {{"index", shard.index}, {"count", shard.count}, {"plan", plan},
+                   {"rows", std::vector<std::string>(ours.begin(), ours.end())}};
+    fmt::print("shard {}/{}: {} of {} rows\n", shard.index, shard.count, ours.size(), plan.size());
+  }
+  auto is_ours = [&](const Case& c, const std::string& kind, const std::string& technique, const std::string& preset,
+                     const std::string& control) { return ours.count(row_key(c.name, kind, technique, preset, control)) > 0; };
   for (const Case& c : cases) {
-    CaseContext ctx{c, GoldenStore(o.goldens_dir, c.name), suite.device_class, {}, {}, o};
+    bool any = false;
+    for (auto& run : c.techniques)
+      for (auto& preset : run.presets) any |= is_ours(c, "technique", run.technique, preset, "");
+    for (auto& nc : c.negative_controls) any |= is_ours(c, "negative_control", nc.run.technique, "", nc.name);
+    if (!any) continue;
+    CaseContext ctx{c, GoldenStore(o.goldens_dir, c.name), suite.device_class, suite.golden_class, {}, {}, o};
     if (c.analytic_value) ctx.analytic = FloatImage(c.width, c.height, 4, float(*c.analytic_value));
     try {
       check_noise_floor(ctx, *gpu);
       for (auto& run : c.techniques)
         for (auto& preset : run.presets) {
+          if (!is_ours(c, "technique", run.technique, preset, "")) continue;
           ResultRow row = evaluate(ctx, *gpu, run, preset, "technique");
           suite.rows.push_back(std::move(row));
         }
       for (auto& nc : c.negative_controls) {
+        if (!is_ours(c, "negative_control", nc.run.technique, "", nc.name)) continue;
         ResultRow row = evaluate(ctx, *gpu, nc.run, nc.run.presets.front(), "negative_control");
         row.control_name = nc.name;
         row.control_why = nc.why;

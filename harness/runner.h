@@ -26,6 +26,13 @@ struct SuiteOptions {
   bool validate = false;
   bool noise_floor = false;  // run: also render each reference twice and record the floor
   bool stability_scan = true;  // run: GPU scan of every written resource (renderer/graph/stability.h)
+  // run: the device class whose approved technique goldens rows are compared with; empty: the
+  // device's own (harness/goldens.h device_class). Known failures always follow the device.
+  std::string golden_class;
+  // run: "K/N" runs the rows i with i % N == K of the suite's plan (harness/shard.h); empty:
+  // every row. (The CLI fills it from GTEST_SHARD_INDEX / GTEST_TOTAL_SHARDS when --shard is
+  // not given; the library never reads them, so a sharded test binary does not shard suites.)
+  std::string shard;
 };
 
 struct CheckResult {
@@ -47,6 +54,10 @@ struct ResultRow {
   // negative control whose every threshold was skipped: nothing could catch it)
   std::string status;
   std::vector<std::string> messages;
+  // The device class of the approved golden this row was compared with ("" when none). Differs
+  // from the suite's class when this device has no golden of its own and the plain (lavapipe)
+  // file stood in: said in the row's messages and shown amber in the report.
+  std::string golden_class;
   std::map<std::string, double> metrics;
   std::vector<CheckResult> checks;
   double gpu_ms = 0;  // median per frame, over timing.frames
@@ -63,9 +74,17 @@ struct ResultRow {
   std::string device;
 };
 
+// Clock-probe ratio (around the timed frames / its fastest, perf/clock_probe.h) above which a
+// row says its GPU times were taken at a lowered clock.
+inline constexpr double kClockDropWarn = 1.10;
+
 struct SuiteResult {
   DeviceInfo device;
   std::string device_class;
+  std::string golden_class;  // SuiteOptions::golden_class, or device_class
+  // A sharded run: {"index", "count", "plan" (every row key of the suite, in order), "rows"
+  // (this shard's)}; null otherwise.
+  nlohmann::json shard;
   std::vector<ResultRow> rows;
   std::vector<std::string> case_errors;  // "<case>: message"
   int failures() const;

@@ -119,6 +119,15 @@ int cmd_timing(const TimingOptions& o) {
   auto med = [&](size_t i) { return perf::median_of(paths[i].frame_ms()); };
   fmt::print("ratios of medians: run/sweep {:.3f}, run/bench {:.3f}, sweep/bench {:.3f}\n", med(0) / med(1),
              med(0) / med(2), med(1) / med(2));
+  if (paths[0].repeats.front().clock.measured()) {
+    fmt::print("GPU clock: a fixed probe around the timed frames / its fastest on this device (1 = peak clock), per "
+               "repeat:\n");
+    for (auto& p : paths) {
+      std::string r;
+      for (auto& t : p.repeats) r += fmt::format(" {:.3f}", t.clock.ratio());
+      fmt::print("  {:<6}{}\n", p.name, r);
+    }
+  }
 
   fmt::print("\n{:<26} {:>10} {:>10} {:>10} {:>9} {:>9}\n", "pass (median ms)", "run", "sweep", "bench", "run/sweep",
              "run/bench");

@@ -8,10 +8,7 @@
 #include "renderer/graph/pass.h"
 
 namespace gib::perf {
-namespace {
 
-// One dispatch, timed by timestamps on a GPU and by the host clock around submit-and-wait on
-// a CPU device (llvmpipe's timestamps misattribute its lazily-run work; see Executor).
 double time_dispatch(Gpu& gpu, const Pipeline& pipeline, const std::vector<Bind>& binds, const void* push,
                      uint32_t push_bytes, uint32_t groups) {
   auto cmd = gpu.begin(2);
@@ -25,8 +22,6 @@ double time_dispatch(Gpu& gpu, const Pipeline& pipeline, const std::vector<Bind>
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return (ns[1] - ns[0]) * 1e-6;
 }
-
-}  // namespace
 
 Calibration calibrate(Gpu& gpu, uint32_t repeats) {
   Calibration c;

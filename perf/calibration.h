@@ -33,4 +33,9 @@ struct Calibration {
 // rate is the larger median and both are recorded (they should agree within a few percent).
 Calibration calibrate(Gpu& gpu, uint32_t repeats = 7);
 
+// One dispatch of `groups` workgroups, in ms: timestamps on a GPU, the host clock around
+// submit-and-wait on a CPU device (llvmpipe's timestamps misattribute its lazily-run work).
+double time_dispatch(Gpu& gpu, const Pipeline& pipeline, const std::vector<Bind>& binds, const void* push,
+                     uint32_t push_bytes, uint32_t groups);
+
 }  // namespace gib::perf

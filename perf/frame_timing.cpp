@@ -1,5 +1,7 @@
 #include "perf/frame_timing.h"
 
+#include <optional>
+
 namespace gib::perf {
 
 std::vector<double> FrameTiming::frame_ms() const {
@@ -37,10 +39,19 @@ FrameTiming time_frames(Executor& ex, uint32_t warmup, uint32_t frames) {
   ex.enable_stability_scan(false);
   for (uint32_t i = 0; i < warmup; ++i) ex.run_frame();
   const uint32_t before = ex.frames_run();
+  std::optional<ClockProbe> probe;
+  ClockCheck clock;
+  if (!ex.gpu().info().is_software()) clock.before_probe_ms = probe.emplace(ex.gpu()).probe();
   std::vector<FrameResult> timed;
   for (uint32_t i = 0; i < frames; ++i) timed.push_back(ex.run_frame());
+  if (probe) {
+    clock.after_probe_ms = probe->probe();
+    clock.fastest_probe_ms = probe->fastest();
+  }
   ex.enable_stability_scan(scan);
-  return timing_of(std::move(timed), before, "extra");
+  FrameTiming t = timing_of(std::move(timed), before, "extra");
+  t.clock = clock;
+  return t;
 }
 
 }  // namespace gib::perf

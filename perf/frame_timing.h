@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "perf/clock_probe.h"
 #include "perf/stats.h"
 #include "renderer/graph/executor.h"
 
@@ -23,6 +24,7 @@ struct FrameTiming {
   uint32_t warmup = 0;              // frames the executor ran before the first timed one
   std::vector<FrameResult> frames;  // the timed frames
   uint32_t scan_dispatches = 0;     // stability-scan dispatches in the timed frames
+  ClockCheck clock;                 // GPU clock before/after the timed frames (clock_probe.h)
   bool scan_free() const { return !frames.empty() && scan_dispatches == 0; }
   std::vector<double> frame_ms() const;
   Summary frame() const;  // of FrameResult::total_ms
@@ -34,7 +36,8 @@ struct FrameTiming {
 FrameTiming timing_of(std::vector<FrameResult> frames, uint32_t warmup, std::string source);
 
 // Switches the executor's stability scan off, renders `warmup` untimed frames and then `frames`
-// timed ones, and switches the scan back as it was. Nothing is read back: any image or
+// timed ones, and switches the scan back as it was. On a GPU the clock is probed right before
+// and right after the timed frames (FrameTiming::clock, perf/clock_probe.h). Nothing is read back: any image or
 // stability result wanted from the executor must be read before (the frames move history on).
 FrameTiming time_frames(Executor& ex, uint32_t warmup, uint32_t frames);
 

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "perf/calibration.h"
+#include "perf/clock_probe.h"
 #include "perf/perf.h"
 #include "perf/profiles.h"
 #include "perf/stats.h"
@@ -327,6 +328,34 @@ TEST_F(PerfCalibration, BothFmaKernelsAreTimedAndTheFasterCounts) {
   EXPECT_EQ(back.fma_scalar_gflops, c.fma_scalar_gflops);
   EXPECT_EQ(back.fma_scalar_ms, c.fma_scalar_ms);
   EXPECT_EQ(back.throughput.fp32_gflops, c.throughput.fp32_gflops);
+}
+}  // namespace
+}  // namespace gib::perf
+
+namespace gib::perf {
+namespace {
+// The clock probe (perf/clock_probe.h): a fixed dispatch, timed, against the fastest the same
+// dispatch ran on this device in this process. Whether a GPU's clock holds is a figure (`gibench
+// timing` prints the ratio per repeat, rows carry it), not an assertion; time_frames probes only
+// on a GPU, so on lavapipe its FrameTiming has no clock record.
+class ClockProbeTest : public test::GpuTest {};
+TEST_F(ClockProbeTest, ProbeTracksTheFastestAndTheRatioIsTheWorseSide) {
+  ClockProbe p(gpu());
+  double a = p.probe(), b = p.probe();
+  EXPECT_GT(a, 0.0);
+  EXPECT_GT(b, 0.0);
+  EXPECT_LE(p.fastest(), std::min(a, b) * (1 + 1e-12));
+  EXPECT_GT(p.fastest(), 0.0);
+  ClockCheck c;
+  EXPECT_FALSE(c.measured());
+  EXPECT_EQ(c.ratio(), 0.0);
+  c.fastest_probe_ms = 0.25;
+  c.before_probe_ms = 0.30;
+  c.after_probe_ms = 0.75;
+  EXPECT_TRUE(c.measured());
+  EXPECT_DOUBLE_EQ(c.ratio(), 3.0);
+  c.before_probe_ms = 1.0;
+  EXPECT_DOUBLE_EQ(c.ratio(), 4.0);
 }
 }  // namespace
 }  // namespace gib::perf

@@ -428,7 +428,8 @@
         h('span', { class: 'spacer' }),
         h('span', { class: 'kv' }, ['FLIP ', h('b', null, fmtNum(metric(row, 'flip_vs_reference'), 4))]),
         h('span', { class: 'kv' }, ['PSNR ', h('b', null, fmtNum(metric(row, 'psnr_vs_reference'), 2)), ' dB']),
-        h('span', { class: 'kv' }, ['GPU ', h('b', null, fmtMs(row.gpu_ms)), ' ms'])
+        h('span', { class: 'kv' }, ['GPU ', h('b', null, fmtMs(row.gpu_ms)), ' ms']),
+        otherClassTag(row)
       ]),
       neg ? h('p', { class: 'why' }, [h('b', null, 'Breaks: '), row.why || '(no description)']) : null,
       msgs.length ? h('ul', { class: 'messages ' + (row.status === 'pass' ? 'ok' : 'bad') },
@@ -440,6 +441,16 @@
         stabilitySection(row)
       ])
     ]);
+  }
+
+  // A row compared with another device class's golden (this device has none approved): amber,
+  // never silent.
+  function otherClassTag(row) {
+    var dev = (window.GIB_RESULTS && window.GIB_RESULTS.device) || {};
+    var want = dev.golden_class || dev['class'];
+    if (!row.golden_class || !want || row.golden_class === want) return null;
+    return h('div', { class: 'golden-other-class', title: 'no ' + want + ' golden is approved: compared with the ' +
+      row.golden_class + ' one' }, row.golden_class + ' golden');
   }
 
   // ---------------------------------------------------------------- per case
@@ -466,7 +477,7 @@
           h('td', null, badge(r)),
           h('td', { class: 'num' }, fmtNum(metric(r, 'flip_vs_reference'), 4)),
           h('td', { class: 'num' }, fmtNum(metric(r, 'psnr_vs_reference'), 2)),
-          h('td', { class: 'num' }, fmtNum(metric(r, 'flip_vs_golden'), 4)),
+          h('td', { class: 'num' }, [fmtNum(metric(r, 'flip_vs_golden'), 4), otherClassTag(r)]),
           h('td', { class: 'num' }, fmtMs(r.gpu_ms)),
           h('td', { class: 'msgs' }, msgs.length ? msgs.map(function (m) { return h('div', null, m); }) : h('span', { class: 'muted' }, '\u2014'))
         ]);
@@ -582,7 +593,8 @@
         h('div', { class: 'device' }, [
           h('div', { class: 'dev-name' }, dev.name || 'unknown device'),
           h('div', { class: 'dev-sub' }, [dev.type, dev.driver, dev.driver_info].filter(Boolean).join(' \u00b7 ') +
-            (dev['class'] ? ' \u00b7 golden class ' + dev['class'] : ''))
+            (dev['class'] ? ' \u00b7 device class ' + dev['class'] : '') +
+            (dev.golden_class || dev['class'] ? ' \u00b7 golden class ' + (dev.golden_class || dev['class']) : ''))
         ]),
         h('div', { class: 'totals' }, [
           h('div', { class: 'total pass' }, [h('b', null, String(total.pass)), h('span', null, 'passed')]),

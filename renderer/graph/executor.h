@@ -33,6 +33,7 @@ class Executor {
   ~Executor();
   const Plan& plan() const { return plan_; }
   const Settings& settings() const { return settings_; }
+  Gpu& gpu() const { return gpu_; }
   FrameResult run_frame();
   uint32_t frames_run() const { return frame_; }
   // Stability scan (off by default): from the next frame on, after each running pass, one
