@@ -120,10 +120,7 @@ nlohmann::json suite_to_json(const SuiteResult& suite) {
                        {"frame_ms", {{"median", f.median}, {"q1", f.q1}, {"q3", f.q3}, {"min", f.min}, {"max", f.max}}},
                        {"frame_samples_ms", r.timing.frame_ms()}};
       if (r.timing.clock.measured())
-        row["timing"]["clock"] = {{"fastest_probe_ms", r.timing.clock.fastest_probe_ms},
-                                  {"before_probe_ms", r.timing.clock.before_probe_ms},
-                                  {"after_probe_ms", r.timing.clock.after_probe_ms},
-                                  {"ratio", r.timing.clock.ratio()}};
+        row["timing"]["clock"] = r.timing.clock.to_json();
     }
     if (!r.curve.empty()) {
       nlohmann::json curve = nlohmann::json::array();

@@ -166,6 +166,7 @@ int cmd_timing(const TimingOptions& o) {
           for (auto& q : f.passes) passes[q.name].push_back(q.ms);
         jp["repeats"].push_back({{"source", r.source}, {"warmup", r.warmup}, {"scan_dispatches", r.scan_dispatches},
                                  {"frame_ms", r.frame_ms()}, {"pass_ms", passes}});
+        if (r.clock.measured()) jp["repeats"].back()["clock"] = r.clock.to_json();
       }
       j["paths"].push_back(jp);
     }

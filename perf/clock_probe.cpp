@@ -20,6 +20,11 @@ double ClockCheck::ratio() const {
   return measured() ? std::max(before_probe_ms, after_probe_ms) / fastest_probe_ms : 0.0;
 }
 
+nlohmann::json ClockCheck::to_json() const {
+  return {{"fastest_probe_ms", fastest_probe_ms}, {"before_probe_ms", before_probe_ms},
+          {"after_probe_ms", after_probe_ms}, {"ratio", ratio()}};
+}
+
 struct ClockProbe::State {
   std::shared_ptr<Buffer> out;
   std::shared_ptr<Pipeline> pipe;

@@ -9,6 +9,7 @@
 // 3x. Nothing in the device's settings is changed. On a CPU device there is nothing to probe.
 #pragma once
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "renderer/vk/gpu.h"
 
@@ -21,6 +22,7 @@ struct ClockCheck {
   bool measured() const { return fastest_probe_ms > 0 && before_probe_ms > 0 && after_probe_ms > 0; }
   // How much slower than its fastest the probe ran around the frames (the worse of the two).
   double ratio() const;
+  nlohmann::json to_json() const;  // the three times and the ratio, for results and timing JSON
 };
 
 class ClockProbe {
