@@ -73,6 +73,10 @@ std::vector<TechniqueOption> own_options() {
              "(exposure pass), so RGBA16F SH and the history do not clamp under bright light; 0: P = 1 (negative "
              "control)",
              0, 1, &S::pre_exposure),
+      option("volume_kernel",
+             "irradiance_volume_update's kernels: 0 by device (GPU: one workgroup per probe; CPU device: the split "
+             "ray/convolve pair), 1 per-probe, 2 split; the same math, so a cross-device difference can be isolated",
+             0, 2, &S::volume_kernel),
   };
 }
 }  // namespace

@@ -38,6 +38,7 @@ struct RadianceCacheSettings : TechniqueSettingsOf<RadianceCacheSettings>, Direc
   uint32_t denoise_hit_weight = 0;  // gi_denoise: 1 = SH taps also weigh hit-distance similarity (the seed's; biased, radiance_cache.md)
   bool multi_bounce = true;         // 0: no cache feeds back on itself (single bounce; white-furnace negative control)
   bool pre_exposure = true;         // screen-space GI works on radiance x P (exposure pass); 0: P = 1 (negative control)
+  uint32_t volume_kernel = 0;       // irradiance_volume_update: 0 by device (GPU per-probe, CPU split), 1 per-probe, 2 split
 };
 
 }  // namespace gib

@@ -57,7 +57,8 @@ class IrradianceVolumeUpdatePass final : public Pass {
     ctx.cmd.end_label();
     ctx.cmd.barrier(kStageCompute, kStageCompute);
     IvPush push{make_rc_params(ctx.settings, ctx.frame)};
-    if (!ctx.gpu.info().is_software()) {
+    const bool per_probe = r.volume_kernel == 0 ? !ctx.gpu.info().is_software() : r.volume_kernel == 1;
+    if (per_probe) {
       // GPU: one workgroup per probe with its rays in group-shared memory.
       ctx.cmd.begin_label("irradiance_volume_update/probe");
       record_compute(ctx, {.shader = "irradiance_volume_probe.comp",
