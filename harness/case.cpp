@@ -286,7 +286,17 @@ Threshold read_threshold(const Node& n, const Case& c, const TechniqueRun& run) 
   require_object(n, {"metric", "against", "roi", "max", "min", "frame"});
   Threshold t;
   Node metric = n["metric"];
-  t.metric = read_choice(metric, case_metrics());
+  // stat_<name>: a counter the run's technique declares (Technique::stats).
+  if (metric.present() && metric.v->is_string() && metric.v->get<std::string>().rfind("stat_", 0) == 0) {
+    std::vector<std::string> stats;
+    try {
+      for (const TechniqueStat& st : find_technique(run.technique).stats) stats.push_back("stat_" + st.name);
+    } catch (const std::invalid_argument&) {
+    }
+    t.metric = read_choice(metric, stats.empty() ? std::vector<std::string>{"a technique with stats"} : stats);
+  } else {
+    t.metric = read_choice(metric, case_metrics());
+  }
   if (t.metric == "flicker" && c.flicker_frames < 2)
     metric.fail("a metric other than flicker, or a top-level \"flicker_frames\" >= 2", json_quoted(t.metric));
   if (t.metric.rfind("nan_", 0) == 0 && t.metric != "nan_count" && !c.track_nan)
@@ -535,6 +545,7 @@ const std::vector<std::string>& case_metrics() {
 }
 
 bool metric_uses_against(const std::string& metric) {
+  if (metric.rfind("stat_", 0) == 0) return false;
   static const std::set<std::string> alone = {"roi_mean", "nan_count", "inf_count", "banding", "flicker",
                                               "conv_error_final", "conv_error_max", "conv_drift",
                                               "conv_oscillation", "scan_nan", "scan_inf", "scan_negative",

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <optional>
 #include <nlohmann/json.hpp>
 
@@ -111,6 +112,17 @@ CaseRender render(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::s
   r.frames = frames;
   r.spp = reference ? frames * s.params<ReferenceSettings>().spp_per_frame : 0;
   r.image = ex.read(out_name);
+  for (const TechniqueStat& st : t.stats) {
+    if (!ex.plan().find(st.resource)) continue;
+    std::vector<uint8_t> raw = ex.read_buffer(st.resource);
+    auto word = [&](uint32_t i) {
+      uint32_t w = 0;
+      if (uint64_t(i) * 4 + 4 <= raw.size()) std::memcpy(&w, raw.data() + uint64_t(i) * 4, 4);
+      return double(w);
+    };
+    const double v = word(st.word);
+    r.stats[st.name] = st.of_word == UINT32_MAX ? v : (word(st.of_word) > 0 ? v / word(st.of_word) : 0.0);
+  }
   r.scanned = scan;
   if (scan) r.stability = ex.stability();
   if (reference)

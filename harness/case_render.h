@@ -32,6 +32,7 @@ struct CaseRender {
   std::vector<double> nan_pixels;               // Case::track_nan: NaN pixels of the output per frame
   bool scanned = false;
   StabilityReport stability;                    // when rendered with scan = true
+  std::map<std::string, double> stats;          // Technique::stats at the last frame (those in the plan)
 };
 
 // A technique run of the case (`gibench run`, sweep, update-goldens of a technique golden):

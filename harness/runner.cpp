@@ -363,6 +363,7 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
   if (series.curve)
     for (const char* m : {"conv_error_final", "conv_error_max", "conv_drift", "conv_oscillation"})
       row.metrics[m] = compute_metric(c, m, final_image, nullptr, nullptr, series);
+  for (const auto& [name, value] : r.stats) row.metrics["stat_" + name] = value;
   auto nf = metrics::count_non_finite(r.image);
   row.metrics["nan_count"] = double(nf.nan);
   row.metrics["inf_count"] = double(nf.inf);
@@ -419,6 +420,17 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
                           fmt::format("{} skipped: the stability scan did not run (--no-stability-scan)", t.metric)};
       row.messages.push_back(skipped.message);
       row.checks.push_back(std::move(skipped));
+      continue;
+    }
+    if (t.metric.rfind("stat_", 0) == 0) {
+      // A technique's GPU counter (Technique::stats), read after the last frame.
+      auto it = r.stats.find(t.metric.substr(5));
+      if (it == r.stats.end())
+        throw CaseError(fmt::format("{}: {} {}: metric {} is not counted in this run (its pass does not run with these options)",
+                                    c.file, run.technique, preset, t.metric));
+      CheckResult cr = check_value(t, it->second, 0);
+      row.checks.push_back(cr);
+      failed |= !cr.pass;
       continue;
     }
     const Roi* roi = t.roi.empty() ? nullptr : find_roi(c, t.roi);

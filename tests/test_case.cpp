@@ -93,7 +93,7 @@ TEST(CaseLoad, Cornell) {
   EXPECT_EQ(c.width, 128u);
   EXPECT_EQ(c.height, 72u);
   EXPECT_FALSE(c.description.empty());
-  ASSERT_EQ(c.techniques.size(), 2u);
+  ASSERT_EQ(c.techniques.size(), 3u);
   const TechniqueRun& direct = c.techniques[0];
   EXPECT_EQ(direct.technique, "direct");
   EXPECT_EQ(direct.compare_aov, "direct");
@@ -104,12 +104,16 @@ TEST(CaseLoad, Cornell) {
   ASSERT_TRUE(all_min && all_max);
   EXPECT_EQ(*all_min, 0.95);
   EXPECT_EQ(*all_max, 1.05);
-  EXPECT_EQ(c.techniques[1].technique, "reference");
-  ASSERT_FALSE(c.techniques[1].thresholds.empty());
-  EXPECT_EQ(c.techniques[1].thresholds[0].against, "reference");
-  EXPECT_EQ(c.techniques[1].spp, 256u);
+  // deferred lights the same paths with the same code: the same bounds.
+  EXPECT_EQ(c.techniques[1].technique, "deferred");
+  EXPECT_EQ(c.techniques[1].thresholds.size(), direct.thresholds.size());
+  EXPECT_EQ(c.techniques[2].technique, "reference");
+  ASSERT_FALSE(c.techniques[2].thresholds.empty());
+  EXPECT_EQ(c.techniques[2].thresholds[0].against, "reference");
+  EXPECT_EQ(c.techniques[2].spp, 256u);
 
-  ASSERT_EQ(c.negative_controls.size(), 1u);
+  ASSERT_EQ(c.negative_controls.size(), 2u);
+  EXPECT_EQ(c.negative_controls[1].run.technique, "deferred");
   const TechniqueRun& nc = c.negative_controls[0].run;
   EXPECT_EQ(nc.technique, "direct");
   ASSERT_EQ(nc.presets.size(), 1u);
@@ -585,8 +589,33 @@ TEST(CaseSchema, SchemaMatchesLoader) {
   for (auto it = schema["properties"].begin(); it != schema["properties"].end(); ++it) schema_keys.insert(it.key());
   EXPECT_EQ(loader_keys, schema_keys);
 
-  std::vector<std::string> schema_metrics = schema["$defs"]["threshold"]["properties"]["metric"]["enum"];
+  std::vector<std::string> schema_metrics = schema["$defs"]["threshold"]["properties"]["metric"]["anyOf"][0]["enum"];
   EXPECT_EQ(schema_metrics, case_metrics());
+}
+
+// stat_<name> thresholds name a counter the run's technique declares (Technique::stats).
+TEST(CaseLoad, StatMetricsNameADeclaredCounter) {
+  TempDir dir;
+  json d = valid_case();
+  d["techniques"][0]["technique"] = "deferred";
+  d["techniques"][0]["thresholds"] = json::parse(R"([{"metric": "stat_vrcs_lit", "max": 0.7}])");
+  EXPECT_EQ(load_error(dir.write("ok.json", d.dump())), "no error");
+  d["techniques"][0]["thresholds"][0]["metric"] = "stat_nope";
+  std::string msg = load_error(dir.write("unknown.json", d.dump()));
+  EXPECT_NE(msg.find("unknown.json"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("stat_vrcs_lit"), std::string::npos) << "lists the known counters: " << msg;
+  EXPECT_NE(msg.find("stat_nope"), std::string::npos) << msg;
+  // direct declares no counters.
+  d = valid_case();
+  d["techniques"][0]["thresholds"] = json::parse(R"([{"metric": "stat_waves", "max": 1}])");
+  msg = load_error(dir.write("direct.json", d.dump()));
+  EXPECT_NE(msg.find("stat_waves"), std::string::npos) << msg;
+  // A counter measures the run alone: no "against".
+  d = valid_case();
+  d["techniques"][0]["technique"] = "deferred";
+  d["techniques"][0]["thresholds"] = json::parse(R"([{"metric": "stat_waves", "against": "golden", "max": 1}])");
+  msg = load_error(dir.write("against.json", d.dump()));
+  EXPECT_NE(msg.find("against"), std::string::npos) << msg;
 }
 
 // ---------------------------------------------------------------- tracking: variants, frames, curves

@@ -35,6 +35,9 @@ FloatImage decode_texels(Format format, uint32_t width, uint32_t height, const s
     case Format::rgba32_float: fill(4, [&](size_t i, float* p) { for (int c = 0; c < 4; ++c) p[c] = f32(4 * i + c); }); break;
     case Format::rg16_float: fill(2, [&](size_t i, float* p) { p[0] = f16(2 * i); p[1] = f16(2 * i + 1); }); break;
     case Format::rgba16_float: fill(4, [&](size_t i, float* p) { for (int c = 0; c < 4; ++c) p[c] = f16(4 * i + c); }); break;
+    case Format::rgba16_uint:
+      fill(4, [&](size_t i, float* p) { for (int c = 0; c < 4; ++c) p[c] = float(uint32_t(raw[8 * i + 2 * c]) | uint32_t(raw[8 * i + 2 * c + 1]) << 8); });
+      break;
     case Format::rgba8_unorm: fill(4, [&](size_t i, float* p) { for (int c = 0; c < 4; ++c) p[c] = raw[4 * i + c] / 255.0f; }); break;
     case Format::b10g11r11_float: fill(3, [&](size_t i, float* p) { codecs::decode_r11g11b10(u32(i), p); }); break;
     case Format::e5b9g9r9_float: fill(3, [&](size_t i, float* p) { codecs::decode_rgb9e5(u32(i), p); }); break;

@@ -36,7 +36,8 @@ uint32_t format_channel_mask(Format f, Encoding e) {
     case Format::r32_float: case Format::d32_float: return 0x1u;
     case Format::rg32_uint: case Format::rg32_float: case Format::rg16_float: return 0x3u;
     case Format::b10g11r11_float: case Format::e5b9g9r9_float: return 0x7u;
-    case Format::rgba32_uint: case Format::rgba32_float: case Format::rgba16_float: case Format::rgba8_unorm:
+    case Format::rgba32_uint: case Format::rgba32_float: case Format::rgba16_float: case Format::rgba16_uint:
+    case Format::rgba8_unorm:
       return 0xfu;
     case Format::buffer: break;
   }

@@ -102,6 +102,10 @@ std::vector<TechniqueOption> with_common_options(std::vector<TechniqueOption> op
                                [](Settings& s, double v) { s.debug.inject_x = uint32_t(v); }));
   opts.push_back(common_option("inject_y", "debug: pixel row of the NaN injection", 0, 65535, true,
                                [](Settings& s, double v) { s.debug.inject_y = uint32_t(v); }));
+  // Another sample of the same estimator: a variant with seed_offset 1000 measures a technique's own
+  // seed-to-seed noise, the scale "comparable image quality" is judged against (vrcs-parity).
+  opts.push_back(common_option("seed_offset", "added to the run's random seed (another sample of the same estimator)", 0,
+                               1e6, true, [](Settings& s, double v) { s.seed += uint32_t(v); }));
   // The far-from-origin stress: the whole scene and the camera moved (Settings::world_offset).
   opts.push_back(common_option("world_offset_x", "metres added to every world-space x (scene, lights, camera)", -1e6,
                                1e6, false, [](Settings& s, double v) { s.world_offset.x = float(v); }));

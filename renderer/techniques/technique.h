@@ -34,6 +34,18 @@ struct PassEntry {
   std::unique_ptr<Pass> (*make)() = nullptr;
 };
 
+// A figure a technique counts on the GPU each frame (work skipped, pixels shaded at a coarse
+// rate, ...): word `word` of buffer resource `resource`, divided by word `of_word` when that is
+// set (a fraction). Reported per row as metric "stat_<name>" after the last frame; a case may
+// bound it. Not reported when the resource is not in the run's plan (the step is switched off).
+struct TechniqueStat {
+  std::string name;
+  std::string description;
+  std::string resource;
+  uint32_t word = 0;
+  uint32_t of_word = UINT32_MAX;
+};
+
 struct Technique {
   std::string name;
   std::string description;
@@ -45,6 +57,7 @@ struct Technique {
   std::map<std::string, std::string> contract_aovs;
   std::vector<std::string> presets;  // in order of quality: low, medium, high, ultra
   std::vector<TechniqueOption> options;  // in a stable order
+  std::vector<TechniqueStat> stats;      // GPU counters reported per row
   // The technique's settings struct with its defaults, and the preset table applied to it
   // (row `level` of `presets`). Made by define_settings<T>().
   std::function<std::unique_ptr<TechniqueSettings>()> make_settings;

@@ -6,7 +6,8 @@
 #define GIB_TECHNIQUE_LIST(X) \
   X(direct)                   \
   X(reference)                \
-  X(radiance_cache)
+  X(radiance_cache)           \
+  X(deferred)
 
 namespace gib {
 

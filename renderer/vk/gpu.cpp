@@ -22,6 +22,7 @@ VkFormat to_vk(Format f) {
     case Format::rgba32_float: return VK_FORMAT_R32G32B32A32_SFLOAT;
     case Format::rg16_float: return VK_FORMAT_R16G16_SFLOAT;
     case Format::rgba16_float: return VK_FORMAT_R16G16B16A16_SFLOAT;
+    case Format::rgba16_uint: return VK_FORMAT_R16G16B16A16_UINT;
     case Format::rgba8_unorm: return VK_FORMAT_R8G8B8A8_UNORM;
     case Format::b10g11r11_float: return VK_FORMAT_B10G11R11_UFLOAT_PACK32;
     case Format::e5b9g9r9_float: return VK_FORMAT_E5B9G9R9_UFLOAT_PACK32;
@@ -32,7 +33,7 @@ VkFormat to_vk(Format f) {
 }
 
 bool is_uint_format(Format f) {
-  return f == Format::r32_uint || f == Format::rg32_uint || f == Format::rgba32_uint;
+  return f == Format::r32_uint || f == Format::rg32_uint || f == Format::rgba32_uint || f == Format::rgba16_uint;
 }
 
 namespace {
@@ -140,6 +141,10 @@ std::vector<Candidate> enumerate(VkInstance inst) {
     c.info.driver_info = drv.driverInfo;
     c.info.api_version = version_string(props.properties.apiVersion);
     c.info.subgroup_size = sub.subgroupSize;
+    const bool compute_ops = (sub.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) != 0;
+    c.info.subgroup_vote = compute_ops && (sub.supportedOperations & VK_SUBGROUP_FEATURE_VOTE_BIT);
+    c.info.subgroup_ballot = compute_ops && (sub.supportedOperations & VK_SUBGROUP_FEATURE_BALLOT_BIT);
+    c.info.subgroup_arithmetic = compute_ops && (sub.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT);
     c.info.timestamp_period_ns = qf[family].timestampValidBits ? props.properties.limits.timestampPeriod : 0.0;
     out.push_back(c);
   }

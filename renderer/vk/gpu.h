@@ -27,6 +27,10 @@ struct DeviceInfo {
   std::string driver_info;  // e.g. "Mesa 22.3.6 (LLVM 15.0.6)", "580.65"
   std::string api_version;  // "1.3.230"
   uint32_t subgroup_size = 0;
+  // Subgroup operations the compute stage supports (Vulkan 1.1): what a shader may use.
+  bool subgroup_vote = false;    // subgroupAllEqual
+  bool subgroup_ballot = false;  // subgroupBallot, subgroupBroadcastFirst
+  bool subgroup_arithmetic = false;  // subgroupOr, subgroupAdd
   double timestamp_period_ns = 0;  // 0: no timestamps on the compute queue
   bool is_default = false;
   bool is_software() const { return type == "cpu"; }

@@ -25,92 +25,10 @@ layout(set = 0, binding = kDirectBindOut, rgba32f) uniform writeonly image2D out
 layout(set = 0, binding = kDirectBindVbuffer, rg32ui) uniform readonly uimage2D vbuffer;
 layout(push_constant) uniform Push { DirectPush push; };
 
-const float kShadowMax = 3.4e38;
-
-// Lambertian response to light arriving from wi with irradiance-like weight e at a point
-// with normal n: reflected on the front, transmitted (scaled by translucency) from the back.
-vec3 diffuse_response(vec3 albedo, float translucency, vec3 n, vec3 wi) {
-  float c = dot(n, wi);
-  return c > 0.0 ? albedo * (1.0 - translucency) * c / GIB_PI : albedo * translucency * (-c) / GIB_PI;
-}
+#include "renderer/passes/direct_lighting/direct_light.glsl"
 
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(p, imageSize(out_direct)))) return;
-  vec4 pos = imageLoad(gb_position, p);
-  if (pos.w == 0.0) {
-    vec3 o, d;
-    gib_camera_ray(vec2(p) + 0.5, o, d);
-    imageStore(out_direct, p, vec4(gib_sky_radiance(d), 1.0));
-    return;
-  }
-  vec3 albedo = imageLoad(gb_albedo, p).rgb;
-  vec3 n = imageLoad(gb_normal, p).xyz;
-  if (push.nan_guards != 0u && !(gib_finite(n) && dot(n, n) > 0.25)) {
-    // Guard: a broken normal (NaN texel in the G-buffer) is lit as if facing the camera, so the
-    // pixel stays finite; the G-buffer is rewritten every frame, so nothing carries it over.
-    vec3 o, d;
-    gib_camera_ray(vec2(p) + 0.5, o, d);
-    n = -d;
-  }
-  vec4 em = imageLoad(gb_emissive, p);
-  float translucency = em.w;
-  vec3 x = pos.xyz;
-  GibRng rng = gib_rng(gib_seed(), gib_frame_index(), uvec2(p), 1u);
-  vec3 result = em.rgb;
-
-  if (kHasSun && gib_frame.sun_irradiance.w > 0.0) {
-    vec3 wi = gib_uniform_cone(gib_frame.sun_dir.xyz, gib_frame.sun_dir.w, gib_next2(rng));
-    vec3 resp = diffuse_response(albedo, translucency, n, wi);
-    if (any(greaterThan(resp, vec3(0.0)))) {
-      vec3 side = dot(n, wi) > 0.0 ? n : -n;
-      if (!trace_any(gib_offset_ray(x, side), wi, 0.0, kShadowMax)) result += resp * gib_frame.sun_irradiance.rgb;
-    }
-  }
-  if ((kHasSky || kHasEmissive) && push.sky_rays > 0u) {
-    // Cosine-distributed rays: each carries albedo * the radiance it finds straight away, the
-    // sky's where it escapes, an emissive surface's emission where it hits one (light that
-    // reaches this surface with no further bounce: direct, by the AOV contract).
-    // The rays leave as the reference's path continuation does (path_trace.comp): a direction
-    // below the face (the interpolated normal leans past it on curved meshes) is mirrored back
-    // across the face plane, and the origin is offset along the face normal, so no ray starts
-    // inside the mesh and loses its light to a self-hit.
-    vec3 ng = n;
-    uint ids = imageLoad(vbuffer, p).x;
-    if (ids != kVisibilityNone) {
-      vec3 o, d;
-      gib_camera_ray(vec2(p) + 0.5, o, d);
-      ng = gib_face_normal_facing(ids - 1u, d, n);
-    }
-    vec3 sky = vec3(0.0);
-    for (uint i = 0u; i < push.sky_rays; ++i) {
-      bool back = translucency > 0.0 && gib_next(rng) < translucency;
-      vec3 side = back ? -n : n, side_g = back ? -ng : ng;
-      vec3 wi = gib_above_face(gib_cosine_hemisphere(side, gib_next2(rng)), side_g);
-      vec3 origin = gib_offset_ray(x, side_g);
-      if (kHasEmissive) {
-        GibHit hit;
-        if (!trace_closest(origin, wi, 0.0, kShadowMax, hit))
-          sky += kHasSky ? gib_sky_radiance(wi) : vec3(0.0);
-        else
-          sky += gib_materials[gib_surface(hit.triangle, hit.u, hit.v, push.nan_guards != 0u).material].emissive;
-      } else if (!trace_any(origin, wi, 0.0, kShadowMax)) {
-        sky += gib_sky_radiance(wi);
-      }
-    }
-    result += albedo * sky / float(push.sky_rays);
-  }
-  if (kHasLocal) {
-    for (uint i = 0u; i < gib_light_count(); ++i) {
-      vec3 wi;
-      float dist;
-      vec3 e = gib_local_light(gib_lights[i], x, wi, dist);
-      if (all(equal(e, vec3(0.0)))) continue;
-      vec3 resp = diffuse_response(albedo, translucency, n, wi);
-      if (all(equal(resp, vec3(0.0)))) continue;
-      vec3 side = dot(n, wi) > 0.0 ? n : -n;
-      if (!trace_any(gib_offset_ray(x, side), wi, 0.0, dist * 0.999)) result += resp * e;
-    }
-  }
-  imageStore(out_direct, p, vec4(result, 1.0));
+  imageStore(out_direct, p, vec4(gib_direct_light(p, push.sky_rays, push.nan_guards != 0u, true), 1.0));
 }

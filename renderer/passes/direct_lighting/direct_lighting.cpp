@@ -10,12 +10,7 @@ class DirectLightingPass final : public Pass {
   PassDecl declare(const Scene&, const Settings& s) const override {
     PassDecl d;
     d.name = "direct_lighting";
-    d.slots = {{"vbuffer", Access::read},
-               {"gbuffer_albedo", Access::read},
-               {"gbuffer_normal", Access::read},
-               {"gbuffer_position", Access::read},
-               {"gbuffer_emissive", Access::read},
-               {"direct_light", Access::write, ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values())}};
+    d.slots = direct_light_slots(ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values()));
     d.work = {{"sky_rays", double(s.width) * s.height * s.params<DirectLightingParams>().sky_rays}};
     return d;
   }
@@ -45,6 +40,11 @@ class DirectLightingPass final : public Pass {
 };
 
 }  // namespace
+
+std::vector<Slot> direct_light_slots(const ResourceDesc& out) {
+  return {{"vbuffer", Access::read},          {"gbuffer_albedo", Access::read},   {"gbuffer_normal", Access::read},
+          {"gbuffer_position", Access::read}, {"gbuffer_emissive", Access::read}, {"direct_light", Access::write, out}};
+}
 
 std::unique_ptr<Pass> make_direct_lighting_pass() { return std::make_unique<DirectLightingPass>(); }
 

@@ -14,6 +14,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "renderer/graph/pass.h"
 
@@ -24,6 +25,21 @@ namespace gib {
 struct DirectLightingParams {
   uint32_t sky_rays = 4;  // cosine rays per pixel for sky and emissive-surface light (0: neither)
 };
+
+// The sky-ray ladder of every technique whose quality is direct_lighting's (direct, deferred).
+struct SkyRaysPreset {
+  const char* name;
+  uint32_t sky_rays;
+};
+inline constexpr SkyRaysPreset kSkyRaysPresets[] = {{"low", 1}, {"medium", 4}, {"high", 16}, {"ultra", 64}};
+template <class Settings>
+void apply_sky_rays_preset(Settings& s, const SkyRaysPreset& row) {
+  static_cast<DirectLightingParams&>(s).sky_rays = row.sky_rays;
+}
+
+// The slots of a pass that lights the G-buffer into direct_light (direct_lighting and any pass
+// sharing its code, renderer/passes/direct_lighting/direct_light.glsl).
+std::vector<Slot> direct_light_slots(const ResourceDesc& out);
 
 std::unique_ptr<Pass> make_direct_lighting_pass();
 }  // namespace gib

@@ -30,19 +30,6 @@ vec2 plane_barycentrics(vec3 o, vec3 d, vec3 a, vec3 b, vec3 c) {
   return vec2(dot(tv, pv) * inv, dot(d, qv) * inv);
 }
 
-// Procedural textures have no mips: average 4x4 samples over the pixel's UV footprint
-// (the parallelogram spanned by the UV derivatives), which removes checker aliasing.
-vec3 gib_material_albedo_filtered(GpuMaterial m, vec2 uv, vec2 duv_dx, vec2 duv_dy) {
-  if (m.texture == GIB_TEXTURE_NONE) return m.albedo;
-  vec3 sum = vec3(0.0);
-  for (int j = 0; j < 4; ++j)
-    for (int i = 0; i < 4; ++i) {
-      vec2 o = (vec2(i, j) + 0.5) / 4.0 - 0.5;
-      sum += gib_material_albedo(m, uv + duv_dx * o.x + duv_dy * o.y);
-    }
-  return sum / 16.0;
-}
-
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(p, imageSize(vbuffer)))) return;

@@ -6,6 +6,8 @@
 //                                    alternating cells of size 1/texture_scale; value_noise:
 //                                    albedo -> albedo2 by a hash-based value noise at
 //                                    texture_scale lattice cells per uv unit.
+//   gib_material_albedo_filtered(m, uv, duv_dx, duv_dy)
+//                                    the albedo averaged over 4x4 samples of the pixel footprint.
 //   gib_material_alpha(m, uv, seed)  coverage in [0, 1]: alpha none: 1; leaf_mask: 1 inside a
 //                                    leaf-shaped ellipse in uv [0,1]^2, 0 outside; checker_mask:
 //                                    1 / 0 in alternating checker cells; opacity: m.opacity.
@@ -97,6 +99,19 @@ float gib_material_alpha(GpuMaterial m, vec2 uv, uint hash_seed) {
   }
   if (m.alpha == GIB_ALPHA_OPACITY) return m.opacity;
   return 1.0;
+}
+
+// Procedural textures have no mips: average 4x4 samples over the pixel's UV footprint
+// (the parallelogram spanned by the UV derivatives), which removes checker aliasing.
+vec3 gib_material_albedo_filtered(GpuMaterial m, vec2 uv, vec2 duv_dx, vec2 duv_dy) {
+  if (m.texture == GIB_TEXTURE_NONE) return m.albedo;
+  vec3 sum = vec3(0.0);
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      vec2 o = (vec2(i, j) + 0.5) / 4.0 - 0.5;
+      sum += gib_material_albedo(m, uv + duv_dx * o.x + duv_dy * o.y);
+    }
+  return sum / 16.0;
 }
 
 #ifndef GIB_MATERIAL_PURE

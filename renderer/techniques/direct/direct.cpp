@@ -7,15 +7,6 @@
 #include "renderer/techniques/technique.h"
 
 namespace gib {
-namespace {
-struct Preset {
-  const char* name;
-  uint32_t sky_rays;
-};
-constexpr Preset kPresets[] = {{"low", 1}, {"medium", 4}, {"high", 16}, {"ultra", 64}};
-void apply_preset_row(DirectSettings& s, const Preset& p) { s.sky_rays = p.sky_rays; }
-}  // namespace
-
 Technique direct_technique() {
   Technique t;
   t.name = "direct";
@@ -28,7 +19,7 @@ Technique direct_technique() {
   // no indirect_diffuse to declare.
   t.contract_aovs = {{"direct", "direct_light"}};
   t.aovs = {"vbuffer", "depth", "gbuffer_albedo", "gbuffer_normal", "gbuffer_position", "gbuffer_emissive"};
-  define_settings<DirectSettings>(t, kPresets, apply_preset_row);
+  define_settings<DirectSettings>(t, kSkyRaysPresets, apply_sky_rays_preset<DirectSettings>);
   t.options = with_common_options(
       {
           option("sky_rays", "sky visibility rays per pixel (0: no sky light)", 0, 4294967295.0,

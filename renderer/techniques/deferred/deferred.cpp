@@ -1,0 +1,84 @@
+// `deferred`: DOOM: The Dark Ages' deferred path on the visibility buffer (deferred.md): material
+// classification, deferred attribute interpolation, deferred texturing per material shader, tile
+// classification and tiled deferred lighting. Every step is switchable against its uber form.
+#include "renderer/techniques/deferred/deferred.h"
+
+#include "renderer/passes/visibility/visibility.h"
+#include "renderer/techniques/deferred/attribute_interpolate/attribute_interpolate.h"
+#include "renderer/techniques/deferred/deferred_lighting/deferred_lighting.h"
+#include "renderer/techniques/deferred/deferred_texturing/deferred_texturing.h"
+#include "renderer/techniques/deferred/include/deferred_shared.h"
+#include "renderer/techniques/deferred/material_classify/material_classify.h"
+#include "renderer/techniques/deferred/tile_classify/tile_classify.h"
+#include "renderer/techniques/deferred/vrcs_rate/vrcs_rate.h"
+#include "renderer/techniques/technique.h"
+
+namespace gib {
+Technique deferred_technique() {
+  Technique t;
+  t.name = "deferred";
+  t.description =
+      "visibility buffer, material classification, attribute interpolation, deferred texturing per material "
+      "shader, tile classification, tiled direct lighting (DOOM: The Dark Ages)";
+  t.passes = {{"visibility", make_visibility_pass},
+              {"material_classify", make_material_classify_pass},
+              {"attribute_interpolate", make_attribute_interpolate_pass},
+              {"vrcs_rate", make_vrcs_rate_pass},
+              {"deferred_texturing", make_deferred_texturing_pass},
+              {"tile_classify", make_tile_classify_pass},
+              {"deferred_lighting", make_deferred_lighting_pass}};
+  t.output = "direct_light";
+  // Only direct light, as `direct`: its output is the contract's `direct` exactly.
+  t.contract_aovs = {{"direct", "direct_light"}};
+  t.aovs = {"vbuffer",          "depth",           "gbuffer_albedo", "gbuffer_normal",    "gbuffer_position",
+            "gbuffer_emissive", "vis_bary",        "vis_bary_deriv", "vis_tangent_frame", "material_segments",
+            "pixel_commands",   "tile_workloads", "vrcs_rates"};
+  using namespace glsl;
+  t.stats = {
+      {"padding_per_wave", "empty entries per 64-entry wave of the padded pixel lists", "material_segments",
+       kSegStats + kStatPaddingSlots, kSegStats + kStatWaves},
+      {"waves", "64-entry waves of the texturing pixel lists", "material_segments", kSegStats + kStatWaves},
+      {"uniform_subgroups", "texturing subgroups that took the uniform-data permutation", "material_segments",
+       kSegStats + kStatSubgroupsUniform},
+      {"divergent_subgroups", "texturing subgroups that took the divergent permutation", "material_segments",
+       kSegStats + kStatSubgroupsDivergent},
+      // The seed's tile-classification debug print: tiles (of all) per lighting workload.
+      {"tiles_sky", "share of 32x32 tiles lit by the sky-only workload", "tile_workloads", 4 * kWorkloadSky + 3,
+       kTileStats + kTileStatTiles},
+      {"tiles_opaque", "share of tiles lit by the opaque workload", "tile_workloads", 4 * kWorkloadOpaque + 3,
+       kTileStats + kTileStatTiles},
+      {"tiles_translucent", "share of tiles lit by the translucent workload", "tile_workloads",
+       4 * kWorkloadTranslucent + 3, kTileStats + kTileStatTiles},
+      {"vrcs_textured", "VRCS: share of geometry pixels whose material the texturing evaluated", "vrcs_rates",
+       kVrcsStats + kVrcsStatTextured, kVrcsStats + kVrcsStatTexturedOf},
+      {"vrcs_lit", "VRCS: share of geometry pixels the lighting shaded itself", "vrcs_rates", kVrcsStats + kVrcsStatLit,
+       kVrcsStats + kVrcsStatLitOf},
+  };
+  // The lighting ladder of `direct` (same rays, same result): the deferred path changes how the
+  // work is dispatched, not what it computes.
+  define_settings<DeferredSettings>(t, kSkyRaysPresets, apply_sky_rays_preset<DeferredSettings>);
+  t.options = with_common_options(
+      {
+          option("sky_rays", "sky visibility rays per pixel (0: no sky light)", 0, 4294967295.0,
+                 &DirectLightingParams::sky_rays),
+          option("classify_materials", "texture over per-shader pixel lists (0: one uber kernel over every pixel)", 0, 1,
+                 &DeferredSettings::classify_materials),
+          option("uniform_permutation",
+                 "dispatch the uniform-data texturing permutation beside the divergent one (needs subgroup vote and ballot)",
+                 0, 1, &DeferredSettings::uniform_permutation),
+          option("tile_classification", "light per tile workload (0: one uber kernel over every pixel)", 0, 1,
+                 &DeferredSettings::tile_classification),
+          option("vrcs", "variable-rate compute shading in the classified texturing and the tiled lighting", 0, 1,
+                 &DeferredSettings::vrcs),
+          option("vrcs_threshold", "largest tone-mapped luminance step, l = L / (1 + L), a coarse pixel pair may hide", 0,
+                 1, &DeferredSettings::vrcs_threshold),
+          option("vrcs_edges", "keep full rate across instance changes and normal creases", 0, 1,
+                 &DeferredSettings::vrcs_edges),
+          option("vrcs_force", "0: rate chosen per tile; 1 2x1, 2 1x2, 3 2x2 everywhere (negative controls)", 0, 3,
+                 &DeferredSettings::vrcs_force),
+      },
+      {0, 1});
+  return t;
+}
+
+}  // namespace gib

@@ -1,0 +1,6 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// deferred_lighting over one workload's tile list with variable-rate compute shading (vrcs 1).
+#define GIB_LIGHTING_CLASSIFIED 1
+#define GIB_LIGHTING_VRCS 1
+#include "renderer/techniques/deferred/deferred_lighting/deferred_lighting.glsl"

@@ -1,0 +1,8 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_vote : require
+#extension GL_KHR_shader_subgroup_ballot : require
+// deferred_texturing with the uniform-data / divergent permutations (subgroup vote + ballot).
+#define GIB_TEXTURING_SUBGROUPS 1
+#include "renderer/techniques/deferred/deferred_texturing/deferred_texturing.glsl"

@@ -1,0 +1,32 @@
+// Attribute encodings of the deferred technique (attribute_interpolate writes them, the
+// texturing and lighting passes read them). CPU mirror and format notes:
+// renderer/codecs/bary_deriv.h (bit for bit, tests/test_deferred.cpp).
+#ifndef GIB_DEFERRED_ATTRIBUTES_GLSL
+#define GIB_DEFERRED_ATTRIBUTES_GLSL
+#include "packing.glsl"
+
+const float kGibBaryDerivMax = 1.9990234375;
+const uint kGibBaryDerivFlag = 0x4000u;
+
+// Flag channels of the packed derivatives.
+const uint kGibFlagFrontFacing = 0u;
+const uint kGibFlagNormalNegZ = 1u;
+const uint kGibFlagTangentNegZ = 2u;
+const uint kGibFlagBitangentNeg = 3u;
+
+uint gib_pack_bary_deriv(float d, bool flag) {
+  // NaN compares false both ways: clamp(NaN) is undefined, so test on the bits first.
+  if ((floatBitsToUint(d) & 0x7fffffffu) > 0x7f800000u) d = 0.0;
+  d = clamp(d, -kGibBaryDerivMax, kGibBaryDerivMax);
+  return gib_float_to_half(d) | (flag ? kGibBaryDerivFlag : 0u);
+}
+float gib_unpack_bary_deriv(uint packed) { return gib_half_to_float(packed & ~kGibBaryDerivFlag & 0xffffu); }
+bool gib_bary_deriv_flag(uint packed) { return (packed & kGibBaryDerivFlag) != 0u; }
+
+float gib_unit_z_from_xy(float x, float y, bool negative) {
+  precise float xy = x * x + y * y;
+  float z = sqrt(max(0.0, 1.0 - xy));
+  return negative ? -z : z;
+}
+
+#endif

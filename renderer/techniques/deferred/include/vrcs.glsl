@@ -1,0 +1,22 @@
+// Variable-rate compute shading: where a pixel's result comes from. Needs `vbuffer` (rg32ui)
+// and a readonly buffer `vrcs_rate_words` holding buffer vrcs_rates (deferred_shared.h).
+#ifndef GIB_VRCS_GLSL
+#define GIB_VRCS_GLSL
+
+uint gib_vrcs_rate(ivec2 p, uint rate_tiles_x) {
+  uint t = uint(p.x) / kVrcsTile + uint(p.y) / kVrcsTile * rate_tiles_x;
+  return vrcs_rate_words[kVrcsHeader + t];
+}
+// The anchor of p's coarse cell and the cell size.
+ivec2 gib_vrcs_anchor(ivec2 p, uint rate, out ivec2 size) {
+  size = ivec2((rate & kVrcsCoarseX) != 0u ? 2 : 1, (rate & kVrcsCoarseY) != 0u ? 2 : 1);
+  return p - ivec2(p.x % size.x, p.y % size.y);
+}
+// True when q takes its result from anchor a: both geometry of the same instance. A pixel of
+// another instance (an edge the rate missed) or off screen shades itself.
+bool gib_vrcs_follows(ivec2 q, ivec2 a, ivec2 size_px) {
+  if (any(greaterThanEqual(q, size_px)) || q == a) return false;
+  uvec2 iq = imageLoad(vbuffer, q).xy, ia = imageLoad(vbuffer, a).xy;
+  return iq.x != kVisibilityNone && ia.x != kVisibilityNone && iq.y == ia.y;
+}
+#endif

@@ -1,0 +1,58 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "renderer/techniques/deferred/vrcs_rate/vrcs_rate_shared.h"
+#include "renderer/techniques/deferred/include/deferred_attributes.glsl"
+
+// One workgroup per 8x8 rate tile.
+layout(local_size_x = kVrcsTile, local_size_y = kVrcsTile) in;
+layout(set = 0, binding = kVrcsBindVbuffer, rg32ui) uniform readonly uimage2D vbuffer;
+layout(set = 0, binding = kVrcsBindTangentFrame, rgba16f) uniform readonly image2D in_frame;
+layout(set = 0, binding = kVrcsBindPrevLight, rgba32f) uniform readonly image2D prev_light;
+layout(std430, set = 0, binding = kVrcsBindRates) buffer Rates { uint rates[]; };
+layout(push_constant) uniform Push { VrcsPush push; };
+
+shared uint tile_ok;  // bit 0: every x pair alike, bit 1: every y pair
+
+float tone_luma(ivec2 p) {
+  vec3 c = imageLoad(prev_light, p).rgb;
+  float l = max(dot(c, vec3(0.2126, 0.7152, 0.0722)), 0.0);
+  return l / (1.0 + l);  // NaN or Inf last frame: NaN -> the pair is not alike
+}
+
+// The normal of p from the tangent frame (z's sign is not stored here: x, y are enough to see a
+// crease between two facing-the-camera normals, and both signs' z have the same magnitude).
+vec3 frame_normal(ivec2 p) {
+  vec2 xy = imageLoad(in_frame, p).xy;
+  return vec3(xy, sqrt(max(0.0, 1.0 - dot(xy, xy))));
+}
+
+bool alike(ivec2 a, ivec2 b) {
+  ivec2 size = imageSize(vbuffer);
+  if (any(greaterThanEqual(b, size))) return true;  // off screen: nothing to share with
+  float la = tone_luma(a), lb = tone_luma(b);
+  if (!(abs(la - lb) <= push.threshold)) return false;
+  if (push.edges == 0u) return true;
+  uvec2 ia = imageLoad(vbuffer, a).xy, ib = imageLoad(vbuffer, b).xy;
+  if ((ia.x == kVisibilityNone) != (ib.x == kVisibilityNone)) return false;
+  if (ia.x == kVisibilityNone) return true;
+  if (ia.y != ib.y) return false;
+  return dot(frame_normal(a), frame_normal(b)) >= 0.9063;  // 25 degrees
+}
+
+void main() {
+  if (gl_LocalInvocationIndex == 0u) tile_ok = kVrcsCoarseX | kVrcsCoarseY;
+  barrier();
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  bool inside = all(lessThan(p, imageSize(vbuffer)));
+  uint ok = kVrcsCoarseX | kVrcsCoarseY;
+  if (inside && (p.x & 1) == 0 && !alike(p, p + ivec2(1, 0))) ok &= ~kVrcsCoarseX;
+  if (inside && (p.y & 1) == 0 && !alike(p, p + ivec2(0, 1))) ok &= ~kVrcsCoarseY;
+  if (ok != (kVrcsCoarseX | kVrcsCoarseY)) atomicAnd(tile_ok, ok);
+  barrier();
+  if (gl_LocalInvocationIndex == 0u) {
+    uint rate = push.history != 0u ? tile_ok : 0u;
+    if (push.force != 0u) rate = push.force;
+    rates[kVrcsHeader + gl_WorkGroupID.x + gl_WorkGroupID.y * push.rate_tiles_x] = rate;
+    atomicAdd(rates[kVrcsStats + kVrcsStatTiles + rate], 1u);
+  }
+}
