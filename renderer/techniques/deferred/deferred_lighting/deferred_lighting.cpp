@@ -55,7 +55,9 @@ class DeferredLightingPass final : public Pass {
     if (ds.vrcs) buffers.push_back({kLightBindRates, "vrcs_rates"});
     for (uint32_t workload = 0; workload < kWorkloadCount; ++workload) {
       spec.back().value = workload;
-      record_compute(ctx, {.shader = ds.vrcs ? "deferred_lighting_vrcs.comp" : "deferred_lighting.comp",
+      record_compute(ctx, {.shader = !ds.vrcs ? "deferred_lighting.comp"
+                                    : ctx.gpu.info().subgroup_arithmetic ? "deferred_lighting_vrcs.comp"
+                                                                         : "deferred_lighting_vrcs_plain.comp",
                            .images = images,
                            .push = &push,
                            .push_bytes = sizeof(push),

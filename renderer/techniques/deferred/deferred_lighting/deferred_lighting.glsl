@@ -75,10 +75,8 @@ void main() {
           imageStore(out_direct, q, vec4(result, 1.0));
           ++covered;
         }
-    if (imageLoad(vbuffer, p).x != kVisibilityNone) {
-      atomicAdd(vrcs_rate_words[kVrcsStats + kVrcsStatLit], 1u);
-      atomicAdd(vrcs_rate_words[kVrcsStats + kVrcsStatLitOf], 1u + covered);
-    }
+    bool geometry = imageLoad(vbuffer, p).x != kVisibilityNone;
+    gib_vrcs_count(kVrcsStats + kVrcsStatLit, geometry ? 1u : 0u, geometry ? 1u + covered : 0u);  // kVrcsStatLitOf follows
 #endif
   }
 #else

@@ -1,6 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 // deferred_lighting over one workload's tile list with variable-rate compute shading (vrcs 1).
 #define GIB_LIGHTING_CLASSIFIED 1
 #define GIB_LIGHTING_VRCS 1
+#define GIB_VRCS_SUBGROUP_COUNT 1
 #include "renderer/techniques/deferred/deferred_lighting/deferred_lighting.glsl"

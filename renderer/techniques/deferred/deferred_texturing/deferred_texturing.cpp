@@ -59,7 +59,7 @@ class DeferredTexturingPass final : public Pass {
       ctx.cmd.clear(ctx.image(name), zero);
     ctx.cmd.barrier(kStageTransfer, kStageCompute);
     const DeviceInfo& dev = ctx.gpu.info();
-    const bool subgroups = dev.subgroup_vote && dev.subgroup_ballot;
+    const bool subgroups = dev.subgroup_vote && dev.subgroup_ballot && dev.subgroup_arithmetic;
     const bool uniform = subgroups && ds.uniform_permutation;
     std::vector<uint32_t> perms;
     if (uniform) perms.push_back(kTexPermUniform);

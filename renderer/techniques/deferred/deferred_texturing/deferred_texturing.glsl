@@ -140,8 +140,7 @@ void main() {
         store_texel(q, m, albedo);
         ++covered;
       }
-  atomicAdd(vrcs_rate_words[kVrcsStats + kVrcsStatTextured], 1u);
-  atomicAdd(vrcs_rate_words[kVrcsStats + kVrcsStatTexturedOf], 1u + covered);
+  gib_vrcs_count(kVrcsStats + kVrcsStatTextured, 1u, 1u + covered);  // kVrcsStatTexturedOf follows
 #endif
 }
 #endif

@@ -1,7 +1,7 @@
 // deferred_texturing: the G-buffer from the visibility buffer and the interpolated attributes,
 // one compute pipeline per material shader (procedural texture kind) dispatched indirectly over
 // that shader's pixel lists (DOOM: The Dark Ages, "Deferred Texturing"). Each list is dispatched
-// twice where the device has subgroup vote and ballot: a uniform-data permutation that takes
+// twice where the device has subgroup vote, ballot and arithmetic: a uniform-data permutation that takes
 // subgroups whose pixels share one instance (broadcasting it) and a divergent one for the rest
 // (the seed's subgroupAllEqual / subgroupBroadcastFirst trick); without them, or with
 // uniform_permutation 0, once. Counts of subgroups on each path go to material_segments.

@@ -61,6 +61,7 @@ GIB_CONST(uint, kVrcsCoarseX, 1)
 GIB_CONST(uint, kVrcsCoarseY, 2)
 GIB_CONST(uint, kVrcsStats, 0)
 GIB_CONST(uint, kVrcsStatTiles, 0)     // tiles per rate: words 0..3 (1x1, 2x1, 1x2, 2x2)
+// (each count is followed by its total: gib_vrcs_count writes word and word + 1)
 GIB_CONST(uint, kVrcsStatTextured, 4)  // texturing: pixels whose material was evaluated
 GIB_CONST(uint, kVrcsStatTexturedOf, 5)  // ... of this many geometry pixels
 GIB_CONST(uint, kVrcsStatLit, 6)       // lighting: geometry pixels lit by their own invocation

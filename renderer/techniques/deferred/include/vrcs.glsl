@@ -19,4 +19,21 @@ bool gib_vrcs_follows(ivec2 q, ivec2 a, ivec2 size_px) {
   uvec2 iq = imageLoad(vbuffer, q).xy, ia = imageLoad(vbuffer, a).xy;
   return iq.x != kVisibilityNone && ia.x != kVisibilityNone && iq.y == ia.y;
 }
+
+// Adds this invocation's shaded / covered pixel counts to the statistics words: one atomic per
+// subgroup where subgroup arithmetic is compiled in (GIB_VRCS_SUBGROUP_COUNT), else per
+// invocation (a hot address: on a CPU device per-invocation atomics cost more than the texturing
+// they count). Call from converged control flow of the invocations that shade.
+void gib_vrcs_count(uint word, uint shaded, uint of) {
+#ifdef GIB_VRCS_SUBGROUP_COUNT
+  uint s = subgroupAdd(shaded), o = subgroupAdd(of);
+  if (subgroupElect()) {
+    atomicAdd(vrcs_rate_words[word], s);
+    atomicAdd(vrcs_rate_words[word + 1u], o);
+  }
+#else
+  atomicAdd(vrcs_rate_words[word], shaded);
+  atomicAdd(vrcs_rate_words[word + 1u], of);
+#endif
+}
 #endif
