@@ -12,13 +12,18 @@ class DeferredLightingPass final : public Pass {
     PassDecl d;
     d.name = "deferred_lighting";
     const DeferredSettings& ds = s.params<DeferredSettings>();
-    ResourceDesc out{Format::rgba32_float, SizeRule::render};
-    out.values = non_negative_values();
-    // VRCS reads last frame's lighting (vrcs_rate): keep two copies then.
-    out.persistent = ds.vrcs && ds.tile_classification;
-    d.slots = direct_light_slots(out);
+    d.slots = direct_light_slots(ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values()));
+    const bool vrcs = ds.vrcs && ds.tile_classification;
     if (ds.tile_classification) d.slots.push_back({"tile_workloads", Access::read});
-    if (out.persistent) d.slots.push_back({"vrcs_rates", Access::read_write});
+    if (vrcs) {
+      // Next frame's rate reads this frame's tone-mapped luminance (read_prev): one float per
+      // pixel kept across frames, not a second copy of the RGBA32F lighting.
+      ResourceDesc luma{Format::r32_float, SizeRule::render};
+      luma.persistent = true;
+      luma.values = unit_values();
+      d.slots.push_back({"vrcs_rates", Access::read_write});
+      d.slots.push_back({"vrcs_luma", Access::write, luma});
+    }
     d.work = {{"sky_rays", double(s.width) * s.height * s.params<DeferredSettings>().sky_rays}};
     return d;
   }
@@ -32,7 +37,7 @@ class DeferredLightingPass final : public Pass {
     LightPush push{ds.sky_rays, ctx.settings.nan_guards ? 1u : 0u, tiles_x, tiles_x * div_up(h, kDeferredTile),
                    div_up(w, kVrcsTile), 0, 0, 0};
     static_assert(sizeof(push) == 32, "LightPush must match deferred_lighting.glsl's push block");
-    const std::vector<ImageBinding> images = {{kLightBindVbuffer, "vbuffer"},        {kLightBindAlbedo, "gbuffer_albedo"},
+    std::vector<ImageBinding> images = {{kLightBindVbuffer, "vbuffer"},        {kLightBindAlbedo, "gbuffer_albedo"},
                                               {kLightBindNormal, "gbuffer_normal"},    {kLightBindPosition, "gbuffer_position"},
                                               {kLightBindEmissive, "gbuffer_emissive"}, {kLightBindOut, "direct_light"}};
     std::vector<SpecConstant> spec = {{kLightSpecSun, f.has(Feature::sun)},
@@ -52,7 +57,10 @@ class DeferredLightingPass final : public Pass {
     }
     spec.push_back({kLightSpecWorkload, 0});
     std::vector<BufferBinding> buffers = {{kLightBindWorkloads, "tile_workloads"}};
-    if (ds.vrcs) buffers.push_back({kLightBindRates, "vrcs_rates"});
+    if (ds.vrcs) {
+      buffers.push_back({kLightBindRates, "vrcs_rates"});
+      images.push_back({kLightBindLuma, "vrcs_luma"});
+    }
     for (uint32_t workload = 0; workload < kWorkloadCount; ++workload) {
       spec.back().value = workload;
       record_compute(ctx, {.shader = !ds.vrcs ? "deferred_lighting.comp"

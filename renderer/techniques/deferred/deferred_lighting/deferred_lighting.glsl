@@ -32,11 +32,20 @@ layout(std430, set = 0, binding = kLightBindWorkloads) readonly buffer Workloads
 #endif
 #ifdef GIB_LIGHTING_VRCS
 layout(std430, set = 0, binding = kLightBindRates) buffer Rates { uint vrcs_rate_words[]; };
+layout(set = 0, binding = kLightBindLuma, r32f) uniform writeonly image2D out_luma;
 #include "renderer/techniques/deferred/include/vrcs.glsl"
 #endif
 layout(push_constant) uniform Push { LightPush push; };
 
 #include "renderer/passes/direct_lighting/direct_light.glsl"
+
+// The lit result at q; with VRCS also its tone-mapped luminance for next frame's rate.
+void store_light(ivec2 q, vec3 result) {
+  imageStore(out_direct, q, vec4(result, 1.0));
+#ifdef GIB_LIGHTING_VRCS
+  imageStore(out_luma, q, vec4(gib_vrcs_luma(result)));
+#endif
+}
 
 void main() {
 #ifdef GIB_LIGHTING_CLASSIFIED
@@ -72,7 +81,7 @@ void main() {
         for (int x = 0; x < cell.x; ++x) {
           ivec2 q = anchor + ivec2(x, y);
           if (!gib_vrcs_follows(q, anchor, size)) continue;
-          imageStore(out_direct, q, vec4(result, 1.0));
+          store_light(q, result);
           ++covered;
         }
     bool geometry = imageLoad(vbuffer, p).x != kVisibilityNone;
@@ -82,5 +91,5 @@ void main() {
 #else
   result = gib_direct_light(p, push.sky_rays, push.nan_guards != 0u, true);
 #endif
-  imageStore(out_direct, p, vec4(result, 1.0));
+  store_light(p, result);
 }

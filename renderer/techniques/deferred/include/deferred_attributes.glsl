@@ -23,6 +23,15 @@ uint gib_pack_bary_deriv(float d, bool flag) {
 float gib_unpack_bary_deriv(uint packed) { return gib_half_to_float(packed & ~kGibBaryDerivFlag & 0xffffu); }
 bool gib_bary_deriv_flag(uint packed) { return (packed & kGibBaryDerivFlag) != 0u; }
 
+// v rounded to the nearest binary16 (ties to even), as a float. Stores to a 16-bit float image
+// round as the device likes (Vulkan leaves it open; R11G11B10F stores truncate on lavapipe and
+// NVIDIA): truncated, a normal's y of 0.99999994 becomes 0.99951 and its rebuilt z 0.031, a 1.8
+// degree tilt; pre-rounded it is exactly 1 (z 0) on every device.
+vec4 gib_round_to_half(vec4 v) {
+  return vec4(gib_half_to_float(gib_float_to_half(v.x)), gib_half_to_float(gib_float_to_half(v.y)),
+              gib_half_to_float(gib_float_to_half(v.z)), gib_half_to_float(gib_float_to_half(v.w)));
+}
+
 float gib_unit_z_from_xy(float x, float y, bool negative) {
   precise float xy = x * x + y * y;
   float z = sqrt(max(0.0, 1.0 - xy));

@@ -3,6 +3,13 @@
 #ifndef GIB_VRCS_GLSL
 #define GIB_VRCS_GLSL
 
+// The luminance the rate compares, tone-mapped l = L / (1 + L): steps between bright pixels
+// count less, as they do to the eye after tone mapping. NaN or Inf give NaN: never alike.
+float gib_vrcs_luma(vec3 c) {
+  float l = max(dot(c, vec3(0.2126, 0.7152, 0.0722)), 0.0);
+  return l / (1.0 + l);
+}
+
 uint gib_vrcs_rate(ivec2 p, uint rate_tiles_x) {
   uint t = uint(p.x) / kVrcsTile + uint(p.y) / kVrcsTile * rate_tiles_x;
   return vrcs_rate_words[kVrcsHeader + t];

@@ -7,17 +7,14 @@
 layout(local_size_x = kVrcsTile, local_size_y = kVrcsTile) in;
 layout(set = 0, binding = kVrcsBindVbuffer, rg32ui) uniform readonly uimage2D vbuffer;
 layout(set = 0, binding = kVrcsBindTangentFrame, rgba16f) uniform readonly image2D in_frame;
-layout(set = 0, binding = kVrcsBindPrevLight, rgba32f) uniform readonly image2D prev_light;
+layout(set = 0, binding = kVrcsBindPrevLuma, r32f) uniform readonly image2D prev_luma;
 layout(std430, set = 0, binding = kVrcsBindRates) buffer Rates { uint rates[]; };
 layout(push_constant) uniform Push { VrcsPush push; };
 
 shared uint tile_ok;  // bit 0: every x pair alike, bit 1: every y pair
 
-float tone_luma(ivec2 p) {
-  vec3 c = imageLoad(prev_light, p).rgb;
-  float l = max(dot(c, vec3(0.2126, 0.7152, 0.0722)), 0.0);
-  return l / (1.0 + l);  // NaN or Inf last frame: NaN -> the pair is not alike
-}
+// Last frame's tone-mapped luminance (gib_vrcs_luma; NaN: the pair is not alike).
+float tone_luma(ivec2 p) { return imageLoad(prev_luma, p).r; }
 
 // The normal of p from the tangent frame (z's sign is not stored here: x, y are enough to see a
 // crease between two facing-the-camera normals, and both signs' z have the same magnitude).

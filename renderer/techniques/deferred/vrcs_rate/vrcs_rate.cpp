@@ -15,10 +15,10 @@ class VrcsRatePass final : public Pass {
                {"vis_tangent_frame", Access::read},
                {"vrcs_rates", Access::write,
                 ResourceDesc{Format::buffer, SizeRule::buffer, 0, 0, vrcs_rate_words(s.width, s.height) * 4}}};
-    // Last frame's lighting exists (persistent) only with VRCS on in the tiled lighting; without
-    // VRCS nothing reads vrcs_rates and the graph culls this pass.
+    // Last frame's luminance exists (deferred_lighting writes vrcs_luma) only with VRCS on in
+    // the tiled lighting; without VRCS nothing reads vrcs_rates and the graph culls this pass.
     const DeferredSettings& ds = s.params<DeferredSettings>();
-    if (ds.vrcs && ds.tile_classification) d.slots.push_back({"direct_light", Access::read_prev});
+    if (ds.vrcs && ds.tile_classification) d.slots.push_back({"vrcs_luma", Access::read_prev});
     return d;
   }
 
@@ -37,7 +37,7 @@ class VrcsRatePass final : public Pass {
     record_compute(ctx, {.shader = "vrcs_rate.comp",
                          .images = {{kVrcsBindVbuffer, "vbuffer"},
                                     {kVrcsBindTangentFrame, "vis_tangent_frame"},
-                                    {kVrcsBindPrevLight, "direct_light", true}},
+                                    {kVrcsBindPrevLuma, "vrcs_luma", true}},
                          .groups_x = div_up(w, kVrcsTile),
                          .groups_y = div_up(h, kVrcsTile),
                          .push = &push,

@@ -4,7 +4,8 @@
 // luminance, tone-mapped l = L / (1 + L), differs by at most `vrcs_threshold`, and (with
 // `vrcs_edges`) both pixels show the same instance with normals within 25 degrees (this frame's
 // visibility buffer and tangent frame: silhouettes and creases keep full rate). Likewise in y.
-// Reads: vbuffer, vis_tangent_frame, last frame's direct_light. Writes: vrcs_rates (tiles per
+// Reads: vbuffer, vis_tangent_frame, last frame's vrcs_luma (deferred_lighting writes it with
+// VRCS on: one r32f per pixel, where keeping last frame's RGBA32F lighting cost 4x). Writes: vrcs_rates (tiles per
 // rate in its statistics). Frame 0 has no last frame: full rate. `vrcs_force` sets one rate
 // everywhere (the negative controls).
 // Limits: the luminance is last frame's at the same pixel (no reprojection): under camera

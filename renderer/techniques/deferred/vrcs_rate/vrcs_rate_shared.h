@@ -6,7 +6,7 @@
 GIB_SHARED_BEGIN
 GIB_CONST(uint, kVrcsBindVbuffer, 8)
 GIB_CONST(uint, kVrcsBindTangentFrame, 9)
-GIB_CONST(uint, kVrcsBindPrevLight, 10)  // last frame's direct_light (rgba32f)
+GIB_CONST(uint, kVrcsBindPrevLuma, 10)   // last frame's vrcs_luma (r32f, tone-mapped)
 GIB_CONST(uint, kVrcsBindRates, 11)      // vrcs_rates (layout: deferred_shared.h)
 struct VrcsPush {
   float threshold;   // largest tone-mapped luma step between the two pixels of a coarse pair
