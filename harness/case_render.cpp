@@ -123,6 +123,8 @@ CaseRender render(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::s
     const double v = word(st.word);
     r.stats[st.name] = st.of_word == UINT32_MAX ? v : (word(st.of_word) > 0 ? v / word(st.of_word) : 0.0);
   }
+  for (const TechniqueView& v : t.views)
+    if (ex.plan().find(v.resource)) r.views[v.name] = v.draw(ex.read_buffer(v.resource), s.width, s.height);
   r.scanned = scan;
   if (scan) r.stability = ex.stability();
   if (reference)

@@ -113,6 +113,10 @@ nlohmann::json suite_to_json(const SuiteResult& suite) {
                     {"golden_class", r.golden_class},
                     {"resource_bytes", r.plan.total_bytes()}});
     auto& row = rows.back();
+    if (!r.views.empty()) {
+      row["views"] = nlohmann::json::array();
+      for (auto& [name, id] : r.views) row["views"].push_back({{"name", name}, {"image", id}});
+    }
     if (!r.timing.frames.empty()) {  // where gpu_ms and the pass times come from
       const perf::Summary f = r.timing.frame();
       row["timing"] = {{"frames", r.timing.frames.size()}, {"warmup", r.timing.warmup}, {"source", r.timing.source},
@@ -223,6 +227,8 @@ void write_report_files(const std::string& out_dir, const nlohmann::json& j) {
   for (auto& r : j["results"]) {
     ids.insert(r.value("image", ""));
     ids.insert(r.value("reference_image", ""));
+    if (r.contains("views"))
+      for (auto& v : r["views"]) ids.insert(v.value("image", ""));
   }
   for (auto& id : ids)
     if (!id.empty() && fs::exists(out / "img" / (id + ".js")))

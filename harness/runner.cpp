@@ -307,7 +307,7 @@ const FloatImage& image_at(const CaseRender& r, uint32_t f, const Case& c) {
 }
 
 ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const std::string& preset,
-                   const std::string& kind) {
+                   const std::string& kind, const std::string& control_name = "") {
   ResultRow row;
   row.case_name = ctx.c.name;
   row.technique = run.technique;
@@ -334,8 +334,9 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
   row.plan = r.plan;
   row.curve = r.curve;
   if (c.convergence) row.curve_target = c.convergence->target;
+  // Controls are named in the id: two controls of one technique and preset must not share files.
   row.image_id = fmt::format("{}__{}.{}{}", c.name, run.technique, preset,
-                             kind == "negative_control" ? ".negative" : "");
+                             kind == "negative_control" ? ".negative-" + control_name : "");
   const std::vector<uint32_t> frames = evaluation_frames(c);
   row.eval_frames = frames;
   const uint32_t last = frames.back();
@@ -472,6 +473,10 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
   save_images(ctx.o, row.image_id, final_image, ref, c);
   for (auto& [name, vr] : variants)
     save_images(ctx.o, row.image_id + ".variant-" + name, image_at(vr, last, c), ref, c);
+  for (auto& [name, img] : r.views) {
+    row.views.push_back({name, row.image_id + ".view-" + name});
+    save_images(ctx.o, row.views.back().second, img, nullptr, c);
+  }
   row.status = failed ? "fail" : "pass";
   if (std::string known = run.known_failure_on(ctx.cls); !known.empty() && kind == "technique") {
     if (failed) {
@@ -548,7 +553,7 @@ int cmd_run(const SuiteOptions& o) {
         }
       for (auto& nc : c.negative_controls) {
         if (!is_ours(c, "negative_control", nc.run.technique, "", nc.name)) continue;
-        ResultRow row = evaluate(ctx, *gpu, nc.run, nc.run.presets.front(), "negative_control");
+        ResultRow row = evaluate(ctx, *gpu, nc.run, nc.run.presets.front(), "negative_control", nc.name);
         row.control_name = nc.name;
         row.control_why = nc.why;
         bool caught = std::any_of(row.checks.begin(), row.checks.end(), [](auto& cr) { return !cr.pass; });

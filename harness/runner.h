@@ -71,6 +71,7 @@ struct ResultRow {
   Plan plan;
   std::string image_id;      // files under DIR/img/: <id>.png, <id>.js, <id>.flip.png, <id>.exr
   std::string reference_id;  // the reference AOV it was compared with: DIR/img/<id>.png/.js
+  std::vector<std::pair<std::string, std::string>> views;  // technique debug views: name, image id
   std::string device;
 };
 

@@ -246,6 +246,34 @@ TEST_F(DeferredGpu, LightsLikeDirect) {
   EXPECT_GE(double(close) / double(n), 0.9);
 }
 
+// The debug views (Technique::views) drawn from known buffers.
+TEST(DeferredViews, TileClassesAndRatesFromTheirBuffers) {
+  using namespace glsl;
+  const Technique& t = find_technique("deferred");
+  ASSERT_EQ(t.views.size(), 2u);
+  const uint32_t w = 64, h = 32;  // 2 x 1 lighting tiles, 8 x 4 rate tiles
+  std::vector<uint32_t> wl(kTileHeader + (kWorkloadCount + 1) * 2, 0);
+  wl[4 * kWorkloadOpaque + 3] = 1;       // one opaque tile: tile 1
+  wl[kTileHeader + kWorkloadOpaque * 2] = 1;
+  wl[4 * kWorkloadTranslucent + 3] = 1;  // one translucent tile: tile 0
+  wl[kTileHeader + kWorkloadTranslucent * 2] = 0;
+  std::vector<uint8_t> bytes(wl.size() * 4);
+  std::memcpy(bytes.data(), wl.data(), bytes.size());
+  FloatImage tiles = t.views[0].draw(bytes, w, h);
+  ASSERT_EQ(tiles.width, w);
+  EXPECT_GT(tiles.at(10, 10, 0), 0.5f) << "tile 0 translucent: orange";
+  EXPECT_GT(tiles.at(10, 10, 0), tiles.at(10, 10, 2));
+  EXPECT_GT(tiles.at(40, 10, 1), tiles.at(40, 10, 0)) << "tile 1 opaque: green";
+  std::vector<uint32_t> rates(kVrcsHeader + 8 * 4, 0);
+  rates[kVrcsHeader + 1] = kVrcsCoarseX | kVrcsCoarseY;  // tile (1, 0): 2x2
+  bytes.assign(rates.size() * 4, 0);
+  std::memcpy(bytes.data(), rates.data(), bytes.size());
+  FloatImage r = t.views[1].draw(bytes, w, h);
+  EXPECT_EQ(r.at(2, 2, 0), r.at(2, 2, 2)) << "tile (0, 0) 1x1: grey";
+  EXPECT_GT(r.at(10, 2, 1), 0.5f) << "tile (1, 0) 2x2: yellow";
+  EXPECT_LT(r.at(10, 2, 2), 0.5f);
+}
+
 TEST_F(DeferredGpu, VrcsShadesFewerPixelsAndCoversEveryPixelOnce) {
   using namespace glsl;
   auto fractions = [](const Render& r, double& textured, double& lit, uint32_t& tiles) {

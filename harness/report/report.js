@@ -222,6 +222,10 @@
           caseState: cs, w: w, h: hh, kind: 'flip', legend: magmaLegend() }));
       }
     }
+    (row.views || []).forEach(function (v) {
+      panels.push(figure({ label: 'view: ' + v.name, floatId: v.image, png: 'img/' + v.image + '.png',
+        rois: [], caseState: cs, w: w, h: hh, kind: 'view' }));
+    });
     if (!panels.length) return h('p', { class: 'muted' }, 'No images for this row.');
     var readout = h('div', { class: 'readout' }, 'Hover an image for linear pixel values.');
     function move(ev) {

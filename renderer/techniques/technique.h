@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "renderer/graph/pass.h"
+#include "renderer/image/float_image.h"
 
 namespace gib {
 
@@ -46,6 +47,17 @@ struct TechniqueStat {
   uint32_t of_word = UINT32_MAX;
 };
 
+// A debug view a technique draws on the CPU from one of its buffers after the last frame (the
+// seed's debug visualisations: tile classes, shading rates). The runner saves it beside the
+// row's output and the report shows it; no pass runs for it. Skipped when the resource is not in
+// the run's plan.
+struct TechniqueView {
+  std::string name;
+  std::string description;
+  std::string resource;
+  std::function<FloatImage(const std::vector<uint8_t>& bytes, uint32_t width, uint32_t height)> draw;
+};
+
 struct Technique {
   std::string name;
   std::string description;
@@ -58,6 +70,7 @@ struct Technique {
   std::vector<std::string> presets;  // in order of quality: low, medium, high, ultra
   std::vector<TechniqueOption> options;  // in a stable order
   std::vector<TechniqueStat> stats;      // GPU counters reported per row
+  std::vector<TechniqueView> views;      // debug views drawn from its buffers
   // The technique's settings struct with its defaults, and the preset table applied to it
   // (row `level` of `presets`). Made by define_settings<T>().
   std::function<std::unique_ptr<TechniqueSettings>()> make_settings;

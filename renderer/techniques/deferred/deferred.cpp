@@ -3,6 +3,8 @@
 // classification and tiled deferred lighting. Every step is switchable against its uber form.
 #include "renderer/techniques/deferred/deferred.h"
 
+#include <cstring>
+
 #include "renderer/passes/visibility/visibility.h"
 #include "renderer/techniques/deferred/attribute_interpolate/attribute_interpolate.h"
 #include "renderer/techniques/deferred/deferred_lighting/deferred_lighting.h"
@@ -14,6 +16,51 @@
 #include "renderer/techniques/technique.h"
 
 namespace gib {
+namespace {
+
+uint32_t word_at(const std::vector<uint8_t>& bytes, uint64_t i) {
+  uint32_t w = 0;
+  if (i * 4 + 4 <= bytes.size()) std::memcpy(&w, bytes.data() + i * 4, 4);
+  return w;
+}
+
+// The seed's tile-classification debug view: each 32x32 tile in its lighting workload's colour
+// (sky blue, opaque green, translucent orange), tile edges darker.
+FloatImage draw_tile_classes(const std::vector<uint8_t>& bytes, uint32_t width, uint32_t height) {
+  using namespace glsl;
+  static constexpr float kColour[kWorkloadCount][3] = {{0.1f, 0.2f, 0.6f}, {0.1f, 0.65f, 0.15f}, {0.95f, 0.55f, 0.1f}};
+  const uint32_t tiles = deferred_tiles(width, height), tiles_x = div_up(width, kDeferredTile);
+  std::vector<int> workload(tiles, -1);
+  for (uint32_t w = 0; w < kWorkloadCount; ++w)
+    for (uint32_t i = 0, n = word_at(bytes, 4 * w + 3); i < n && i < tiles; ++i) {
+      const uint32_t t = word_at(bytes, kTileHeader + uint64_t(w) * tiles + i);
+      if (t < tiles) workload[t] = int(w);
+    }
+  FloatImage img(width, height, 3);
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      const int w = workload[(y / kDeferredTile) * tiles_x + x / kDeferredTile];
+      const float edge = (x % kDeferredTile == 0 || y % kDeferredTile == 0) ? 0.5f : 1.0f;
+      for (uint32_t c = 0; c < 3; ++c) img.at(x, y, c) = w < 0 ? 1.0f : kColour[w][c] * edge;  // white: no workload
+    }
+  return img;
+}
+
+// The shading-rate view: each 8x8 tile by its VRCS rate (1x1 grey, 2x1 red, 1x2 green, 2x2 yellow).
+FloatImage draw_vrcs_rates(const std::vector<uint8_t>& bytes, uint32_t width, uint32_t height) {
+  using namespace glsl;
+  static constexpr float kColour[4][3] = {{0.2f, 0.2f, 0.2f}, {0.85f, 0.15f, 0.1f}, {0.1f, 0.7f, 0.15f}, {0.95f, 0.85f, 0.1f}};
+  const uint32_t tiles_x = div_up(width, kVrcsTile);
+  FloatImage img(width, height, 3);
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      const uint32_t rate = word_at(bytes, kVrcsHeader + (y / kVrcsTile) * tiles_x + x / kVrcsTile) & 3u;
+      for (uint32_t c = 0; c < 3; ++c) img.at(x, y, c) = kColour[rate][c];
+    }
+  return img;
+}
+
+}  // namespace
 Technique deferred_technique() {
   Technique t;
   t.name = "deferred";
@@ -53,6 +100,11 @@ Technique deferred_technique() {
        kVrcsStats + kVrcsStatTextured, kVrcsStats + kVrcsStatTexturedOf},
       {"vrcs_lit", "VRCS: share of geometry pixels the lighting shaded itself", "vrcs_rates", kVrcsStats + kVrcsStatLit,
        kVrcsStats + kVrcsStatLitOf},
+  };
+  t.views = {
+      {"tile_classes", "lighting workload per 32x32 tile: sky blue, opaque green, translucent orange", "tile_workloads",
+       draw_tile_classes},
+      {"vrcs_rates", "VRCS rate per 8x8 tile: 1x1 grey, 2x1 red, 1x2 green, 2x2 yellow", "vrcs_rates", draw_vrcs_rates},
   };
   // The lighting ladder of `direct` (same rays, same result): the deferred path changes how the
   // work is dispatched, not what it computes.
