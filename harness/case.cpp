@@ -288,11 +288,8 @@ Threshold read_threshold(const Node& n, const Case& c, const TechniqueRun& run) 
   Node metric = n["metric"];
   // stat_<name>: a counter the run's technique declares (Technique::stats).
   if (metric.present() && metric.v->is_string() && metric.v->get<std::string>().rfind("stat_", 0) == 0) {
-    std::vector<std::string> stats;
-    try {
-      for (const TechniqueStat& st : find_technique(run.technique).stats) stats.push_back("stat_" + st.name);
-    } catch (const std::invalid_argument&) {
-    }
+    std::vector<std::string> stats;  // read_run has checked the technique's name
+    for (const TechniqueStat& st : find_technique(run.technique).stats) stats.push_back("stat_" + st.name);
     t.metric = read_choice(metric, stats.empty() ? std::vector<std::string>{"a technique with stats"} : stats);
   } else {
     t.metric = read_choice(metric, case_metrics());

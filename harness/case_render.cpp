@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <optional>
 #include <nlohmann/json.hpp>
 
@@ -115,13 +114,8 @@ CaseRender render(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::s
   for (const TechniqueStat& st : t.stats) {
     if (!ex.plan().find(st.resource)) continue;
     std::vector<uint8_t> raw = ex.read_buffer(st.resource);
-    auto word = [&](uint32_t i) {
-      uint32_t w = 0;
-      if (uint64_t(i) * 4 + 4 <= raw.size()) std::memcpy(&w, raw.data() + uint64_t(i) * 4, 4);
-      return double(w);
-    };
-    const double v = word(st.word);
-    r.stats[st.name] = st.of_word == UINT32_MAX ? v : (word(st.of_word) > 0 ? v / word(st.of_word) : 0.0);
+    const double v = buffer_word(raw, st.word), of = st.of_word == UINT32_MAX ? 0.0 : buffer_word(raw, st.of_word);
+    r.stats[st.name] = st.of_word == UINT32_MAX ? v : (of > 0 ? v / of : 0.0);
   }
   for (const TechniqueView& v : t.views)
     if (ex.plan().find(v.resource)) r.views[v.name] = v.draw(ex.read_buffer(v.resource), s.width, s.height);

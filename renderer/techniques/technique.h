@@ -4,6 +4,7 @@
 // (technique_list.cpp) lists them, one line each. A technique lists every pass it may use;
 // the graph culls what the scene or the requested outputs do not need.
 #pragma once
+#include <cstring>
 #include <functional>
 #include <map>
 #include <memory>
@@ -39,6 +40,13 @@ struct PassEntry {
 // rate, ...): word `word` of buffer resource `resource`, divided by word `of_word` when that is
 // set (a fraction). Reported per row as metric "stat_<name>" after the last frame; a case may
 // bound it. Not reported when the resource is not in the run's plan (the step is switched off).
+// Word i (uint32) of a buffer read back as bytes; 0 past its end.
+inline uint32_t buffer_word(const std::vector<uint8_t>& bytes, uint64_t i) {
+  uint32_t w = 0;
+  if (i * 4 + 4 <= bytes.size()) std::memcpy(&w, bytes.data() + i * 4, 4);
+  return w;
+}
+
 struct TechniqueStat {
   std::string name;
   std::string description;

@@ -3,8 +3,6 @@
 // classification and tiled deferred lighting. Every step is switchable against its uber form.
 #include "renderer/techniques/deferred/deferred.h"
 
-#include <cstring>
-
 #include "renderer/passes/visibility/visibility.h"
 #include "renderer/techniques/deferred/attribute_interpolate/attribute_interpolate.h"
 #include "renderer/techniques/deferred/deferred_lighting/deferred_lighting.h"
@@ -18,12 +16,6 @@
 namespace gib {
 namespace {
 
-uint32_t word_at(const std::vector<uint8_t>& bytes, uint64_t i) {
-  uint32_t w = 0;
-  if (i * 4 + 4 <= bytes.size()) std::memcpy(&w, bytes.data() + i * 4, 4);
-  return w;
-}
-
 // The seed's tile-classification debug view: each 32x32 tile in its lighting workload's colour
 // (sky blue, opaque green, translucent orange), tile edges darker.
 FloatImage draw_tile_classes(const std::vector<uint8_t>& bytes, uint32_t width, uint32_t height) {
@@ -32,8 +24,8 @@ FloatImage draw_tile_classes(const std::vector<uint8_t>& bytes, uint32_t width, 
   const uint32_t tiles = deferred_tiles(width, height), tiles_x = div_up(width, kDeferredTile);
   std::vector<int> workload(tiles, -1);
   for (uint32_t w = 0; w < kWorkloadCount; ++w)
-    for (uint32_t i = 0, n = word_at(bytes, 4 * w + 3); i < n && i < tiles; ++i) {
-      const uint32_t t = word_at(bytes, kTileHeader + uint64_t(w) * tiles + i);
+    for (uint32_t i = 0, n = buffer_word(bytes, 4 * w + 3); i < n && i < tiles; ++i) {
+      const uint32_t t = buffer_word(bytes, kTileHeader + uint64_t(w) * tiles + i);
       if (t < tiles) workload[t] = int(w);
     }
   FloatImage img(width, height, 3);
@@ -54,7 +46,7 @@ FloatImage draw_vrcs_rates(const std::vector<uint8_t>& bytes, uint32_t width, ui
   FloatImage img(width, height, 3);
   for (uint32_t y = 0; y < height; ++y)
     for (uint32_t x = 0; x < width; ++x) {
-      const uint32_t rate = word_at(bytes, kVrcsHeader + (y / kVrcsTile) * tiles_x + x / kVrcsTile) & 3u;
+      const uint32_t rate = buffer_word(bytes, kVrcsHeader + (y / kVrcsTile) * tiles_x + x / kVrcsTile) & 3u;
       for (uint32_t c = 0; c < 3; ++c) img.at(x, y, c) = kColour[rate][c];
     }
   return img;

@@ -1,8 +1,8 @@
 // Body of the deferred_texturing kernels: deferred_texturing.comp (pixel lists, subgroup
 // permutations), deferred_texturing_plain.comp (pixel lists, no subgroup operations) and
 // deferred_texturing_uber.comp (GIB_TEXTURING_UBER: every pixel, no lists bound). One invocation
-// per list entry or per pixel; all call material_albedo() and store_texel(), so they agree bit
-// for bit. GIB_TEXTURING_VRCS (the *_vrcs kernels): variable-rate shading over the lists.
+// per list entry or per pixel; all call load_texel(), material_albedo() and store_texel(), so
+// they agree bit for bit. GIB_TEXTURING_VRCS (the *_vrcs kernels): variable-rate shading over the lists.
 #include "renderer/techniques/deferred/deferred_texturing/deferred_texturing_shared.h"
 #include "frame.glsl"
 #include "scene.glsl"
@@ -36,34 +36,46 @@ layout(std430, set = 0, binding = kTexBindRates) buffer Rates { uint vrcs_rate_w
 #endif
 layout(push_constant) uniform Push { TexPush push; };
 
-// The material's albedo at geometry pixel p (triangle tri), filtered over the pixel footprint.
-// `shader`: the texture kind this pipeline evaluates (the uber kernel passes the material's own).
-vec3 material_albedo(ivec2 p, uint tri, GpuMaterial m, uint shader) {
-  vec2 bc = imageLoad(in_bary, p).xy;
-  uvec4 dv = imageLoad(in_deriv, p);
+// What texturing reads of one geometry pixel, loaded once: its triangle's vertices and the
+// interpolated attributes attribute_interpolate stored.
+struct Texel {
+  GpuVertex va, vb, vc;
+  vec2 bc;     // barycentrics
+  uvec4 dv;    // packed derivatives and flags
+  vec4 frame;  // tangent frame
+};
+
+Texel load_texel(ivec2 p, uint tri) {
   GpuTriangle t = gib_triangles[tri];
-  GpuVertex va = gib_vertices[t.i0], vb = gib_vertices[t.i1], vc = gib_vertices[t.i2];
-  float w = 1.0 - bc.x - bc.y;
-  vec2 uva = vec2(va.u, va.v), uvb = vec2(vb.u, vb.v), uvc = vec2(vc.u, vc.v);
-  vec2 uv = uva * w + uvb * bc.x + uvc * bc.y;
-  vec2 bcx = vec2(gib_unpack_bary_deriv(dv.x), gib_unpack_bary_deriv(dv.y));
-  vec2 bcy = vec2(gib_unpack_bary_deriv(dv.z), gib_unpack_bary_deriv(dv.w));
+  Texel x;
+  x.va = gib_vertices[t.i0];
+  x.vb = gib_vertices[t.i1];
+  x.vc = gib_vertices[t.i2];
+  x.bc = imageLoad(in_bary, p).xy;
+  x.dv = imageLoad(in_deriv, p);
+  x.frame = imageLoad(in_frame, p);
+  return x;
+}
+
+// The material's albedo at a pixel, filtered over its footprint. `shader`: the texture kind
+// this pipeline evaluates (the uber kernel passes the material's own).
+vec3 material_albedo(Texel x, GpuMaterial m, uint shader) {
+  float w = 1.0 - x.bc.x - x.bc.y;
+  vec2 uva = vec2(x.va.u, x.va.v), uvb = vec2(x.vb.u, x.vb.v), uvc = vec2(x.vc.u, x.vc.v);
+  vec2 uv = uva * w + uvb * x.bc.x + uvc * x.bc.y;
+  vec2 bcx = vec2(gib_unpack_bary_deriv(x.dv.x), gib_unpack_bary_deriv(x.dv.y));
+  vec2 bcy = vec2(gib_unpack_bary_deriv(x.dv.z), gib_unpack_bary_deriv(x.dv.w));
   vec2 duv_dx = (uvb - uva) * bcx.x + (uvc - uva) * bcx.y;
   vec2 duv_dy = (uvb - uva) * bcy.x + (uvc - uva) * bcy.y;
   m.texture = shader;  // a classified pipeline's constant: the texture switch folds away
   return gib_material_albedo_filtered(m, uv, duv_dx, duv_dy);
 }
 
-// Writes the G-buffer texel of geometry pixel p (its own position and normal) with material m
-// and the given albedo (its own, or its VRCS anchor's).
-void store_texel(ivec2 p, GpuMaterial m, vec3 albedo) {
-  uint tri = imageLoad(vbuffer, p).x - 1u;
-  vec2 bc = imageLoad(in_bary, p).xy;
-  uvec4 dv = imageLoad(in_deriv, p);
-  vec4 frame = imageLoad(in_frame, p);
-  GpuTriangle t = gib_triangles[tri];
-  vec3 a = gib_vertices[t.i0].position, b = gib_vertices[t.i1].position, c = gib_vertices[t.i2].position;
-  vec3 n = vec3(frame.xy, gib_unit_z_from_xy(frame.x, frame.y, gib_bary_deriv_flag(dv.y)));
+// Writes the G-buffer texel of geometry pixel p (its own position and normal, from x) with
+// material m and the given albedo (its own, or its VRCS anchor's).
+void store_texel(ivec2 p, Texel x, GpuMaterial m, vec3 albedo) {
+  vec3 a = x.va.position, b = x.vb.position, c = x.vc.position;
+  vec3 n = vec3(x.frame.xy, gib_unit_z_from_xy(x.frame.x, x.frame.y, gib_bary_deriv_flag(x.dv.y)));
   if (push.inject_nan != 0u && all(equal(uvec2(p), uvec2(push.inject_x, push.inject_y)))) n = vec3(gib_nan());
   vec3 o, d;
   gib_camera_ray(vec2(p) + 0.5, o, d);
@@ -72,8 +84,8 @@ void store_texel(ivec2 p, GpuMaterial m, vec3 albedo) {
   // 20 m floor, a 0.2 % bias in a point light's irradiance (tests/test_aov_contract.cpp).
   vec3 g = cross(b - a, c - a);
   float denom = dot(d, g);
-  float w = 1.0 - bc.x - bc.y;
-  vec3 position = abs(denom) > 0.0 ? o + d * (dot(a - o, g) / denom) : a * w + b * bc.x + c * bc.y;
+  float w = 1.0 - x.bc.x - x.bc.y;
+  vec3 position = abs(denom) > 0.0 ? o + d * (dot(a - o, g) / denom) : a * w + b * x.bc.x + c * x.bc.y;
   imageStore(out_albedo, p, vec4(albedo, m.metalness));
   imageStore(out_normal, p, vec4(n, m.roughness));
   imageStore(out_position, p, vec4(position, distance(position, o)));
@@ -94,7 +106,8 @@ void main() {
     return;
   }
   GpuMaterial m = gib_materials[gib_instances[ids.y].material];
-  store_texel(p, m, material_albedo(p, ids.x - 1u, m, min(m.texture, kDeferredShaderCount - 1u)));
+  Texel x = load_texel(p, ids.x - 1u);
+  store_texel(p, x, m, material_albedo(x, m, min(m.texture, kDeferredShaderCount - 1u)));
 }
 
 #else
@@ -128,8 +141,9 @@ void main() {
     atomicAdd(seg[kSegStats + (kPermutation == kTexPermUniform ? kStatSubgroupsUniform : kStatSubgroupsDivergent)], 1u);
 #endif
   GpuMaterial m = gib_materials[gib_instances[instance].material];
-  vec3 albedo = material_albedo(p, ids.x - 1u, m, kShader);
-  store_texel(p, m, albedo);
+  Texel x = load_texel(p, ids.x - 1u);
+  vec3 albedo = material_albedo(x, m, kShader);
+  store_texel(p, x, m, albedo);
 #ifdef GIB_TEXTURING_VRCS
   uint covered = 0u;
   if (p == anchor)
@@ -137,7 +151,7 @@ void main() {
       for (int x = 0; x < cell.x; ++x) {
         ivec2 q = anchor + ivec2(x, y);
         if (!gib_vrcs_follows(q, anchor, imageSize(vbuffer))) continue;
-        store_texel(q, m, albedo);
+        store_texel(q, load_texel(q, imageLoad(vbuffer, q).x - 1u), m, albedo);
         ++covered;
       }
   gib_vrcs_count(kVrcsStats + kVrcsStatTextured, 1u, 1u + covered);  // kVrcsStatTexturedOf follows
