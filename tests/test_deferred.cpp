@@ -252,18 +252,23 @@ TEST(DeferredViews, TileClassesAndRatesFromTheirBuffers) {
   const Technique& t = find_technique("deferred");
   ASSERT_EQ(t.views.size(), 2u);
   const uint32_t w = 64, h = 32;  // 2 x 1 lighting tiles, 8 x 4 rate tiles
-  std::vector<uint32_t> wl(kTileHeader + (kWorkloadCount + 1) * 2, 0);
-  wl[4 * kWorkloadOpaque + 3] = 1;       // one opaque tile: tile 1
-  wl[kTileHeader + kWorkloadOpaque * 2] = 1;
+  std::vector<uint32_t> wl(kTileHeader + (kTileListCount + 1) * 2, 0);
+  wl[4 * kWorkloadCloth + 3] = 1;        // one cloth tile: tile 1
+  wl[kTileHeader + kWorkloadCloth * 2] = 1;
   wl[4 * kWorkloadTranslucent + 3] = 1;  // one translucent tile: tile 0
   wl[kTileHeader + kWorkloadTranslucent * 2] = 0;
+  wl[4 * kTileListDecals + 3] = 1;       // tile 1 also has decals
+  wl[kTileHeader + kTileListDecals * 2] = 1;
   std::vector<uint8_t> bytes(wl.size() * 4);
   std::memcpy(bytes.data(), wl.data(), bytes.size());
   FloatImage tiles = t.views[0].draw(bytes, w, h);
   ASSERT_EQ(tiles.width, w);
   EXPECT_GT(tiles.at(10, 10, 0), 0.5f) << "tile 0 translucent: orange";
   EXPECT_GT(tiles.at(10, 10, 0), tiles.at(10, 10, 2));
-  EXPECT_GT(tiles.at(40, 10, 1), tiles.at(40, 10, 0)) << "tile 1 opaque: green";
+  EXPECT_GT(tiles.at(40, 10, 2), tiles.at(40, 10, 1)) << "tile 1 cloth: purple";
+  EXPECT_GT(tiles.at(40, 10, 0), tiles.at(40, 10, 1));
+  EXPECT_EQ(tiles.at(40, 8, 1), 1.0f) << "tile 1 has decals: white diagonal (local x == local y)";
+  EXPECT_LT(tiles.at(10, 12, 1), 1.0f) << "tile 0 has none";
   std::vector<uint32_t> rates(kVrcsHeader + 8 * 4, 0);
   rates[kVrcsHeader + 1] = kVrcsCoarseX | kVrcsCoarseY;  // tile (1, 0): 2x2
   bytes.assign(rates.size() * 4, 0);

@@ -131,7 +131,7 @@ TEST(SceneFeatures, NamesAndToString) {
   EXPECT_EQ(to_string(SceneFeatures(Feature::sun) | Feature::sky), "sun,sky");
   SceneFeatures all;
   for (uint32_t i = 0; i < kFeatureCount; ++i) all |= static_cast<Feature>(1u << i);
-  EXPECT_EQ(to_string(all), "sun,sky,local_lights,emissive,alpha_tested,translucent,textured,motion");
+  EXPECT_EQ(to_string(all), "sun,sky,local_lights,emissive,alpha_tested,translucent,textured,motion,decals,cloth");
 }
 
 Scene minimal_scene() {
@@ -143,6 +143,21 @@ Scene minimal_scene() {
 }
 
 TEST(SceneFeatures, EmptySceneHasNone) { EXPECT_TRUE(minimal_scene().features().empty()); }
+
+TEST(SceneFeatures, DecalsAndCloth) {
+  Scene s = minimal_scene();
+  s.decals.push_back(Decal{});
+  s.decals.back().opacity = 0;
+  EXPECT_FALSE(s.features().has(Feature::decals)) << "a decal of opacity 0 changes nothing";
+  s.decals.push_back(Decal{});
+  EXPECT_TRUE(s.features().has(Feature::decals));
+  s.materials.push_back(Material{});  // unused cloth: no feature
+  s.materials.back().brdf = BrdfKind::cloth;
+  s.materials.back().sheen = 0.5f;
+  EXPECT_FALSE(s.features().has(Feature::cloth));
+  s.instances[0].material = 1;
+  EXPECT_TRUE(s.features().has(Feature::cloth));
+}
 
 TEST(SceneFeatures, SunAndSky) {
   Scene s = minimal_scene();
@@ -508,6 +523,39 @@ struct BadCase {
 };
 
 const BadCase kBadCases[] = {
+    {"sheen on a standard material", [](json& d) { d["materials"]["white"]["sheen"] = 0.5; },
+     "/materials/white/sheen", "no sheen for brdf \"standard\""},
+    {"cloth without sheen", [](json& d) { d["materials"]["white"]["brdf"] = "cloth"; }, "/materials/white/sheen",
+     "got missing key"},
+    {"cloth with zero sheen", [](json& d) { d["materials"]["white"].update({{"brdf", "cloth"}, {"sheen", 0}}); },
+     "/materials/white/sheen", "expected number in (0, 1], got 0"},
+    {"translucent cloth", [](json& d) {
+       d["materials"]["white"].update({{"brdf", "cloth"}, {"sheen", 0.3}, {"translucency", 0.2}});
+     }, "/materials/white/translucency", "0 for brdf \"cloth\""},
+    {"unknown brdf", [](json& d) { d["materials"]["white"]["brdf"] = "skin"; }, "/materials/white/brdf",
+     "one of \"standard\", \"cloth\", got \"skin\""},
+    {"decals not an array", [](json& d) { d["decals"] = 3; }, "/decals", "expected array, got 3"},
+    {"decal without position", [](json& d) { d["decals"] = json::parse(R"([{"size": [1, 1, 1], "albedo": [0, 0, 0]}])"); },
+     "/decals/0/position", "got missing key"},
+    {"decal of zero size", [](json& d) {
+       d["decals"] = json::parse(R"([{"position": [0, 0, 0], "size": [1, 0, 1], "albedo": [0, 0, 0]}])");
+     }, "/decals/0/size/1", "expected number > 0, got 0"},
+    {"decal albedo above 1", [](json& d) {
+       d["decals"] = json::parse(R"([{"position": [0, 0, 0], "size": [1, 1, 1], "albedo": [0, 2, 0]}])");
+     }, "/decals/0/albedo/1", "expected number in [0, 1], got 2"},
+    {"decal opacity above 1", [](json& d) {
+       d["decals"] = json::parse(R"([{"position": [0, 0, 0], "size": [1, 1, 1], "albedo": [0, 0, 0], "opacity": 1.5}])");
+     }, "/decals/0/opacity", "got 1.5"},
+    {"unknown decal shape", [](json& d) {
+       d["decals"] = json::parse(R"([{"position": [0, 0, 0], "size": [1, 1, 1], "albedo": [0, 0, 0], "shape": "star"}])");
+     }, "/decals/0/shape", "one of \"rect\", \"disc\", got \"star\""},
+    {"unknown decal key", [](json& d) {
+       d["decals"] = json::parse(R"([{"position": [0, 0, 0], "size": [1, 1, 1], "albedo": [0, 0, 0], "normal": 1}])");
+     }, "/decals/0/normal", "unknown key \"normal\""},
+    {"too many decals", [](json& d) {
+       d["decals"] = json::array();
+       for (int i = 0; i < 17; ++i) d["decals"].push_back(json::parse(R"({"position": [0, 0, 0], "size": [1, 1, 1], "albedo": [0, 0, 0]})"));
+     }, "/decals", "expected at most 16 decals (the frame constants hold 16), got 17 decals"},
     {"root is not an object", [](json& d) { d = json::array({1, 2}); }, "/", "expected object, got array of 2 elements"},
     {"objects missing", [](json& d) { d.erase("objects"); }, "/objects", "got missing key"},
     {"objects empty", [](json& d) { d["objects"] = json::array(); }, "/objects", "got empty array"},
@@ -572,7 +620,7 @@ const BadCase kBadCases[] = {
      "/camera/target", "expected target different from position"},
     {"frame time zero", [](json& d) { d["frame_time"] = 0; }, "/frame_time", "expected number > 0, got 0"},
     {"unknown top-level key", [](json& d) { d["lihgts"] = json::array(); }, "/lihgts",
-     "expected one of the keys materials, objects, lights, sun, sky, camera, frame_time"},
+     "expected one of the keys materials, objects, lights, decals, sun, sky, camera, frame_time"},
     // mesh primitive (kMeshDoc: 3 positions, 1 triangle)
     {"mesh index out of range", [](json& d) { set_mesh(d)["indices"] = json::parse("[[0, 1, 2], [0, 2, 3]]"); },
      "/objects/0/primitive/indices/1/2", "expected integer in [0, 2], got 3"},

@@ -341,6 +341,7 @@ void Executor::upload_scene(float time) {
   scene_gpu_.triangle_count = static_cast<uint32_t>(flat.triangles.size());
   scene_gpu_.instance_count = static_cast<uint32_t>(flat.instances.size());
   scene_gpu_.light_count = static_cast<uint32_t>(flat.lights.size());
+  decals_ = std::move(flat.decals);  // carried by the frame constants
 }
 
 void Executor::upload_frame_constants(float time) {
@@ -374,7 +375,11 @@ void Executor::upload_frame_constants(float time) {
   f.sky_horizon = {sky.horizon.x, sky.horizon.y, sky.horizon.z, sky.turbidity};
   f.sky_ground = {sky.ground.x, sky.ground.y, sky.ground.z, 0};
   f.frame_info = {frame_, settings_.width, settings_.height, scene_gpu_.light_count};
-  f.scene_info = {scene_gpu_.triangle_count, scene_gpu_.instance_count, settings_.seed, 0};
+  static_assert(sizeof(glsl::GpuDecal) == sizeof(GpuDecal) && glsl::kMaxDecals == kMaxDecals,
+                "frame_shared.h GpuDecal mirrors scene.h GpuDecal");
+  const uint32_t decal_count = uint32_t(std::min<size_t>(decals_.size(), kMaxDecals));  // the loader refuses more
+  std::memcpy(f.decals, decals_.data(), decal_count * sizeof(GpuDecal));
+  f.scene_info = {scene_gpu_.triangle_count, scene_gpu_.instance_count, settings_.seed, decal_count};
   if (!scene_gpu_.frame) scene_gpu_.frame = gpu_.create_buffer(sizeof(f), BufferUsage::uniform, "frame_constants");
   gpu_.upload(*scene_gpu_.frame, &f, sizeof(f));
 }

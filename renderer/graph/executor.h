@@ -67,6 +67,7 @@ class Executor {
   std::vector<PassDecl> decls_;
   Plan plan_;
   SceneGpu scene_gpu_;
+  std::vector<GpuDecal> decals_;  // world space (offset applied), copied into each frame's constants
   struct Allocation {
     std::shared_ptr<Image> image[2];
     std::shared_ptr<Buffer> buffer[2];

@@ -12,6 +12,8 @@ std::string_view feature_name(Feature f) {
     case Feature::translucent: return "translucent";
     case Feature::textured: return "textured";
     case Feature::motion: return "motion";
+    case Feature::decals: return "decals";
+    case Feature::cloth: return "cloth";
   }
   return "unknown";  // a value cast from an integer that names no feature
 }

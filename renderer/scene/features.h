@@ -15,8 +15,10 @@ enum class Feature : uint32_t {
   translucent = 1u << 5,
   textured = 1u << 6,
   motion = 1u << 7,
+  decals = 1u << 8,  // projected decals (Scene::decals) with some opacity
+  cloth = 1u << 9,   // a material of the cloth BRDF class
 };
-inline constexpr uint32_t kFeatureCount = 8;
+inline constexpr uint32_t kFeatureCount = 10;
 
 struct SceneFeatures {
   uint32_t bits = 0;

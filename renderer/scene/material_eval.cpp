@@ -7,6 +7,7 @@
 
 #include "renderer/scene/material_eval.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace gib {
@@ -100,5 +101,47 @@ bool alpha_accept_default(const FlatScene& scene, uint32_t triangle, float u, fl
   }
   return a >= m.alpha_cutoff;
 }
+
+float sheen_distribution(float roughness, float cos_h) {
+  const float a = std::fmax(roughness * roughness, 0.01f);
+  const float inv_a = 1.0f / a;
+  const float sin2 = std::fmax(1.0f - cos_h * cos_h, 0.0f);
+  return (2.0f + inv_a) * std::pow(sin2, 0.5f * inv_a) / (2.0f * 3.14159265358979f);
+}
+
+float sheen_lobe(float sheen, float roughness, Vec3 n, Vec3 wi, Vec3 wo) {
+  const float nl = dot(n, wi), nv = dot(n, wo);
+  if (!(nl > 0.0f && nv > 0.0f)) return 0.0f;
+  const Vec3 h = normalize(wi + wo);
+  const float nh = std::clamp(dot(n, h), 0.0f, 1.0f);
+  const float v = 1.0f / (4.0f * (nl + nv - nl * nv));
+  return sheen * sheen_distribution(roughness, nh) * v;
+}
+
+float decal_weight(const GpuDecal& d, Vec3 x, Vec3 n) {
+  const Vec3 r{x.x - d.centre[0], x.y - d.centre[1], x.z - d.centre[2]};
+  auto local = [&](const float* a) { return (a[0] * r.x + a[1] * r.y + a[2] * r.z) * a[3]; };
+  const float lx = local(d.axis_x), ly = local(d.axis_y), lz = local(d.axis_z);
+  if (!(std::fabs(lx) <= 0.5f && std::fabs(ly) <= 0.5f && std::fabs(lz) <= 0.5f)) return 0.0f;
+  const float r2 = lx * lx + ly * ly;
+  if (d.centre[3] != 0.0f && r2 > 0.25f) return 0.0f;  // disc
+  const float c = d.axis_z[0] * n.x + d.axis_z[1] * n.y + d.axis_z[2] * n.z;
+  const float fade = std::clamp((c - 0.25f) * 4.0f, 0.0f, 1.0f);
+  return d.albedo[3] * fade;
+}
+
+Vec4 decals_at(const std::vector<GpuDecal>& decals, Vec3 x, Vec3 n) {
+  Vec3 c{0, 0, 0};
+  float k = 1.0f;
+  for (const GpuDecal& d : decals) {
+    const float w = decal_weight(d, x, n);
+    if (w <= 0.0f) continue;
+    c = c * (1.0f - w) + Vec3{d.albedo[0], d.albedo[1], d.albedo[2]} * w;
+    k = k * (1.0f - w);
+  }
+  return {c.x, c.y, c.z, k};
+}
+
+Vec3 decal_blend(Vec3 albedo, Vec4 kc) { return albedo * kc.w + Vec3{kc.x, kc.y, kc.z}; }
 
 }  // namespace gib

@@ -3,6 +3,7 @@
 // CPU references (BVH alpha testing, path tracer checks) see the same materials as the GPU.
 #pragma once
 #include <cstdint>
+#include <vector>
 
 #include "renderer/scene/math.h"
 #include "renderer/scene/scene.h"
@@ -25,5 +26,15 @@ Vec2 triangle_uv(const FlatScene& scene, uint32_t triangle, float u, float v);
 // hash of (seed, triangle) is below it.
 bool alpha_accept_default(const FlatScene& scene, uint32_t triangle, float u, float v,
                           uint32_t hash_seed);
+
+// brdf.glsl gib_sheen_lobe: the cloth class's sheen x D_charlie x V_neubelt (1/sr).
+float sheen_lobe(float sheen, float roughness, Vec3 n, Vec3 wi, Vec3 wo);
+// The Charlie distribution alone (a = max(roughness^2, 0.01)), for its normalisation test.
+float sheen_distribution(float roughness, float cos_h);
+
+// decals.glsl: gib_decal_weight and gib_decals_at (albedo' = albedo * k + c; returns c, k in w).
+float decal_weight(const GpuDecal& d, Vec3 x, Vec3 n);
+Vec4 decals_at(const std::vector<GpuDecal>& decals, Vec3 x, Vec3 n);
+Vec3 decal_blend(Vec3 albedo, Vec4 kc);
 
 }  // namespace gib

@@ -60,6 +60,25 @@ GpuMaterial to_gpu(const Material& m) {
   g.alpha_cutoff = m.alpha_cutoff;
   g.texture_scale = m.texture_scale;
   g.opacity = m.opacity;
+  g.sheen = m.brdf == BrdfKind::cloth ? m.sheen : 0.0f;
+  return g;
+}
+
+GpuDecal to_gpu(const Decal& d, Vec3 world_offset) {
+  const Mat4 r = Mat4::trs({0, 0, 0}, d.rotation_deg, {1, 1, 1});
+  GpuDecal g{};
+  const Vec3 c = d.position + world_offset;
+  g.centre[0] = c.x; g.centre[1] = c.y; g.centre[2] = c.z;
+  g.centre[3] = float(static_cast<uint32_t>(d.shape));
+  float* axes[3] = {g.axis_x, g.axis_y, g.axis_z};
+  const Vec3 local[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 a = normalize(r.transform_point(local[i]));  // r has no translation
+    axes[i][0] = a.x; axes[i][1] = a.y; axes[i][2] = a.z;
+    axes[i][3] = 1.0f / d.size[i];
+  }
+  g.albedo[0] = d.albedo.x; g.albedo[1] = d.albedo.y; g.albedo[2] = d.albedo.z;
+  g.albedo[3] = d.opacity;
   return g;
 }
 
@@ -101,7 +120,9 @@ SceneFeatures Scene::features() const {
     if (m.alpha != AlphaKind::none) f |= Feature::alpha_tested;
     if (m.translucency > 0) f |= Feature::translucent;
     if (m.texture != TextureKind::none) f |= Feature::textured;
+    if (m.brdf == BrdfKind::cloth && m.sheen > 0) f |= Feature::cloth;
   }
+  if (std::any_of(decals.begin(), decals.end(), [](const Decal& d) { return d.opacity > 0; })) f |= Feature::decals;
 
   bool camera_moves = false;
   for (size_t i = 1; i < camera.animation.size() && !camera_moves; ++i) {
@@ -205,6 +226,7 @@ FlatScene flatten(const Scene& scene, float time, Vec3 world_offset) {
     for (int k = 0; k < 3; ++k) g.position[k] += world_offset[k];
     out.lights.push_back(g);
   }
+  for (const Decal& d : scene.decals) out.decals.push_back(to_gpu(d, world_offset));
   return out;
 }
 

@@ -14,6 +14,9 @@ namespace gib {
 
 enum class TextureKind : uint32_t { none = 0, checker = 1, value_noise = 2 };
 enum class AlphaKind : uint32_t { none = 0, leaf_mask = 1, checker_mask = 2, opacity = 3 };
+// BRDF classes: standard (Lambertian, with thin translucency) and cloth (Lambertian plus a
+// Charlie sheen lobe; renderer/shaders/include/brdf.glsl, CPU mirror material_eval.h).
+enum class BrdfKind : uint32_t { standard = 0, cloth = 1 };
 
 struct Material {
   std::string name;
@@ -28,7 +31,25 @@ struct Material {
   TextureKind texture = TextureKind::none;
   Vec3 albedo2{0.2f, 0.2f, 0.2f};  // second colour of checker / noise
   float texture_scale = 1.0f;      // pattern repeats per UV unit
+  BrdfKind brdf = BrdfKind::standard;
+  float sheen = 0.0f;  // cloth: sheen lobe strength (grey), > 0; its roughness is `roughness`
 };
+
+// A box-projected decal (the seed's projected decals, blended into the G-buffer albedo): a box
+// of `size` centred at `position`, rotated by `rotation_deg` (the objects' Euler convention);
+// it projects along its local -z onto surfaces facing its local +z, fading out between 60 and
+// 75.5 degrees from that axis. The scene key and its errors: cases/scenes/README.md.
+enum class DecalShape : uint32_t { rect = 0, disc = 1 };
+struct Decal {
+  std::string name;
+  Vec3 position{0, 0, 0};
+  Vec3 size{1, 1, 1};
+  Vec3 rotation_deg{0, 0, 0};
+  Vec3 albedo{0.1f, 0.1f, 0.1f};
+  float opacity = 1.0f;
+  DecalShape shape = DecalShape::disc;
+};
+inline constexpr uint32_t kMaxDecals = 16;  // glsl::kMaxDecals: the frame constants hold them
 
 struct Keyframe {
   float time = 0;  // seconds
@@ -103,6 +124,7 @@ struct Scene {
   std::vector<Mesh> meshes;
   std::vector<Instance> instances;
   std::vector<LocalLight> lights;
+  std::vector<Decal> decals;  // static, world space, applied in order
   Sun sun;
   Sky sky;
   Camera camera;
@@ -140,7 +162,8 @@ struct GpuMaterial {  // 80 bytes
   float alpha_cutoff;
   float texture_scale;
   float opacity;
-  float pad[3];
+  float sheen;  // cloth's sheen strength; 0: the standard BRDF
+  float pad[2];
 };
 struct GpuLight {  // 64 bytes
   float position[3];
@@ -151,6 +174,16 @@ struct GpuLight {  // 64 bytes
   float cos_inner;
   float cos_outer;
   float pad[3];
+};
+
+// A decal as the frame constants carry it (glsl::GpuDecal in frame_shared.h, 80 bytes): a point
+// x is at box coordinates l_i = dot(axis_i.xyz, x - centre.xyz) * axis_i.w in [-0.5, 0.5].
+struct GpuDecal {
+  float centre[4];  // xyz, w: DecalShape
+  float axis_x[4];  // unit local axes in world space, w: 1 / size along it
+  float axis_y[4];
+  float axis_z[4];  // the surfaces it colours face +axis_z
+  float albedo[4];  // rgb, a: opacity
 };
 
 // World-space triangle soup at a given time: what the BVH and the passes consume.
@@ -164,6 +197,7 @@ struct FlatScene {
   std::vector<GpuInstance> instances;
   std::vector<GpuMaterial> materials;
   std::vector<GpuLight> lights;
+  std::vector<GpuDecal> decals;
 };
 // world_offset translates every position (vertices and lights) after the instance transform:
 // the far-from-origin stress cases move the whole scene (Settings::world_offset), the camera

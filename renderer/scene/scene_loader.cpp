@@ -170,7 +170,7 @@ E get_enum(const Node& n, std::initializer_list<std::pair<std::string_view, E>> 
 
 Material parse_material(const Node& n, const std::string& name) {
   check_object(n, {"albedo", "roughness", "metalness", "emissive", "translucency", "alpha", "alpha_cutoff",
-                   "opacity", "texture", "albedo2", "texture_scale"});
+                   "opacity", "texture", "albedo2", "texture_scale", "brdf", "sheen"});
   Material m;
   m.name = name;
   m.albedo = get_vec3(n["albedo"], kUnit, m.albedo);
@@ -190,7 +190,32 @@ Material parse_material(const Node& n, const std::string& name) {
       m.texture);
   m.albedo2 = get_vec3(n["albedo2"], kUnit, m.albedo2);
   m.texture_scale = get_float(n["texture_scale"], kPositive, m.texture_scale);
+  m.brdf = get_enum<BrdfKind>(n["brdf"], {{"standard", BrdfKind::standard}, {"cloth", BrdfKind::cloth}}, m.brdf);
+  Node sheen = n["sheen"];
+  if (m.brdf == BrdfKind::cloth) {
+    // The sheen lobe is the cloth class; a cloth without one is the standard BRDF by another name.
+    m.sheen = get_float(sheen, Range{0.0, 1.0, true, false}, std::nullopt);
+    // Cloth reflects only: the thin-translucency model is the standard class's.
+    if (m.translucency > 0)
+      n["translucency"].fail("0 for brdf \"cloth\" (cloth does not transmit)", describe(*n["translucency"].v));
+  } else if (sheen.present()) {
+    sheen.fail("no sheen for brdf \"standard\" (sheen is the cloth class's lobe: set \"brdf\": \"cloth\")",
+               describe(*sheen.v));
+  }
   return m;
+}
+
+Decal parse_decal(const Node& n, size_t index) {
+  check_object(n, {"name", "position", "size", "rotate_deg", "albedo", "opacity", "shape"});
+  Decal d;
+  d.name = get_string(n["name"], "decal" + std::to_string(index));
+  d.position = get_vec3(n["position"], kAny, std::nullopt);
+  d.size = get_vec3(n["size"], kPositive, std::nullopt);
+  d.rotation_deg = get_vec3(n["rotate_deg"], kAny, d.rotation_deg);
+  d.albedo = get_vec3(n["albedo"], kUnit, std::nullopt);
+  d.opacity = get_float(n["opacity"], kUnit, d.opacity);
+  d.shape = get_enum<DecalShape>(n["shape"], {{"rect", DecalShape::rect}, {"disc", DecalShape::disc}}, d.shape);
+  return d;
 }
 
 // A primitive description reduced to a canonical key (equal descriptions share one Mesh,
@@ -511,7 +536,7 @@ Camera parse_camera(const Node& n) {
 
 Scene parse_document(const json& doc, const std::string& source_name) {
   Node root{&doc, "", &source_name};
-  check_object(root, {"materials", "objects", "lights", "sun", "sky", "camera", "frame_time"});
+  check_object(root, {"materials", "objects", "lights", "decals", "sun", "sky", "camera", "frame_time"});
   Scene scene;
   scene.source = source_name;
 
@@ -534,6 +559,14 @@ Scene parse_document(const json& doc, const std::string& source_name) {
   if (lights.present()) {
     check_array(lights, false);
     for (size_t i = 0; i < lights.v->size(); ++i) scene.lights.push_back(parse_light(lights[i]));
+  }
+  Node decals = root["decals"];
+  if (decals.present()) {
+    check_array(decals, false);
+    if (decals.v->size() > kMaxDecals)
+      decals.fail(fmt::format("at most {} decals (the frame constants hold {})", kMaxDecals, kMaxDecals),
+                  fmt::format("{} decals", decals.v->size()));
+    for (size_t i = 0; i < decals.v->size(); ++i) scene.decals.push_back(parse_decal(decals[i], i));
   }
   if (root["sun"].present()) scene.sun = parse_sun(root["sun"]);
   if (root["sky"].present()) scene.sky = parse_sky(root["sky"]);

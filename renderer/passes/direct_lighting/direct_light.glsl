@@ -3,17 +3,21 @@
 // classified and uber dispatches must agree with this to float precision).
 //
 // The includer declares, before including this file: the scene buffers (GIB_SCENE_BUFFERS),
-// frame.glsl, hash.glsl, material.glsl, bvh_alpha.glsl, lights.glsl, surface.glsl, finite.glsl;
+// frame.glsl, hash.glsl, material.glsl, bvh_alpha.glsl, lights.glsl, surface.glsl, finite.glsl,
+// brdf.glsl;
 // the G-buffer images gb_albedo, gb_normal, gb_position, gb_emissive (rgba16f / rgba32f as in
 // gbuffer_shared.h) and the visibility buffer `vbuffer`; booleans kHasSun, kHasSky, kHasLocal,
 // kHasEmissive (specialization constants: which lights the scene has).
 //
-// gib_direct_light(p, sky_rays, nan_guards, translucent_path):
+// gib_direct_light(p, sky_rays, nan_guards, translucent_path, cloth_path):
 //   translucent_path false skips the back-face terms; it gives the same value wherever the
 //   pixel's translucency is 0 (no random number is drawn for them either), so a permutation
-//   compiled without it agrees bit for bit on opaque pixels.
+//   compiled without it agrees bit for bit on opaque pixels. cloth_path false skips the sheen
+//   lobe of the cloth BRDF class (G-buffer: sheen in gb_albedo.a, roughness in gb_normal.a);
+//   likewise the same value wherever the pixel's sheen is 0.
 #ifndef GIB_DIRECT_LIGHT_GLSL
 #define GIB_DIRECT_LIGHT_GLSL
+#include "brdf.glsl"
 
 const float kShadowMax = 3.4e38;
 
@@ -24,15 +28,25 @@ vec3 diffuse_response(vec3 albedo, float translucency, vec3 n, vec3 wi) {
   return c > 0.0 ? albedo * (1.0 - translucency) * c / GIB_PI : albedo * translucency * (-c) / GIB_PI;
 }
 
-vec3 gib_direct_light(ivec2 p, uint sky_rays, bool nan_guards, bool translucent_path) {
+vec3 gib_direct_light(ivec2 p, uint sky_rays, bool nan_guards, bool translucent_path, bool cloth_path) {
   vec4 pos = imageLoad(gb_position, p);
   if (pos.w == 0.0) {
     vec3 o, d;
     gib_camera_ray(vec2(p) + 0.5, o, d);
     return gib_sky_radiance(d);
   }
-  vec3 albedo = imageLoad(gb_albedo, p).rgb;
-  vec3 n = imageLoad(gb_normal, p).xyz;
+  vec4 albedo_sheen = imageLoad(gb_albedo, p);
+  vec3 albedo = albedo_sheen.rgb;
+  vec4 normal_rough = imageLoad(gb_normal, p);
+  vec3 n = normal_rough.xyz;
+  // Cloth: the sheen lobe needs the direction towards the camera.
+  float sheen = cloth_path ? albedo_sheen.a : 0.0;
+  vec3 wo = vec3(0.0);
+  if (sheen > 0.0) {
+    vec3 o, d;
+    gib_camera_ray(vec2(p) + 0.5, o, d);
+    wo = -d;
+  }
   if (nan_guards && !(gib_finite(n) && dot(n, n) > 0.25)) {
     // Guard: a broken normal (NaN texel in the G-buffer) is lit as if facing the camera, so the
     // pixel stays finite; the G-buffer is rewritten every frame, so nothing carries it over.
@@ -49,6 +63,7 @@ vec3 gib_direct_light(ivec2 p, uint sky_rays, bool nan_guards, bool translucent_
   if (kHasSun && gib_frame.sun_irradiance.w > 0.0) {
     vec3 wi = gib_uniform_cone(gib_frame.sun_dir.xyz, gib_frame.sun_dir.w, gib_next2(rng));
     vec3 resp = diffuse_response(albedo, translucency, n, wi);
+    if (sheen > 0.0) resp += gib_sheen_lobe(sheen, normal_rough.a, n, wi, wo) * max(dot(n, wi), 0.0);
     if (any(greaterThan(resp, vec3(0.0)))) {
       vec3 side = dot(n, wi) > 0.0 ? n : -n;
       if (!trace_any(gib_offset_ray(x, side), wi, 0.0, kShadowMax)) result += resp * gib_frame.sun_irradiance.rgb;
@@ -69,23 +84,28 @@ vec3 gib_direct_light(ivec2 p, uint sky_rays, bool nan_guards, bool translucent_
       gib_camera_ray(vec2(p) + 0.5, o, d);
       ng = gib_face_normal_facing(ids - 1u, d, n);
     }
-    vec3 sky = vec3(0.0);
+    vec3 sky = vec3(0.0), sheen_sky = vec3(0.0);
     for (uint i = 0u; i < sky_rays; ++i) {
       bool back = translucency > 0.0 && gib_next(rng) < translucency;
       vec3 side = back ? -n : n, side_g = back ? -ng : ng;
       vec3 wi = gib_above_face(gib_cosine_hemisphere(side, gib_next2(rng)), side_g);
       vec3 origin = gib_offset_ray(x, side_g);
+      vec3 found = vec3(0.0);
       if (kHasEmissive) {
         GibHit hit;
         if (!trace_closest(origin, wi, 0.0, kShadowMax, hit))
-          sky += kHasSky ? gib_sky_radiance(wi) : vec3(0.0);
+          found = kHasSky ? gib_sky_radiance(wi) : vec3(0.0);
         else
-          sky += gib_materials[gib_surface(hit.triangle, hit.u, hit.v, nan_guards).material].emissive;
+          found = gib_materials[gib_surface(hit.triangle, hit.u, hit.v, nan_guards).material].emissive;
       } else if (!trace_any(origin, wi, 0.0, kShadowMax)) {
-        sky += gib_sky_radiance(wi);
+        found = gib_sky_radiance(wi);
       }
+      sky += found;
+      // Cosine-sampled: a ray's weight for the lobe is pi x lobe (cloth has no back side).
+      if (sheen > 0.0) sheen_sky += GIB_PI * gib_sheen_lobe(sheen, normal_rough.a, n, wi, wo) * found;
     }
     result += albedo * sky / float(sky_rays);
+    if (sheen > 0.0) result += sheen_sky / float(sky_rays);
   }
   if (kHasLocal) {
     for (uint i = 0u; i < gib_light_count(); ++i) {
@@ -94,6 +114,7 @@ vec3 gib_direct_light(ivec2 p, uint sky_rays, bool nan_guards, bool translucent_
       vec3 e = gib_local_light(gib_lights[i], x, wi, dist);
       if (all(equal(e, vec3(0.0)))) continue;
       vec3 resp = diffuse_response(albedo, translucency, n, wi);
+      if (sheen > 0.0) resp += gib_sheen_lobe(sheen, normal_rough.a, n, wi, wo) * max(dot(n, wi), 0.0);
       if (all(equal(resp, vec3(0.0)))) continue;
       vec3 side = dot(n, wi) > 0.0 ? n : -n;
       if (!trace_any(gib_offset_ray(x, side), wi, 0.0, dist * 0.999)) result += resp * e;

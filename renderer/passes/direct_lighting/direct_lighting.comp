@@ -30,5 +30,5 @@ layout(push_constant) uniform Push { DirectPush push; };
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(p, imageSize(out_direct)))) return;
-  imageStore(out_direct, p, vec4(gib_direct_light(p, push.sky_rays, push.nan_guards != 0u, true), 1.0));
+  imageStore(out_direct, p, vec4(gib_direct_light(p, push.sky_rays, push.nan_guards != 0u, true, true), 1.0));
 }

@@ -8,6 +8,7 @@ GIB_SCENE_BUFFERS(0, kBindSceneFirst)
 #include "material.glsl"
 #include "surface.glsl"
 #include "finite.glsl"
+#include "decals.glsl"
 
 layout(local_size_x = kGbufferGroup, local_size_y = kGbufferGroup) in;
 layout(set = 0, binding = kGbufferBindVbuffer, rg32ui) uniform readonly uimage2D vbuffer;
@@ -67,7 +68,10 @@ void main() {
   if (push.nan_guards != 0u && !(gib_finite(n) && abs(dot(n, n) - 1.0) < 0.01))
     n = dot(s.geo_normal, d) > 0.0 ? -s.geo_normal : s.geo_normal;
   if (inject) n = vec3(gib_nan());
-  imageStore(out_albedo, p, vec4(albedo, m.metalness));
+  // Projected decals recolour the albedo here (the deferred technique does it in its own
+  // gbuffer_update pass); no decals: the loop does not run.
+  albedo = gib_decal_blend(albedo, gib_decals_at(s.position, n));
+  imageStore(out_albedo, p, vec4(albedo, m.sheen));
   imageStore(out_normal, p, vec4(n, m.roughness));
   imageStore(out_position, p, vec4(s.position, distance(s.position, o)));
   imageStore(out_emissive, p, vec4(m.emissive, m.translucency));

@@ -9,6 +9,7 @@ uint gib_frame_index() { return gib_frame.frame_info.x; }
 uvec2 gib_render_size() { return gib_frame.frame_info.yz; }
 uint gib_light_count() { return gib_frame.frame_info.w; }
 uint gib_seed() { return gib_frame.scene_info.z; }
+uint gib_decal_count() { return gib_frame.scene_info.w; }
 
 // World-space ray through a position in pixel units (0..width, 0..height). The direction comes
 // from the camera-relative inverse, so it is as precise 10 km from the origin as at it.

@@ -11,6 +11,18 @@ GIB_CONST(uint, kBindSceneFirst, 1)  // vertices, triangles, instances, material
 GIB_CONST(uint, kSceneBufferCount, 7)
 GIB_CONST(uint, kBindPassFirst, 8)   // a pass's own slots start here
 
+GIB_CONST(uint, kMaxDecals, 16)  // decals a scene may have (scene.h kMaxDecals; loader limit)
+
+// A box-projected decal (renderer/scene/scene.h GpuDecal, decals.glsl): a point x lies at box
+// coordinates l_i = dot(axis_i.xyz, x - centre.xyz) * axis_i.w, inside when all |l_i| <= 0.5.
+struct GpuDecal {
+  vec4 centre;  // xyz, w: shape (0 rect, 1 disc)
+  vec4 axis_x;  // unit axis, w: 1 / size
+  vec4 axis_y;
+  vec4 axis_z;  // surfaces facing +axis_z receive the decal
+  vec4 albedo;  // rgb, a: opacity
+};
+
 struct GpuFrame {
   mat4 view_proj;
   mat4 inv_view_proj_rel;  // inverse of view_proj without the camera translation: NDC -> offset from camera_pos
@@ -22,7 +34,8 @@ struct GpuFrame {
   vec4 sky_horizon;     // rgb, w: turbidity
   vec4 sky_ground;      // rgb, w: unused
   uvec4 frame_info;     // frame index, render width, render height, light count
-  uvec4 scene_info;     // triangle count, instance count, seed, unused (0)
+  uvec4 scene_info;     // triangle count, instance count, seed, decal count
+  GpuDecal decals[kMaxDecals];
 };
 
 GIB_SHARED_END

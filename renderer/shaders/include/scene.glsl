@@ -68,7 +68,7 @@ struct GpuMaterial {  // 80 bytes
   float alpha_cutoff;
   float texture_scale;
   float opacity;
-  float pad0;
+  float sheen;  // cloth: sheen lobe strength; 0: the standard BRDF (brdf.glsl)
   float pad1;
   float pad2;
 };

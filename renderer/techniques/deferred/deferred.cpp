@@ -7,6 +7,7 @@
 #include "renderer/techniques/deferred/attribute_interpolate/attribute_interpolate.h"
 #include "renderer/techniques/deferred/deferred_lighting/deferred_lighting.h"
 #include "renderer/techniques/deferred/deferred_texturing/deferred_texturing.h"
+#include "renderer/techniques/deferred/gbuffer_update/gbuffer_update.h"
 #include "renderer/techniques/deferred/include/deferred_shared.h"
 #include "renderer/techniques/deferred/material_classify/material_classify.h"
 #include "renderer/techniques/deferred/tile_classify/tile_classify.h"
@@ -17,10 +18,12 @@ namespace gib {
 namespace {
 
 // The seed's tile-classification debug view: each 32x32 tile in its lighting workload's colour
-// (sky blue, opaque green, translucent orange), tile edges darker.
+// (sky blue, opaque green, cloth purple, translucent orange), tile edges darker; tiles
+// gbuffer_update runs over (decals) have a white diagonal.
 FloatImage draw_tile_classes(const std::vector<uint8_t>& bytes, uint32_t width, uint32_t height) {
   using namespace glsl;
-  static constexpr float kColour[kWorkloadCount][3] = {{0.1f, 0.2f, 0.6f}, {0.1f, 0.65f, 0.15f}, {0.95f, 0.55f, 0.1f}};
+  static constexpr float kColour[kWorkloadCount][3] = {
+      {0.1f, 0.2f, 0.6f}, {0.1f, 0.65f, 0.15f}, {0.6f, 0.2f, 0.75f}, {0.95f, 0.55f, 0.1f}};
   const uint32_t tiles = deferred_tiles(width, height), tiles_x = div_up(width, kDeferredTile);
   std::vector<int> workload(tiles, -1);
   for (uint32_t w = 0; w < kWorkloadCount; ++w)
@@ -28,12 +31,20 @@ FloatImage draw_tile_classes(const std::vector<uint8_t>& bytes, uint32_t width, 
       const uint32_t t = buffer_word(bytes, kTileHeader + uint64_t(w) * tiles + i);
       if (t < tiles) workload[t] = int(w);
     }
+  std::vector<bool> decals(tiles, false);
+  for (uint32_t i = 0, n = buffer_word(bytes, 4 * kTileListDecals + 3); i < n && i < tiles; ++i) {
+    const uint32_t t = buffer_word(bytes, kTileHeader + uint64_t(kTileListDecals) * tiles + i);
+    if (t < tiles) decals[t] = true;
+  }
   FloatImage img(width, height, 3);
   for (uint32_t y = 0; y < height; ++y)
     for (uint32_t x = 0; x < width; ++x) {
-      const int w = workload[(y / kDeferredTile) * tiles_x + x / kDeferredTile];
+      const uint32_t tile = (y / kDeferredTile) * tiles_x + x / kDeferredTile;
+      const int w = workload[tile];
       const float edge = (x % kDeferredTile == 0 || y % kDeferredTile == 0) ? 0.5f : 1.0f;
-      for (uint32_t c = 0; c < 3; ++c) img.at(x, y, c) = w < 0 ? 1.0f : kColour[w][c] * edge;  // white: no workload
+      const bool diagonal = decals[tile] && x % kDeferredTile == y % kDeferredTile;
+      for (uint32_t c = 0; c < 3; ++c)
+        img.at(x, y, c) = w < 0 || diagonal ? 1.0f : kColour[w][c] * edge;  // white: no workload
     }
   return img;
 }
@@ -58,13 +69,14 @@ Technique deferred_technique() {
   t.name = "deferred";
   t.description =
       "visibility buffer, material classification, attribute interpolation, deferred texturing per material "
-      "shader, tile classification, tiled direct lighting (DOOM: The Dark Ages)";
+      "shader, tile classification, G-buffer update (decals), tiled direct lighting (DOOM: The Dark Ages)";
   t.passes = {{"visibility", make_visibility_pass},
               {"material_classify", make_material_classify_pass},
               {"attribute_interpolate", make_attribute_interpolate_pass},
               {"vrcs_rate", make_vrcs_rate_pass},
               {"deferred_texturing", make_deferred_texturing_pass},
               {"tile_classify", make_tile_classify_pass},
+              {"gbuffer_update", make_gbuffer_update_pass},
               {"deferred_lighting", make_deferred_lighting_pass}};
   t.output = "direct_light";
   // Only direct light, as `direct`: its output is the contract's `direct` exactly.
@@ -86,16 +98,25 @@ Technique deferred_technique() {
        kTileStats + kTileStatTiles},
       {"tiles_opaque", "share of tiles lit by the opaque workload", "tile_workloads", 4 * kWorkloadOpaque + 3,
        kTileStats + kTileStatTiles},
+      {"tiles_cloth", "share of tiles lit by the cloth workload (standard + sheen lobe)", "tile_workloads",
+       4 * kWorkloadCloth + 3, kTileStats + kTileStatTiles},
       {"tiles_translucent", "share of tiles lit by the translucent workload", "tile_workloads",
        4 * kWorkloadTranslucent + 3, kTileStats + kTileStatTiles},
+      // The seed's G-buffer update statistics: dispatched tiles of all (Siege: 68 %).
+      {"tiles_decals", "share of tiles gbuffer_update ran over (some decal covers a pixel)", "tile_workloads",
+       4 * kTileListDecals + 3, kTileStats + kTileStatTiles},
       {"vrcs_textured", "VRCS: share of geometry pixels whose material the texturing evaluated", "vrcs_rates",
        kVrcsStats + kVrcsStatTextured, kVrcsStats + kVrcsStatTexturedOf},
       {"vrcs_lit", "VRCS: share of geometry pixels the lighting shaded itself", "vrcs_rates", kVrcsStats + kVrcsStatLit,
        kVrcsStats + kVrcsStatLitOf},
+      {"vrcs_decaled", "VRCS: share of geometry pixels of decal tiles whose decals gbuffer_update evaluated",
+       "vrcs_rates", kVrcsStats + kVrcsStatDecaled, kVrcsStats + kVrcsStatDecaledOf},
   };
   t.views = {
-      {"tile_classes", "lighting workload per 32x32 tile: sky blue, opaque green, translucent orange", "tile_workloads",
-       draw_tile_classes},
+      {"tile_classes",
+       "lighting workload per 32x32 tile: sky blue, opaque green, cloth purple, translucent orange; white diagonal: "
+       "decal tiles (gbuffer_update)",
+       "tile_workloads", draw_tile_classes},
       {"vrcs_rates", "VRCS rate per 8x8 tile: 1x1 grey, 2x1 red, 1x2 green, 2x2 yellow", "vrcs_rates", draw_vrcs_rates},
   };
   // The lighting ladder of `direct` (same rays, same result): the deferred path changes how the
@@ -112,7 +133,11 @@ Technique deferred_technique() {
                  0, 1, &DeferredSettings::uniform_permutation),
           option("tile_classification", "light per tile workload (0: one uber kernel over every pixel)", 0, 1,
                  &DeferredSettings::tile_classification),
-          option("vrcs", "variable-rate compute shading in the classified texturing and the tiled lighting", 0, 1,
+          option("gbuffer_update", "blend the scene's decals into the G-buffer (0: decals missing, a negative control)", 0,
+                 1, &DeferredSettings::gbuffer_update),
+          option("sheen_lobe", "light the cloth BRDF's sheen lobe (0: cloth lit as the standard BRDF, a negative control)",
+                 0, 1, &DeferredSettings::sheen_lobe),
+          option("vrcs", "variable-rate compute shading in the classified texturing, the G-buffer update and the tiled lighting", 0, 1,
                  &DeferredSettings::vrcs),
           option("vrcs_threshold", "largest tone-mapped luminance step, l = L / (1 + L), a coarse pixel pair may hide", 0,
                  1, &DeferredSettings::vrcs_threshold),

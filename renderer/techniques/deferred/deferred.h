@@ -10,6 +10,8 @@ struct DeferredSettings : TechniqueSettingsOf<DeferredSettings>, DirectLightingP
   bool classify_materials = true;    // texturing over per-shader pixel lists (false: one uber kernel)
   bool uniform_permutation = true;   // also dispatch the uniform-data permutation (where subgroups allow)
   bool tile_classification = true;   // lighting per tile workload (false: one uber kernel)
+  bool gbuffer_update = true;        // blend decals into the G-buffer (false: a negative control, decals missing)
+  bool sheen_lobe = true;            // light the cloth class's sheen lobe (false: a negative control, cloth as standard)
   // Variable-rate compute shading in the classified texturing and lighting dispatches.
   bool vrcs = false;
   float vrcs_threshold = 0.02f;  // largest tone-mapped luma step a coarse pair may hide

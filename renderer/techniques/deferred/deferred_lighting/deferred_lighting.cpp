@@ -35,7 +35,7 @@ class DeferredLightingPass final : public Pass {
     const uint32_t w = ctx.width("direct_light"), h = ctx.height("direct_light");
     const uint32_t tiles_x = div_up(w, kDeferredTile);
     LightPush push{ds.sky_rays, ctx.settings.nan_guards ? 1u : 0u, tiles_x, tiles_x * div_up(h, kDeferredTile),
-                   div_up(w, kVrcsTile), 0, 0, 0};
+                   div_up(w, kVrcsTile), ds.sheen_lobe ? 1u : 0u, 0, 0};
     static_assert(sizeof(push) == 32, "LightPush must match deferred_lighting.glsl's push block");
     std::vector<ImageBinding> images = {{kLightBindVbuffer, "vbuffer"},        {kLightBindAlbedo, "gbuffer_albedo"},
                                               {kLightBindNormal, "gbuffer_normal"},    {kLightBindPosition, "gbuffer_position"},

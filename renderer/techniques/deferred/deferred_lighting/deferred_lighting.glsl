@@ -73,7 +73,8 @@ void main() {
     ivec2 anchor = gib_vrcs_anchor(p, gib_vrcs_rate(p, push.rate_tiles_x), cell);
     if (gib_vrcs_follows(p, anchor, size)) return;
 #endif
-    result = gib_direct_light(p, push.sky_rays, push.nan_guards != 0u, kWorkload == kWorkloadTranslucent);
+    result = gib_direct_light(p, push.sky_rays, push.nan_guards != 0u, kWorkload == kWorkloadTranslucent,
+                              (kWorkload == kWorkloadCloth || kWorkload == kWorkloadTranslucent) && push.sheen_lobe != 0u);
 #ifdef GIB_LIGHTING_VRCS
     uint covered = 0u;
     if (p == anchor)
@@ -89,7 +90,7 @@ void main() {
 #endif
   }
 #else
-  result = gib_direct_light(p, push.sky_rays, push.nan_guards != 0u, true);
+  result = gib_direct_light(p, push.sky_rays, push.nan_guards != 0u, true, push.sheen_lobe != 0u);
 #endif
   store_light(p, result);
 }

@@ -26,7 +26,8 @@ struct LightPush {
   uint tiles_x;
   uint tiles;
   uint rate_tiles_x;  // VRCS: 8x8 rate tiles per row
-  uint pad0, pad1, pad2;
+  uint sheen_lobe;    // 0: the cloth workload and the uber kernel skip the sheen lobe (negative control)
+  uint pad1, pad2;
 };
 GIB_SHARED_END
 #endif

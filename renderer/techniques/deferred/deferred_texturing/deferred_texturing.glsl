@@ -86,7 +86,7 @@ void store_texel(ivec2 p, Texel x, GpuMaterial m, vec3 albedo) {
   float denom = dot(d, g);
   float w = 1.0 - x.bc.x - x.bc.y;
   vec3 position = abs(denom) > 0.0 ? o + d * (dot(a - o, g) / denom) : a * w + b * x.bc.x + c * x.bc.y;
-  imageStore(out_albedo, p, vec4(albedo, m.metalness));
+  imageStore(out_albedo, p, vec4(albedo, m.sheen));  // decals: gbuffer_update
   imageStore(out_normal, p, vec4(n, m.roughness));
   imageStore(out_position, p, vec4(position, distance(position, o)));
   imageStore(out_emissive, p, vec4(m.emissive, m.translucency));

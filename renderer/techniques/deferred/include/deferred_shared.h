@@ -32,15 +32,21 @@ GIB_CONST(uint, kStatSegments, 5)           // non-empty (tile, material) segmen
 GIB_CONST(uint, kSegHeader, 32)
 
 // Buffer `tile_workloads` (uint words):
-//   [4 w .. 4 w + 3]          workload w: indirect args (groups, 1, 1) and its tile count
+//   [4 w .. 4 w + 3]          list w: indirect args (groups, 1, 1) and its tile count
 //   [kTileStats + i]          statistics
-//   [kTileHeader + w * T + i] tile indices of workload w (T = tiles)
-//   [kTileHeader + W * T + t] tile t's feature mask (W = kWorkloadCount)
+//   [kTileHeader + w * T + i] tile indices of list w (T = tiles)
+//   [kTileHeader + L * T + t] tile t's feature mask (L = kTileListCount)
+// Lists 0 .. kWorkloadCount - 1 are the lighting workloads (each tile in exactly one: the
+// cheapest permutation that has every feature the tile has); list kTileListDecals holds the
+// tiles some decal touches, over which gbuffer_update runs (a tile may be in both).
 GIB_CONST(uint, kWorkloadSky, 0)          // sky only: the sky's radiance, no shading
-GIB_CONST(uint, kWorkloadOpaque, 1)       // opaque surfaces (and sky)
-GIB_CONST(uint, kWorkloadTranslucent, 2)  // some pixel transmits light through its back face
-GIB_CONST(uint, kWorkloadCount, 3)
-GIB_CONST(uint, kTileStats, 16)
+GIB_CONST(uint, kWorkloadOpaque, 1)       // opaque surfaces of the standard BRDF (and sky)
+GIB_CONST(uint, kWorkloadCloth, 2)        // ... and the cloth BRDF's sheen lobe
+GIB_CONST(uint, kWorkloadTranslucent, 3)  // some pixel transmits light through its back face (every feature)
+GIB_CONST(uint, kWorkloadCount, 4)
+GIB_CONST(uint, kTileListDecals, 4)
+GIB_CONST(uint, kTileListCount, 5)
+GIB_CONST(uint, kTileStats, 24)
 GIB_CONST(uint, kTileStatTiles, 0)  // tiles on screen (the full-screen dispatch's share is 1)
 GIB_CONST(uint, kTileHeader, 32)
 // Feature bits of a tile's mask (32 available; the seed's TC_FEATURE_* bits).
@@ -48,6 +54,8 @@ GIB_CONST(uint, kTileFeatureSky, 1)
 GIB_CONST(uint, kTileFeatureOpaque, 2)
 GIB_CONST(uint, kTileFeatureTranslucent, 4)
 GIB_CONST(uint, kTileFeatureEmissive, 8)
+GIB_CONST(uint, kTileFeatureCloth, 16)   // the seed's TC_FEATURE_BRDF_CLOTH
+GIB_CONST(uint, kTileFeatureDecals, 32)  // the seed's TC_FEATURE_DECALS: some decal covers a pixel
 // Lighting runs 8x8 workgroups: 16 per 32x32 tile.
 GIB_CONST(uint, kLightingGroup, 8)
 GIB_CONST(uint, kLightingGroupsPerTile, 16)
@@ -66,6 +74,8 @@ GIB_CONST(uint, kVrcsStatTextured, 4)  // texturing: pixels whose material was e
 GIB_CONST(uint, kVrcsStatTexturedOf, 5)  // ... of this many geometry pixels
 GIB_CONST(uint, kVrcsStatLit, 6)       // lighting: geometry pixels lit by their own invocation
 GIB_CONST(uint, kVrcsStatLitOf, 7)     // ... of this many geometry pixels
+GIB_CONST(uint, kVrcsStatDecaled, 8)   // gbuffer_update: geometry pixels of decal tiles that evaluated the decals
+GIB_CONST(uint, kVrcsStatDecaledOf, 9) // ... of this many geometry pixels of decal tiles
 GIB_CONST(uint, kVrcsHeader, 16)
 GIB_SHARED_END
 #endif

@@ -13,6 +13,8 @@ class TileClassifyPass final : public Pass {
     d.name = "tile_classify";
     d.slots = {{"gbuffer_position", Access::read},
                {"gbuffer_emissive", Access::read},
+               {"vbuffer", Access::read},
+               {"gbuffer_normal", Access::read},
                {"tile_workloads", Access::write,
                 ResourceDesc{Format::buffer, SizeRule::buffer, 0, 0, tile_workload_words(s.width, s.height) * 4}}};
     return d;
@@ -27,7 +29,10 @@ class TileClassifyPass final : public Pass {
     ctx.cmd.fill(ctx.buffer("tile_workloads"), 0u);
     ctx.cmd.barrier(kStageTransfer, kStageCompute);
     const DeviceInfo& dev = ctx.gpu.info();
-    const std::vector<ImageBinding> images = {{kTileBindPosition, "gbuffer_position"}, {kTileBindEmissive, "gbuffer_emissive"}};
+    const std::vector<ImageBinding> images = {{kTileBindPosition, "gbuffer_position"},
+                                              {kTileBindEmissive, "gbuffer_emissive"},
+                                              {kTileBindVbuffer, "vbuffer"},
+                                              {kTileBindNormal, "gbuffer_normal"}};
     const std::vector<BufferBinding> buffers = {{kTileBindWorkloads, "tile_workloads"}};
     const bool scalarised = dev.subgroup_vote && dev.subgroup_ballot && dev.subgroup_arithmetic;
     record_compute(ctx, {.shader = scalarised ? "tile_classify_mask.comp" : "tile_classify_mask_plain.comp",
@@ -49,7 +54,7 @@ class TileClassifyPass final : public Pass {
 }  // namespace
 
 uint64_t tile_workload_words(uint32_t width, uint32_t height) {
-  return glsl::kTileHeader + uint64_t(glsl::kWorkloadCount + 1) * deferred_tiles(width, height);
+  return glsl::kTileHeader + uint64_t(glsl::kTileListCount + 1) * deferred_tiles(width, height);
 }
 
 std::unique_ptr<Pass> make_tile_classify_pass() { return std::make_unique<TileClassifyPass>(); }

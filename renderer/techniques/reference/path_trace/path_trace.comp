@@ -19,6 +19,8 @@ bool gib_alpha_accept(uint triangle, float u, float v) {
 #include "lights.glsl"
 #include "surface.glsl"
 #include "finite.glsl"
+#include "brdf.glsl"
+#include "decals.glsl"
 
 layout(local_size_x = kPathTraceGroup, local_size_y = kPathTraceGroup) in;
 layout(set = 0, binding = kPathTraceBindRadiance, rgba32f) uniform image2D sum_radiance;
@@ -33,15 +35,20 @@ bool shadow(vec3 o, vec3 d, float tmax, inout GibRng rng) {
   return trace_any(o, d, 0.0, tmax);
 }
 
-// Next-event estimation at x towards the sun and every local light.
-vec3 light_direct(vec3 x, vec3 n, vec3 albedo, float translucency, inout GibRng rng) {
+// Next-event estimation at x towards the sun and every local light. sheen > 0: the cloth class's
+// sheen lobe (brdf.glsl) seen from wo joins the Lambertian front response.
+vec3 light_direct(vec3 x, vec3 n, vec3 albedo, float translucency, float sheen, float roughness, vec3 wo,
+                  inout GibRng rng) {
   vec3 sum = vec3(0.0);
   if (kHasSun && gib_frame.sun_irradiance.w > 0.0) {
     vec3 wi = gib_uniform_cone(gib_frame.sun_dir.xyz, gib_frame.sun_dir.w, gib_next2(rng));
     float c = dot(n, wi);
     float f = c > 0.0 ? (1.0 - translucency) * c : translucency * (-c);
-    if (f > 0.0 && !shadow(gib_offset_ray(x, c > 0.0 ? n : -n), wi, kFar, rng))
+    float lobe = sheen > 0.0 ? gib_sheen_lobe(sheen, roughness, n, wi, wo) * max(c, 0.0) : 0.0;
+    if ((f > 0.0 || lobe > 0.0) && !shadow(gib_offset_ray(x, c > 0.0 ? n : -n), wi, kFar, rng)) {
       sum += albedo / GIB_PI * f * gib_frame.sun_irradiance.rgb;
+      if (sheen > 0.0) sum += lobe * gib_frame.sun_irradiance.rgb;
+    }
   }
   if (kHasLocal) {
     for (uint i = 0u; i < gib_light_count(); ++i) {
@@ -50,8 +57,12 @@ vec3 light_direct(vec3 x, vec3 n, vec3 albedo, float translucency, inout GibRng 
       vec3 e = gib_local_light(gib_lights[i], x, wi, dist);
       float c = dot(n, wi);
       float f = c > 0.0 ? (1.0 - translucency) * c : translucency * (-c);
-      if (f <= 0.0 || all(equal(e, vec3(0.0)))) continue;
-      if (!shadow(gib_offset_ray(x, c > 0.0 ? n : -n), wi, dist * 0.999, rng)) sum += albedo / GIB_PI * f * e;
+      float lobe = sheen > 0.0 ? gib_sheen_lobe(sheen, roughness, n, wi, wo) * max(c, 0.0) : 0.0;
+      if ((f <= 0.0 && lobe <= 0.0) || all(equal(e, vec3(0.0)))) continue;
+      if (!shadow(gib_offset_ray(x, c > 0.0 ? n : -n), wi, dist * 0.999, rng)) {
+        sum += albedo / GIB_PI * f * e;
+        if (sheen > 0.0) sum += lobe * e;
+      }
     }
   }
   return sum;
@@ -81,13 +92,14 @@ void main() {
       }
       GibSurface surf = gib_surface(hit.triangle, hit.u, hit.v, push.nan_guards != 0u);
       GpuMaterial m = gib_materials[surf.material];
-      vec3 albedo = gib_material_albedo(m, surf.uv);
       vec3 n = dot(surf.normal, d) > 0.0 ? -surf.normal : surf.normal;
+      vec3 albedo = gib_decal_blend(gib_material_albedo(m, surf.uv), gib_decals_at(surf.position, n));
+      vec3 wo = -d;
       vec3 ng = dot(surf.geo_normal, d) > 0.0 ? -surf.geo_normal : surf.geo_normal;
       vec3 e = throughput * m.emissive;
       if (primary) direct += e; else indirect += e;
       if (depth == push.max_bounces) break;
-      vec3 nee = throughput * light_direct(surf.position, n, albedo, m.translucency, rng);
+      vec3 nee = throughput * light_direct(surf.position, n, albedo, m.translucency, m.sheen, m.roughness, wo, rng);
       if (depth == 0u) direct += nee; else indirect += nee;
       // Continue: reflect, or transmit to the back side with probability = translucency.
       bool transmit = m.translucency > 0.0 && gib_next(rng) < m.translucency;
@@ -99,7 +111,8 @@ void main() {
       float below = dot(d, side_g);
       if (below <= 0.0) d = normalize(d - 2.0 * below * side_g);
       o = gib_offset_ray(surf.position, side_g);
-      throughput *= albedo;
+      // Cosine-sampled continuation: weight pi x BRDF (the cloth's lobe on the front only).
+      throughput *= m.sheen > 0.0 ? albedo + GIB_PI * gib_sheen_lobe(m.sheen, m.roughness, n, d, wo) : albedo;
       if (depth >= 3u) {
         float survive = min(max(throughput.r, max(throughput.g, throughput.b)), 1.0);
         if (gib_next(rng) >= survive) break;
