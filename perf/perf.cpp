@@ -167,12 +167,114 @@ std::string scale_text(double f) {
 
 }  // namespace
 
+// The column of `table` the run's settings select ("" for a one-column table, "?" when the
+// technique cannot tell).
+std::string seed_column(const SeedTable& table, const TechniqueRun& r) {
+  if (table.column_option.empty()) return "";
+  for (const TechniqueOption& o : technique_options(*r.technique))
+    if (o.name == table.column_option && o.read) {
+      auto it = table.column_of_value.find(o.read(r.settings_full));
+      return it == table.column_of_value.end() ? "?" : it->second;
+    }
+  return "?";
+}
+
+// Seed comparison of one run: per table row, our scaled cost of the passes that make it up.
+void add_seed_rows(const SeedTable& table, const TechniqueRun& r,
+                   const std::map<std::string, std::map<std::string, double>>& scaled_by_pass, nlohmann::json& jseed) {
+  const std::string column = seed_column(table, r);
+  for (const ConsoleProfile* p : r.workload.profiles) {
+    const SeedPlatform* sp = table.find(p->name, column);
+    auto mine = scaled_by_pass.find(p->name);
+    if (!sp || mine == scaled_by_pass.end()) continue;
+    std::map<std::string, double> ours;
+    std::map<std::string, std::vector<std::string>> passes;
+    for (auto& [pass, ms] : mine->second)
+      if (auto k = table.pass_row.find(pass); k != table.pass_row.end()) {
+        ours[k->second] += ms;
+        passes[k->second].push_back(pass);
+      }
+    for (auto& [row, ms] : ours) {
+      auto it = sp->ms.find(row);
+      if (it == sp->ms.end()) continue;
+      jseed.push_back({{"table", table.name}, {"technique", r.name}, {"base_technique", r.technique->name},
+                       {"column", column}, {"profile", p->name}, {"seed_key", row}, {"passes", passes[row]},
+                       {"ours_ms", ms}, {"seed_ms", it->second}, {"ratio", it->second > 0 ? ms / it->second : 0.0},
+                       {"resolution", {r.workload.width, r.workload.height}},
+                       {"seed_resolution", {sp->width, sp->height}}});
+    }
+  }
+}
+
+void print_seed_comparison(const std::vector<SeedTable>& seeds, const std::vector<const Technique*>& techs,
+                           const nlohmann::json& jseed) {
+  for (const SeedTable& table : seeds) {
+    fmt::print("\n== seed comparison: {} ({}) ==\n", table.name, table.source);
+    std::vector<const nlohmann::json*> rows;
+    for (auto& e : jseed)
+      if (e["table"] == table.name) rows.push_back(&e);
+    if (rows.empty()) {
+      const bool ran = std::any_of(techs.begin(), techs.end(), [&](auto* t) { return t->name == table.technique; });
+      std::vector<std::string> profiles;
+      for (auto& p : table.platforms)
+        if (std::find(profiles.begin(), profiles.end(), p.profile) == profiles.end()) profiles.push_back(p.profile);
+      fmt::print("{}: no row compared ({}; the table's profiles: {})\n", table.technique,
+                 ran ? "no run at a profile the table has" : "not run", fmt::join(profiles, ", "));
+      continue;
+    }
+    fmt::print("{:<22} {:<14} {:<8} {:<32} {:>10} {:>10} {:>8}  {}\n", "technique", "profile", "column", "seed row",
+               "ours ms", "seed ms", "ratio", "our passes");
+    std::map<std::tuple<std::string, std::string, std::string>, std::pair<double, double>> sums;
+    for (auto* e : rows) {
+      const std::string column = (*e)["column"];
+      fmt::print("{:<22} {:<14} {:<8} {:<32} {:>10} {:>10} {:>7.2f}x  {}\n", (*e)["technique"].get<std::string>(),
+                 (*e)["profile"].get<std::string>(), column.empty() ? "-" : column,
+                 (*e)["seed_key"].get<std::string>(), fmt_ms((*e)["ours_ms"]), fmt_ms((*e)["seed_ms"]),
+                 (*e)["ratio"].get<double>(), fmt::join((*e)["passes"].get<std::vector<std::string>>(), "+"));
+      auto& s = sums[{(*e)["technique"], (*e)["profile"], column}];
+      s.first += (*e)["ours_ms"].get<double>();
+      s.second += (*e)["seed_ms"].get<double>();
+    }
+    for (auto& [k, s] : sums) {
+      const SeedPlatform* sp = table.find(std::get<1>(k), std::get<2>(k));
+      const bool total = sp && !table.total_row.empty() && sp->ms.count(table.total_row);
+      fmt::print("{:<22} {:<14} {:<8} {:<32} {:>10} {:>10} {:>7.2f}x  (seed {} {} ms)\n", std::get<0>(k), std::get<1>(k),
+                 std::get<2>(k).empty() ? "-" : std::get<2>(k), "sum of matched rows", fmt_ms(s.first),
+                 fmt_ms(s.second), s.second > 0 ? s.first / s.second : 0.0,
+                 table.total_row.empty() ? "total" : table.total_row,
+                 total ? fmt_ms(sp->ms.at(table.total_row)) : "-");
+    }
+    // A table with columns (VRCS off / on): where both were measured for one technique and
+    // profile, our change per row next to the seed's: the shape of the gains.
+    if (table.column_of_value.size() < 2) continue;
+    const std::string off = table.column_of_value.begin()->second, on = table.column_of_value.rbegin()->second;
+    bool header = false;
+    for (auto* a : rows)
+      for (auto* b : rows) {
+        if ((*a)["column"] != off || (*b)["column"] != on || (*a)["base_technique"] != (*b)["base_technique"] ||
+            (*a)["profile"] != (*b)["profile"] || (*a)["seed_key"] != (*b)["seed_key"])
+          continue;
+        if (!header) {
+          fmt::print("{} -> {} per row ({} vs {}):\n{:<32} {:>10} {:>10}\n", off, on, (*a)["technique"].get<std::string>(),
+                     (*b)["technique"].get<std::string>(), "seed row", "ours", "seed");
+          header = true;
+        }
+        const double ours = (*b)["ours_ms"].get<double>() / (*a)["ours_ms"].get<double>() - 1;
+        const double seed = (*b)["seed_ms"].get<double>() / (*a)["seed_ms"].get<double>() - 1;
+        fmt::print("{:<32} {:>10} {:>10}\n", (*a)["seed_key"].get<std::string>(), fmt_pct(ours), fmt_pct(seed));
+      }
+    if (!header)
+      fmt::print("(run both columns, e.g. --variant {}:{}=..., to compare the {} -> {} change per row)\n", off,
+                 table.column_option, off, on);
+  }
+}
+
 int cmd_bench(const BenchOptions& o) {
   const std::string data = find_data_dir(o.data_dir);
   const std::string profiles_path = data + "/console-profiles.json", seeds_path = data + "/seed-timings.json";
   auto all_profiles = load_profiles(profiles_path);
   auto profiles = select_profiles(all_profiles, o.profiles);
-  SeedTable seeds = load_seed_table(seeds_path);
+  const std::vector<SeedTable> seeds = load_seed_tables(seeds_path);
 
   std::vector<const Technique*> techs;
   if (o.techniques.empty())
@@ -317,7 +419,6 @@ int cmd_bench(const BenchOptions& o) {
   auto& jseed = out["seed_comparison"] = nlohmann::json::array();
   nlohmann::json medians = nlohmann::json::object();
 
-  const auto& seed_map = seed_key_of_pass();
   std::vector<double> detectables;
   std::string worst_key;
   double worst = 0;
@@ -348,8 +449,7 @@ int cmd_bench(const BenchOptions& o) {
     for (auto* p : w.profiles) jr["profiles"].push_back(p->name);
     std::map<std::string, double> scaled_total;
     double meas_total = 0, full_total = 0, bytes_total = 0, mem_total = 0, comp_total = 0;
-    std::map<std::string, std::map<std::string, double>> seed_ours;  // profile -> seed key -> ms
-    std::map<std::string, std::vector<std::string>> seed_passes;
+    std::map<std::string, std::map<std::string, double>> scaled_by_pass;  // profile -> pass -> ms
     for (auto& pr : r.passes) {
       Summary s = summarize_samples(pr.samples);
       double full_ms = s.median * pr.work_scale;
@@ -364,10 +464,8 @@ int cmd_bench(const BenchOptions& o) {
         scaled[p->name] = ms;
         scaled_total[p->name] += ms;
         line += fmt::format(" {:>13}", fmt_ms(ms));
-        auto sk = seed_map.find(pr.name);
-        if (sk != seed_map.end()) seed_ours[p->name][sk->second] += ms;
+        scaled_by_pass[p->name][pr.name] += ms;
       }
-      if (auto sk = seed_map.find(pr.name); sk != seed_map.end()) seed_passes[sk->second].push_back(pr.name);
       fmt::print("{}\n", line);
       meas_total += s.median;
       full_total += full_ms;
@@ -437,49 +535,10 @@ int cmd_bench(const BenchOptions& o) {
                    {"device_ms_full", full_total}, {"scaled_ms", scaled_total}};
     jruns.push_back(jr);
 
-    // Seed comparison: our scaled cost of the passes that make up each seed row.
-    for (auto* p : w.profiles) {
-      const SeedPlatform* sp = seeds.find(p->name);
-      if (!sp || seed_ours[p->name].empty()) continue;
-      for (auto& [k, ours] : seed_ours[p->name]) {
-        auto it = sp->ms.find(k);
-        if (it == sp->ms.end()) continue;
-        jseed.push_back({{"technique", r.name}, {"profile", p->name}, {"seed_key", k},
-                         {"passes", seed_passes[k]}, {"ours_ms", ours}, {"seed_ms", it->second},
-                         {"ratio", it->second > 0 ? ours / it->second : 0.0},
-                         {"seed_resolution", {sp->width, sp->height}}});
-      }
-    }
+    for (const SeedTable& table : seeds)
+      if (table.technique == r.technique->name) add_seed_rows(table, r, scaled_by_pass, jseed);
   }
-
-  fmt::print("\n== seed comparison: {} ({}) ==\n", seeds.name, seeds.source);
-  std::set<std::string> with_seed;
-  for (auto& e : jseed) with_seed.insert(e["technique"].get<std::string>());
-  for (auto* t : techs)
-    if (!with_seed.count(t->name))
-      fmt::print("{}: no pass maps to a seed row (mapped passes: probe_trace, radiance_cache_update/shade, "
-                 "irradiance_volume_update, final_gather, gi_denoise, gi_upscale)\n",
-                 t->name);
-  if (!jseed.empty()) {
-    fmt::print("{:<16} {:<14} {:<20} {:>10} {:>10} {:>8}  {}\n", "technique", "profile", "seed row", "ours ms",
-               "seed ms", "ratio", "our passes");
-    std::map<std::pair<std::string, std::string>, std::pair<double, double>> sums;
-    for (auto& e : jseed) {
-      fmt::print("{:<16} {:<14} {:<20} {:>10} {:>10} {:>7.2f}x  {}\n", e["technique"].get<std::string>(),
-                 e["profile"].get<std::string>(), e["seed_key"].get<std::string>(), fmt_ms(e["ours_ms"]),
-                 fmt_ms(e["seed_ms"]), e["ratio"].get<double>(),
-                 fmt::join(e["passes"].get<std::vector<std::string>>(), "+"));
-      auto& s = sums[{e["technique"].get<std::string>(), e["profile"].get<std::string>()}];
-      s.first += e["ours_ms"].get<double>();
-      s.second += e["seed_ms"].get<double>();
-    }
-    for (auto& [k, s] : sums) {
-      const SeedPlatform* sp = seeds.find(k.second);
-      fmt::print("{:<16} {:<14} {:<20} {:>10} {:>10} {:>7.2f}x  (seed total_serial {} ms)\n", k.first, k.second,
-                 "sum of matched rows", fmt_ms(s.first), fmt_ms(s.second), s.second > 0 ? s.first / s.second : 0.0,
-                 sp && sp->ms.count("total_serial") ? fmt_ms(sp->ms.at("total_serial")) : "-");
-    }
-  }
+  print_seed_comparison(seeds, techs, jseed);
 
   fmt::print("\n== noise floor: the same configuration timed twice in this run ({}) ==\n",
              repeats >= 2 ? "even vs odd repeats" : "first vs second half of the frames");

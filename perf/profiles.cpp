@@ -123,16 +123,35 @@ std::vector<ConsoleProfile> select_profiles(const std::vector<ConsoleProfile>& a
   return out;
 }
 
-const SeedPlatform* SeedTable::find(const std::string& profile) const {
+const SeedPlatform* SeedTable::find(const std::string& profile, const std::string& column) const {
   for (auto& p : platforms)
-    if (p.profile == profile) return &p;
+    if (p.profile == profile && p.column == column) return &p;
   return nullptr;
 }
 
-SeedTable parse_seed_table(const std::string& text, const std::string& file) {
-  ojson j = parse_json(text, file);
+namespace {
+
+double milliseconds(const ojson& v, const std::string& file, const std::string& ptr) {
+  if (!v.is_number() || v.get<double>() < 0)
+    throw PerfError(fmt::format("{}: {}: expected milliseconds (a number >= 0), got {}", file, ptr, got(v)));
+  return v.get<double>();
+}
+
+// idTech 8's "Hotspot Performance" table: a row set per platform, each at its own resolution.
+SeedTable idtech8_table(const ojson& j, const std::string& file) {
   SeedTable t;
   t.name = "idtech8_gi_hotspot";
+  t.technique = "radiance-cache";
+  // World sampling is the probe ray tracing; the radiance cache row covers update + shading;
+  // irradiance volumes their update.
+  t.pass_row = {{"probe_trace", "world_sampling"},
+                {"radiance_cache_update", "radiance_cache"},
+                {"radiance_cache_shade", "radiance_cache"},
+                {"irradiance_volume_update", "irradiance_volumes"},
+                {"final_gather", "final_gather"},
+                {"gi_denoise", "denoise"},
+                {"gi_upscale", "upscale"}};
+  t.total_row = "total_serial";
   const ojson& table = member(j, t.name, file, "", "the idTech 8 hotspot table");
   const std::string base = "/" + t.name;
   t.source = table.value("source", "");
@@ -143,33 +162,71 @@ SeedTable parse_seed_table(const std::string& text, const std::string& file) {
     SeedPlatform sp;
     sp.profile = name;
     std::tie(sp.width, sp.height) = resolution(p, file, ptr);
-    for (auto& [k, v] : p.items()) {
-      if (k == "resolution") continue;
-      if (!v.is_number() || v.get<double>() < 0)
-        throw PerfError(fmt::format("{}: {}/{}: expected milliseconds (a number >= 0), got {}", file, ptr, k, got(v)));
-      sp.ms[k] = v.get<double>();
+    for (auto& [k, v] : p.items())
+      if (k != "resolution") sp.ms[k] = milliseconds(v, file, ptr + "/" + k);
+    t.platforms.push_back(std::move(sp));
+  }
+  return t;
+}
+
+// DOOM: The Dark Ages' "Detailed Performance Results" ("Siege" scene, Xbox Series X, 2560x1440,
+// no resolution scaling): a row is milliseconds (the same in both columns) or
+// {"no_vrcs": ms, "vrcs": ms}; "overall_no_async" is the sum of its rows.
+SeedTable doom_table(const ojson& j, const std::string& file) {
+  SeedTable t;
+  t.name = "doom_visibility_buffer";
+  t.technique = "deferred";
+  // The visibility pass (rasterisation) is not in the seed's table; tile classification has no
+  // row of its own there either (the seed counts it with the lighting it prepares).
+  t.pass_row = {{"material_classify", "pixel_commands_and_dispatch_args"},
+                {"attribute_interpolate", "attribute_interpolation"},
+                {"vrcs_rate", "vrcs_shading_rate"},
+                {"deferred_texturing", "deferred_texturing"},
+                {"gbuffer_update", "gbuffer_update"},
+                {"tile_classify", "deferred_lighting"},
+                {"deferred_lighting", "deferred_lighting"}};
+  t.column_option = "vrcs";
+  t.column_of_value = {{0.0, "no_vrcs"}, {1.0, "vrcs"}};
+  t.total_row = "overall_no_async";
+  const ojson& table = member(j, t.name, file, "", "the DOOM visibility buffer table");
+  const std::string base = "/" + t.name;
+  t.source = table.value("source", "") + ", 'Detailed Performance Results' (Siege scene, Xbox Series X, 2560x1440)";
+  const std::string key = "siege_scene_xbox_series_x_1440p_ms";
+  const ojson& rows = member(table, key, file, base, "an object of per-pass milliseconds");
+  if (!rows.is_object()) throw PerfError(fmt::format("{}: {}/{}: expected an object, got {}", file, base, key, got(rows)));
+  for (auto& [value, column] : t.column_of_value) {
+    SeedPlatform sp;
+    sp.profile = "xbox-series-x";
+    sp.column = column;
+    sp.width = 2560;
+    sp.height = 1440;
+    for (auto& [k, v] : rows.items()) {
+      const std::string ptr = base + "/" + key + "/" + k;
+      // Not rows of ours: the Forward+ pass, and the async total (derived from frame-time
+      // differences, not a sum of rows).
+      if (k == "forward_plus_opaque" || k == "overall_async") continue;
+      // The seed's own total names its columns by path ("deferred", "deferred_vrcs").
+      const std::string col = k == "overall_no_async" ? (column == "vrcs" ? "deferred_vrcs" : "deferred") : column;
+      if (v.is_object()) {
+        if (!v.contains(col)) throw PerfError(fmt::format("{}: {}/{}: expected milliseconds, got nothing (missing)", file, ptr, col));
+        sp.ms[k] = milliseconds(v[col], file, ptr + "/" + col);
+      } else if (!(k == "vrcs_shading_rate" && column == "no_vrcs")) {  // the rate runs only with VRCS
+        sp.ms[k] = milliseconds(v, file, ptr);
+      }
     }
     t.platforms.push_back(std::move(sp));
   }
   return t;
 }
 
-SeedTable load_seed_table(const std::string& path) { return parse_seed_table(read_text(path), path); }
+}  // namespace
 
-const std::map<std::string, std::string>& seed_key_of_pass() {
-  // idTech 8 "Hotspot Performance" rows: world sampling is the probe ray tracing; the radiance
-  // cache row covers update + shading; irradiance volumes their convolution/update.
-  static const std::map<std::string, std::string> m = {
-      {"probe_trace", "world_sampling"},
-      {"radiance_cache_update", "radiance_cache"},
-      {"radiance_cache_shade", "radiance_cache"},
-      {"irradiance_volume_update", "irradiance_volumes"},
-      {"final_gather", "final_gather"},
-      {"gi_denoise", "denoise"},
-      {"gi_upscale", "upscale"},
-  };
-  return m;
+std::vector<SeedTable> parse_seed_tables(const std::string& text, const std::string& file) {
+  ojson j = parse_json(text, file);
+  return {idtech8_table(j, file), doom_table(j, file)};
 }
+
+std::vector<SeedTable> load_seed_tables(const std::string& path) { return parse_seed_tables(read_text(path), path); }
 
 PassSplit split_pass(double device_ms, double bytes, const DeviceThroughput& dev) {
   PassSplit s;

@@ -30,24 +30,36 @@ std::vector<ConsoleProfile> load_profiles(const std::string& path);
 // "all" or a comma-separated list of names; PerfError listing the known names otherwise.
 std::vector<ConsoleProfile> select_profiles(const std::vector<ConsoleProfile>& all, const std::string& names);
 
-// One platform row of the idtech8 hotspot table: ms per seed key (world_sampling, ...).
+// The seed talks' per-pass tables (data/seed-timings.json) that `bench` compares with: each
+// belongs to one of our techniques and maps its passes to the table's rows.
+//   idtech8_gi_hotspot      radiance-cache; one row set per platform (its own resolution)
+//   doom_visibility_buffer  deferred; the "Siege" table (Xbox Series X, 2560x1440) with a
+//                           column per value of the technique's `vrcs` option
 struct SeedPlatform {
-  std::string profile;
+  std::string profile;  // console-profiles.json name
+  std::string column;   // "" (one column) or the column's name ("no_vrcs", "vrcs")
   uint32_t width = 0, height = 0;
-  std::map<std::string, double> ms;
+  std::map<std::string, double> ms;  // seed row -> ms
 };
 struct SeedTable {
-  std::string name;    // "idtech8_gi_hotspot"
-  std::string source;  // where the seed talk printed it
+  std::string name;       // key in seed-timings.json
+  std::string source;     // where the seed talk printed it
+  std::string technique;  // our technique whose passes it times
+  // Our pass -> the seed row whose cost it is part of (several passes may share a row: their
+  // costs are summed before comparing). Passes not listed have no counterpart in this table.
+  std::map<std::string, std::string> pass_row;
+  // The option of `technique` that picks the column, and the column for each of its values
+  // ("" : the table has one column).
+  std::string column_option;
+  std::map<double, std::string> column_of_value;
+  std::string total_row;  // the row holding the seed's own total ("" : none)
   std::vector<SeedPlatform> platforms;
-  const SeedPlatform* find(const std::string& profile) const;
+  const SeedPlatform* find(const std::string& profile, const std::string& column = "") const;
 };
-SeedTable parse_seed_table(const std::string& text, const std::string& file);
-SeedTable load_seed_table(const std::string& path);
-
-// Our pass name -> the seed key whose cost it is part of (several passes may share a key:
-// their costs are summed before comparing). Passes not listed have no seed counterpart.
-const std::map<std::string, std::string>& seed_key_of_pass();
+// Every table bench knows, in this order; PerfError naming the file and JSON field when one is
+// missing or malformed (a table's other keys are left alone).
+std::vector<SeedTable> parse_seed_tables(const std::string& text, const std::string& file);
+std::vector<SeedTable> load_seed_tables(const std::string& path);
 
 // ---- the scaling model
 struct DeviceThroughput {

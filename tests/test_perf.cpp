@@ -7,12 +7,15 @@
 #include <filesystem>
 #include <functional>
 #include <random>
+#include <set>
+#include <algorithm>
 
 #include "perf/calibration.h"
 #include "perf/clock_probe.h"
 #include "perf/perf.h"
 #include "perf/profiles.h"
 #include "perf/stats.h"
+#include "renderer/techniques/technique.h"
 #include "tests/gpu_fixture.h"
 
 #ifndef GIB_SOURCE_DIR
@@ -226,10 +229,21 @@ TEST(PerfProfiles, ErrorsNameTheFileAndField) {
   EXPECT_NE(e.find("ps9"), std::string::npos) << e;
 
   e = error_of([&] {
-    parse_seed_table(R"({"idtech8_gi_hotspot": {"platforms": {"ps5": {"resolution": [2560, 1440], "upscale": "slow"}}}})",
-                     "s.json");
+    parse_seed_tables(R"({"idtech8_gi_hotspot": {"platforms": {"ps5": {"resolution": [2560, 1440], "upscale": "slow"}}}})",
+                      "s.json");
   });
   EXPECT_NE(e.find("s.json: /idtech8_gi_hotspot/platforms/ps5/upscale"), std::string::npos) << e;
+  const std::string idtech = R"("idtech8_gi_hotspot": {"platforms": {"ps5": {"resolution": [2560, 1440], "upscale": 0.7}}})";
+  e = error_of([&] { parse_seed_tables("{" + idtech + "}", "s.json"); });
+  EXPECT_NE(e.find("s.json: /doom_visibility_buffer: expected the DOOM visibility buffer table"), std::string::npos) << e;
+  e = error_of([&] {
+    parse_seed_tables("{" + idtech + R"(, "doom_visibility_buffer": {"siege_scene_xbox_series_x_1440p_ms":
+        {"deferred_texturing": {"no_vrcs": 4.2}}}})", "s.json");
+  });
+  EXPECT_NE(e.find("s.json: /doom_visibility_buffer/siege_scene_xbox_series_x_1440p_ms/deferred_texturing/vrcs: expected "
+                   "milliseconds, got nothing"),
+            std::string::npos)
+      << e;
 }
 
 // The repository ships its own data/ (console profiles, seed timings): a missing or unreadable
@@ -243,11 +257,53 @@ TEST(PerfProfiles, RepoDataLoads) {
   ASSERT_GE(profiles.size(), 1u);
   auto ps5 = select_profiles(profiles, "ps5");
   EXPECT_EQ(ps5.at(0).width, 2560u);
-  SeedTable seeds = load_seed_table(dir + "/seed-timings.json");
-  ASSERT_NE(seeds.find("ps5"), nullptr);
-  EXPECT_GT(seeds.find("ps5")->ms.at("final_gather"), 0);
-  // Every pass mapped to a seed row names a row the table has.
-  for (auto& [pass, key] : seed_key_of_pass()) EXPECT_TRUE(seeds.find("ps5")->ms.count(key)) << pass << " -> " << key;
+  const std::vector<SeedTable> seeds = load_seed_tables(dir + "/seed-timings.json");
+  ASSERT_EQ(seeds.size(), 2u);
+  const SeedTable& idtech = seeds[0];
+  ASSERT_NE(idtech.find("ps5"), nullptr);
+  EXPECT_GT(idtech.find("ps5")->ms.at("final_gather"), 0);
+  for (const SeedTable& t : seeds) {
+    // Each table belongs to a technique we have, and every pass it maps is one of that
+    // technique's passes and names a row the table has (in every column but where a pass runs
+    // only in one: the VRCS rate).
+    const Technique& tech = find_technique(t.technique);
+    for (auto& [pass, row] : t.pass_row) {
+      EXPECT_TRUE(std::any_of(tech.passes.begin(), tech.passes.end(), [&](auto& e) { return e.name == pass; }))
+          << t.name << ": " << pass << " is not a pass of " << t.technique;
+      bool somewhere = false;
+      for (auto& p : t.platforms) somewhere |= p.ms.count(row) > 0;
+      EXPECT_TRUE(somewhere) << t.name << ": " << pass << " -> " << row;
+    }
+    // Its total row is the sum of the rows our passes map to where the seed's table says so
+    // (DOOM: "Overall (no async)" = the sum of its rows).
+    if (t.name == "doom_visibility_buffer")
+      for (auto& p : t.platforms) {
+        double sum = 0;
+        std::set<std::string> rows;
+        for (auto& [pass, row] : t.pass_row) rows.insert(row);
+        for (auto& row : rows) sum += p.ms.count(row) ? p.ms.at(row) : 0.0;
+        EXPECT_NEAR(sum, p.ms.at(t.total_row), 1e-9) << p.column;
+      }
+  }
+  // DOOM's table: a column per VRCS setting, at the seed's 2560x1440; the rate only with VRCS.
+  const SeedTable& doom = seeds[1];
+  EXPECT_EQ(doom.column_option, "vrcs");
+  const SeedPlatform* off = doom.find("xbox-series-x", "no_vrcs");
+  const SeedPlatform* on = doom.find("xbox-series-x", "vrcs");
+  ASSERT_TRUE(off && on);
+  EXPECT_EQ(on->width, 2560u);
+  EXPECT_DOUBLE_EQ(off->ms.at("deferred_texturing"), 4.20);
+  EXPECT_DOUBLE_EQ(on->ms.at("deferred_lighting"), 1.32);
+  EXPECT_EQ(off->ms.count("vrcs_shading_rate"), 0u);
+  EXPECT_DOUBLE_EQ(on->ms.at("vrcs_shading_rate"), 0.41);
+  // The column option is one the technique has and can read back.
+  const auto& opts = technique_options(find_technique("deferred"));
+  auto it = std::find_if(opts.begin(), opts.end(), [](auto& o) { return o.name == "vrcs"; });
+  ASSERT_NE(it, opts.end());
+  ASSERT_TRUE(it->read);
+  Settings s = apply_preset(find_technique("deferred"), "high", Settings{});
+  EXPECT_EQ(it->read(apply_options(find_technique("deferred"), s, {{"vrcs", 0}})), 0.0);
+  EXPECT_EQ(it->read(apply_options(find_technique("deferred"), s, {{"vrcs", 1}})), 1.0);
 }
 
 TEST(PerfSamples, ReadsBothFormatsAndNamesBadFields) {

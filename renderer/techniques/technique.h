@@ -27,6 +27,7 @@ struct TechniqueOption {
   double max = 4294967295.0;
   bool integer = true;
   std::function<void(Settings&, double)> apply;
+  std::function<double(const Settings&)> read;  // the value `s` holds (empty for options without a field)
   std::vector<double> allowed;  // when not empty, the only valid values (e.g. the NaN targets a technique has)
 };
 
@@ -106,6 +107,7 @@ TechniqueOption option(std::string name, std::string description, double min, do
     else
       s.params<P>().*field = static_cast<V>(v);
   };
+  o.read = [field](const Settings& s) { return static_cast<double>(s.params<P>().*field); };
   return o;
 }
 
