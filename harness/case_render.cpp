@@ -119,6 +119,8 @@ CaseRender render(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::s
   }
   for (const TechniqueView& v : t.views)
     if (ex.plan().find(v.resource)) r.views[v.name] = v.draw(ex.read_buffer(v.resource), s.width, s.height);
+  for (const TechniquePrintout& p : t.printouts)
+    if (ex.plan().find(p.resource)) r.printouts[p.name] = p.print(ex.read_buffer(p.resource), s.width, s.height);
   r.scanned = scan;
   if (scan) r.stability = ex.stability();
   if (reference)

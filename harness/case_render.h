@@ -34,6 +34,7 @@ struct CaseRender {
   StabilityReport stability;                    // when rendered with scan = true
   std::map<std::string, double> stats;          // Technique::stats at the last frame (those in the plan)
   std::map<std::string, FloatImage> views;      // Technique::views at the last frame (those in the plan)
+  std::map<std::string, std::string> printouts; // Technique::printouts at the last frame (those in the plan)
 };
 
 // A technique run of the case (`gibench run`, sweep, update-goldens of a technique golden):

@@ -117,6 +117,10 @@ nlohmann::json suite_to_json(const SuiteResult& suite) {
       row["views"] = nlohmann::json::array();
       for (auto& [name, id] : r.views) row["views"].push_back({{"name", name}, {"image", id}});
     }
+    if (!r.printouts.empty()) {
+      row["printouts"] = nlohmann::json::array();
+      for (auto& [name, text] : r.printouts) row["printouts"].push_back({{"name", name}, {"text", text}});
+    }
     if (!r.timing.frames.empty()) {  // where gpu_ms and the pass times come from
       const perf::Summary f = r.timing.frame();
       row["timing"] = {{"frames", r.timing.frames.size()}, {"warmup", r.timing.warmup}, {"source", r.timing.source},

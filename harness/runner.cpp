@@ -477,6 +477,7 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
     row.views.push_back({name, row.image_id + ".view-" + name});
     save_images(ctx.o, row.views.back().second, img, nullptr, c);
   }
+  row.printouts = r.printouts;
   row.status = failed ? "fail" : "pass";
   if (std::string known = run.known_failure_on(ctx.cls); !known.empty() && kind == "technique") {
     if (failed) {

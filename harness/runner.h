@@ -72,6 +72,7 @@ struct ResultRow {
   std::string image_id;      // files under DIR/img/: <id>.png, <id>.js, <id>.flip.png, <id>.exr
   std::string reference_id;  // the reference AOV it was compared with: DIR/img/<id>.png/.js
   std::vector<std::pair<std::string, std::string>> views;  // technique debug views: name, image id
+  std::map<std::string, std::string> printouts;            // technique debug printouts: name, text
   std::string device;
 };
 

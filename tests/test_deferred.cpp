@@ -279,6 +279,42 @@ TEST(DeferredViews, TileClassesAndRatesFromTheirBuffers) {
   EXPECT_LT(r.at(10, 2, 2), 0.5f);
 }
 
+// The seed's group stats from a known tile_workloads buffer: 3 x 2 tiles at 96x64 (6 tiles, 96
+// full-screen groups); lighting dispatched 5 tiles (1 sky, 3 opaque, 1 cloth: one tile in no
+// list), gbuffer_update 2 decal tiles.
+TEST(DeferredPrintouts, TileStatsFromTheirBuffer) {
+  using namespace glsl;
+  const Technique& t = find_technique("deferred");
+  ASSERT_EQ(t.printouts.size(), 1u);
+  EXPECT_EQ(t.printouts[0].resource, "tile_workloads");
+  const uint32_t tiles = 6;
+  std::vector<uint32_t> wl(kTileHeader + (kTileListCount + 1) * tiles, 0);
+  auto list = [&](uint32_t l, uint32_t n) { wl[4 * l] = n * kLightingGroupsPerTile, wl[4 * l + 3] = n; };
+  list(kWorkloadSky, 1);
+  list(kWorkloadOpaque, 3);
+  list(kWorkloadCloth, 1);
+  list(kTileListDecals, 2);
+  const uint32_t masks = kTileHeader + kTileListCount * tiles;
+  wl[masks + 0] = kTileFeatureSky;
+  for (uint32_t i = 1; i <= 3; ++i) wl[masks + i] = kTileFeatureOpaque | kTileFeatureSky;
+  wl[masks + 4] = kTileFeatureOpaque | kTileFeatureCloth | kTileFeatureDecals;
+  wl[masks + 2] |= kTileFeatureDecals;
+  std::vector<uint8_t> bytes(wl.size() * 4);
+  std::memcpy(bytes.data(), wl.data(), bytes.size());
+  const std::string text = t.printouts[0].print(bytes, 96, 64);
+  for (const char* line : {"1a. theoretical fullscreen threadgroups: 96 (100%)",
+                           "1b. actual dispatched threadgroups: 80 (83%)",
+                           "1c. discarded threadgroups (not dispatched): 16 (17%)",
+                           "DEFERRED_LIGHTING_OPAQUE: 48 threadgroups (50.0%)",
+                           "DEFERRED_LIGHTING_OPAQUE_CLOTH: 16 threadgroups (16.7%)",
+                           "DEFERRED_LIGHTING_TRANSLUCENT: 0 threadgroups (0.0%)",
+                           "1b. actual dispatched threadgroups: 32 (33%)",
+                           "DEFERRED_GBUFFERUPDATE_DECALS: 32 threadgroups (33.3%)",
+                           "4 / 6 tiles have SKY (67 percent)", "2 / 6 tiles have DECALS (33 percent)",
+                           "1 / 6 tiles have BRDF_CLOTH (17 percent)"})
+    EXPECT_NE(text.find(line), std::string::npos) << "missing: " << line << "\n" << text;
+}
+
 TEST_F(DeferredGpu, VrcsShadesFewerPixelsAndCoversEveryPixelOnce) {
   using namespace glsl;
   auto fractions = [](const Render& r, double& textured, double& lit, uint32_t& tiles) {

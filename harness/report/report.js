@@ -439,6 +439,9 @@
       msgs.length ? h('ul', { class: 'messages ' + (row.status === 'pass' ? 'ok' : 'bad') },
         msgs.map(function (m) { return h('li', null, m); })) : null,
       imageRow(row, c, cs),
+      (row.printouts || []).length ? h('div', { class: 'printouts' }, row.printouts.map(function (p) {
+        return h('details', null, [h('summary', null, 'printout: ' + p.name), h('pre', { class: 'printout' }, p.text)]);
+      })) : null,
       h('div', { class: 'card-cols' }, [
         h('section', { class: 'col' }, [h('h5', null, 'Checks'), checksList(row)]),
         h('section', { class: 'col' }, [h('h5', null, 'GPU passes & plan')].concat(passBars(row, maxMs))),

@@ -67,6 +67,16 @@ struct TechniqueView {
   std::function<FloatImage(const std::vector<uint8_t>& bytes, uint32_t width, uint32_t height)> draw;
 };
 
+// A debug printout a technique writes on the CPU from one of its buffers after the last frame
+// (the seed's shader-printf statistics, e.g. deferred's dispatched vs full-screen thread groups):
+// plain text, saved in the row and shown in the report under its images.
+struct TechniquePrintout {
+  std::string name;
+  std::string description;
+  std::string resource;
+  std::function<std::string(const std::vector<uint8_t>& bytes, uint32_t width, uint32_t height)> print;
+};
+
 struct Technique {
   std::string name;
   std::string description;
@@ -80,6 +90,7 @@ struct Technique {
   std::vector<TechniqueOption> options;  // in a stable order
   std::vector<TechniqueStat> stats;      // GPU counters reported per row
   std::vector<TechniqueView> views;      // debug views drawn from its buffers
+  std::vector<TechniquePrintout> printouts;  // debug text printed from its buffers
   // The technique's settings struct with its defaults, and the preset table applied to it
   // (row `level` of `presets`). Made by define_settings<T>().
   std::function<std::unique_ptr<TechniqueSettings>()> make_settings;

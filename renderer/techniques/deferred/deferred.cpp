@@ -3,6 +3,8 @@
 // classification and tiled deferred lighting. Every step is switchable against its uber form.
 #include "renderer/techniques/deferred/deferred.h"
 
+#include <fmt/format.h>
+
 #include "renderer/passes/visibility/visibility.h"
 #include "renderer/techniques/deferred/attribute_interpolate/attribute_interpolate.h"
 #include "renderer/techniques/deferred/deferred_lighting/deferred_lighting.h"
@@ -63,6 +65,46 @@ FloatImage draw_vrcs_rates(const std::vector<uint8_t>& bytes, uint32_t width, ui
   return img;
 }
 
+// The seed's tile-classification statistics (its shader-printf lines): per dispatch, the
+// full-screen thread groups it would take, those dispatched through the indirect arguments,
+// those discarded, and each workload's share; then how many tiles carry each feature bit. A
+// full-screen dispatch here counts 16 groups of 8x8 per 32x32 tile, as the tiled dispatches do.
+std::string print_tile_stats(const std::vector<uint8_t>& bytes, uint32_t width, uint32_t height) {
+  using namespace glsl;
+  const uint32_t tiles = deferred_tiles(width, height);
+  const double full = double(tiles) * kLightingGroupsPerTile;
+  auto pct = [&](double n) { return full > 0 ? 100.0 * n / full : 0.0; };
+  auto groups = [&](uint32_t list) { return double(buffer_word(bytes, 4 * list + 0)); };
+  std::string out;
+  auto summary = [&](const char* what, double dispatched) {
+    out += fmt::format("{} group stats ({} tiles of 32x32, {}x{})\n", what, tiles, width, height);
+    out += fmt::format("  1a. theoretical fullscreen threadgroups: {} (100%)\n", full);
+    out += fmt::format("  1b. actual dispatched threadgroups: {} ({:.0f}%)\n", dispatched, pct(dispatched));
+    out += fmt::format("  1c. discarded threadgroups (not dispatched): {} ({:.0f}%)\n", full - dispatched,
+                       pct(full - dispatched));
+  };
+  static constexpr const char* kWorkload[kWorkloadCount] = {"SKY", "OPAQUE", "OPAQUE_CLOTH", "TRANSLUCENT"};
+  double lit = 0;
+  for (uint32_t w = 0; w < kWorkloadCount; ++w) lit += groups(w);
+  summary("1. deferred lighting", lit);
+  for (uint32_t w = 0; w < kWorkloadCount; ++w)
+    out += fmt::format("  indirect dispatch DEFERRED_LIGHTING_{}: {} threadgroups ({:.1f}%)\n", kWorkload[w],
+                       groups(w), pct(groups(w)));
+  summary("2. deferred gbuffer update", groups(kTileListDecals));
+  out += fmt::format("  indirect dispatch DEFERRED_GBUFFERUPDATE_DECALS: {} threadgroups ({:.1f}%)\n",
+                     groups(kTileListDecals), pct(groups(kTileListDecals)));
+  static constexpr std::pair<uint32_t, const char*> kFeature[] = {
+      {kTileFeatureSky, "SKY"},         {kTileFeatureOpaque, "OPAQUE_DEFERRED"}, {kTileFeatureTranslucent, "TRANSLUCENT"},
+      {kTileFeatureEmissive, "EMISSIVE"}, {kTileFeatureCloth, "BRDF_CLOTH"},     {kTileFeatureDecals, "DECALS"}};
+  out += "3. feature bits\n";
+  for (auto [bit, name] : kFeature) {
+    uint32_t n = 0;
+    for (uint32_t t = 0; t < tiles; ++t) n += (buffer_word(bytes, kTileHeader + uint64_t(kTileListCount) * tiles + t) & bit) ? 1 : 0;
+    out += fmt::format("  {} / {} tiles have {} ({:.0f} percent)\n", n, tiles, name, tiles ? 100.0 * n / tiles : 0.0);
+  }
+  return out;
+}
+
 }  // namespace
 Technique deferred_technique() {
   Technique t;
@@ -119,6 +161,10 @@ Technique deferred_technique() {
        "tile_workloads", draw_tile_classes},
       {"vrcs_rates", "VRCS rate per 8x8 tile: 1x1 grey, 2x1 red, 1x2 green, 2x2 yellow", "vrcs_rates", draw_vrcs_rates},
   };
+  t.printouts = {{"tile_classification",
+                  "the seed's group stats: full-screen vs dispatched thread groups per dispatch, share per workload, "
+                  "tiles per feature bit",
+                  "tile_workloads", print_tile_stats}};
   // The lighting ladder of `direct` (same rays, same result): the deferred path changes how the
   // work is dispatched, not what it computes.
   define_settings<DeferredSettings>(t, kSkyRaysPresets, apply_sky_rays_preset<DeferredSettings>);
