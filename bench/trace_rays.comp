@@ -3,7 +3,7 @@
 #include "bench/trace_rays_shared.h"
 #include "scene.glsl"
 GIB_SCENE_BUFFERS(0, kTraceRaysBindScene)
-bool gib_alpha_accept(uint triangle, float u, float v) { return true; }
+bool gib_alpha_accept(uint triangle, float u, float v, inout uint calls, uint ray_key) { return true; }
 #include "bvh.glsl"
 
 layout(local_size_x = kTraceRaysGroup) in;

@@ -334,7 +334,7 @@ Threshold read_threshold(const Node& n, const Case& c, const TechniqueRun& run) 
 }
 
 // Fields shared by technique entries and negative controls.
-const std::vector<std::string> kRunKeys = {"technique", "presets",  "options",       "compare_aov",
+const std::vector<std::string> kRunKeys = {"technique",  "label",    "presets",       "options", "compare_aov",
                                            "thresholds", "variants", "known_failure", "spp"};
 
 // An object of option name -> number, validated against the technique's options.
@@ -366,6 +366,16 @@ TechniqueRun read_run(const Node& n, const Case& c, bool negative) {
   for (const Technique& t : techniques()) names.push_back(t.name);
   run.technique = read_choice(n["technique"], names, "one of the techniques");
   const Technique& tech = find_technique(run.technique);
+  if (Node label = n["label"]; label.present()) {
+    if (negative) label.fail("no label in a negative control (its name tells it apart)");
+    if (!label.v->is_string()) label.fail("a string of a-z, 0-9, '_' and '-'");
+    run.label = label.v->get<std::string>();
+    const bool ok = !run.label.empty() && run.label.size() <= 32 &&
+                    std::all_of(run.label.begin(), run.label.end(), [](char ch) {
+                      return (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_' || ch == '-';
+                    });
+    if (!ok) label.fail("a string of 1 to 32 characters a-z, 0-9, '_' and '-'");
+  }
 
   if (Node presets = n["presets"]; presets.present()) {
     require_array(presets, true);
@@ -498,11 +508,11 @@ Case parse_case(const json& doc, const std::string& file) {
     for (size_t j = 0; j < run.presets.size(); ++j)
       for (size_t k = 0; k < c.techniques.size(); ++k) {
         const TechniqueRun& o = c.techniques[k];
-        if (o.technique == run.technique &&
+        if (o.name() == run.name() &&
             std::find(o.presets.begin(), o.presets.end(), run.presets[j]) != o.presets.end()) {
           Node where = t["presets"].present() ? t["presets"][j] : t;
-          where.fail(fmt::format("a technique and preset not listed before (/techniques/{} has {} {})", k,
-                                 run.technique, run.presets[j]),
+          where.fail(fmt::format("a technique (and label) and preset not listed before (/techniques/{} has {} {})", k,
+                                 run.name(), run.presets[j]),
                      json_quoted(run.presets[j]) + " again");
         }
       }

@@ -68,6 +68,10 @@ struct Threshold {
 // "sky_rays": 0 or "max_bounces": 1) and thresholds. Each preset is one result row.
 struct TechniqueRun {
   std::string technique;
+  // Optional: tells apart runs of one technique and preset with other options (alpha-foliage's
+  // strategies). The row, its images and its golden are named name() = technique+label.
+  std::string label;
+  std::string name() const { return label.empty() ? technique : technique + "+" + label; }
   std::vector<std::string> presets;         // default {"medium"}
   std::map<std::string, double> options;    // validated against the technique's option names
   std::string compare_aov;                  // reference AOV this output is compared to ("" = Case::output)

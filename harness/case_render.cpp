@@ -160,7 +160,9 @@ CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const s
 
 CaseRender render_reference(Gpu& gpu, const Case& c, uint32_t seed_offset, uint32_t at_frame) {
   if (c.reference_spp == 0) throw std::runtime_error(fmt::format("{}: the case has no reference (reference_spp 0)", c.name));
-  TechniqueRun ref_run{"reference", {"ultra"}, {}, "", {}, {}, {}, 0};
+  TechniqueRun ref_run;
+  ref_run.technique = "reference";
+  ref_run.presets = {"ultra"};
   return render(gpu, c, ref_run, "ultra", seed_offset, at_frame, false, c.reference_spp);
 }
 

@@ -310,7 +310,7 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
                    const std::string& kind, const std::string& control_name = "") {
   ResultRow row;
   row.case_name = ctx.c.name;
-  row.technique = run.technique;
+  row.technique = run.name();
   row.preset = preset;
   row.kind = kind;
   row.options = run.options;
@@ -335,7 +335,7 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
   row.curve = r.curve;
   if (c.convergence) row.curve_target = c.convergence->target;
   // Controls are named in the id: two controls of one technique and preset must not share files.
-  row.image_id = fmt::format("{}__{}.{}{}", c.name, run.technique, preset,
+  row.image_id = fmt::format("{}__{}.{}{}", c.name, run.name(), preset,
                              kind == "negative_control" ? ".negative-" + control_name : "");
   const std::vector<uint32_t> frames = evaluation_frames(c);
   row.eval_frames = frames;
@@ -370,7 +370,7 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
   row.metrics["inf_count"] = double(nf.inf);
   std::optional<FloatImage> golden;
   if (kind == "technique") {
-    std::string stem = GoldenStore::technique_stem(run.technique, preset);
+    std::string stem = GoldenStore::technique_stem(run.name(), preset);
     std::string path = ctx.store.find(stem, ctx.golden_cls);
     if (path.empty()) {
       row.messages.push_back(fmt::format(
@@ -548,7 +548,7 @@ int cmd_run(const SuiteOptions& o) {
       check_noise_floor(ctx, *gpu);
       for (auto& run : c.techniques)
         for (auto& preset : run.presets) {
-          if (!is_ours(c, "technique", run.technique, preset, "")) continue;
+          if (!is_ours(c, "technique", run.name(), preset, "")) continue;
           ResultRow row = evaluate(ctx, *gpu, run, preset, "technique");
           suite.rows.push_back(std::move(row));
         }

@@ -53,7 +53,7 @@ std::vector<std::string> plan_rows(const std::vector<Case>& cases) {
   std::vector<std::string> keys;
   for (const Case& c : cases) {
     for (auto& run : c.techniques)
-      for (auto& preset : run.presets) keys.push_back(row_key(c.name, "technique", run.technique, preset, ""));
+      for (auto& preset : run.presets) keys.push_back(row_key(c.name, "technique", run.name(), preset, ""));
     for (auto& nc : c.negative_controls) keys.push_back(row_key(c.name, "negative_control", nc.run.technique, "", nc.name));
   }
   return keys;

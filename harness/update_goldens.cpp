@@ -121,7 +121,7 @@ int cmd_update_goldens(const UpdateOptions& o) {
         continue;
       for (auto& preset : run.presets) {
         CaseRender r = render_case(*gpu, c, run, preset);
-        replace(store, meta, GoldenStore::technique_stem(run.technique, preset), cls, r.image,
+        replace(store, meta, GoldenStore::technique_stem(run.name(), preset), cls, r.image,
                 file_record(*gpu, r, o.reason), c);
       }
     }

@@ -20,13 +20,14 @@ layout(local_size_x = BVH_TEST_WORKGROUP_SIZE) in;
 
 #define GIB_ALPHA_TEST
 #include "material.glsl"
+#include "alpha_strategy.glsl"
 #include "bvh.glsl"
 
 uint g_alpha_seed;
 
-bool gib_alpha_accept(uint triangle, float u, float v) {
+bool gib_alpha_accept(uint triangle, float u, float v, inout uint calls, uint ray_key) {
   if ((pc.flags & BVH_TEST_FLAG_ALPHA) == 0u) return true;
-  return gib_alpha_accept_default(triangle, u, v, g_alpha_seed);
+  return gib_alpha_strategy_accept(triangle, u, v, calls, ray_key, g_alpha_seed, pc.alpha_strategy, pc.alpha_limit);
 }
 
 void main() {

@@ -19,7 +19,7 @@ using uint = uint32_t;
 #define BVH_TEST_WORKGROUP_SIZE 64
 
 // Push constant flags.
-#define BVH_TEST_FLAG_ALPHA 1u  // call gib_alpha_accept_default with seed = ray index
+#define BVH_TEST_FLAG_ALPHA 1u  // alpha: gib_alpha_strategy_accept (strategy, limit) with seed = ray index
 
 struct BvhTestRay {  // 32 bytes
   float ox, oy, oz, tmin;
@@ -38,6 +38,8 @@ struct BvhTestHit {  // 32 bytes
 struct BvhTestPush {
   uint ray_count;
   uint flags;
+  uint alpha_strategy;  // with BVH_TEST_FLAG_ALPHA (alpha_strategy.glsl)
+  uint alpha_limit;
 };
 
 #ifdef __cplusplus

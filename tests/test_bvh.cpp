@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <vector>
 
 #include "renderer/scene/bvh.h"
@@ -552,6 +553,43 @@ TEST(Bvh, AlphaTestMatchesBruteForce) {
   EXPECT_EQ(mismatches, 0u);
   EXPECT_GT(ctx.rejected, rays.size() / 20);  // alpha really removed hits
   EXPECT_LT(hits, opaque_hits);
+}
+
+// The baked average opacity (alpha strategies' dither and opaque approximation) on a unit UV
+// quad: the leaf mask is an ellipse of semi-axes 1/3.125 and 1/2.125 in UV, area pi / 6.640625;
+// a checker of whole cells is half covered; opacity is itself; no alpha is 1; a material no
+// instance uses stays 1.
+TEST(Bvh, BakedAverageOpacityKnownAnswers) {
+  Scene scene;
+  Mesh quad;
+  quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  quad.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  quad.indices = {0, 1, 2, 0, 2, 3};
+  scene.meshes = {quad};
+  scene.materials.resize(5);
+  scene.materials[0].alpha = AlphaKind::leaf_mask;
+  scene.materials[1].alpha = AlphaKind::checker_mask;
+  scene.materials[1].texture_scale = 4.0f;
+  scene.materials[2].alpha = AlphaKind::opacity;
+  scene.materials[2].opacity = 0.3f;
+  scene.materials[4].alpha = AlphaKind::leaf_mask;  // used by no instance
+  for (uint32_t m = 0; m < 4; ++m) {
+    Instance inst;
+    inst.mesh = 0;
+    inst.material = m;
+    scene.instances.push_back(inst);
+  }
+  const std::vector<float> a = bake_average_opacity(scene, 256);
+  ASSERT_EQ(a.size(), 5u);
+  EXPECT_NEAR(a[0], 3.14159265 / 6.640625, 0.004);
+  EXPECT_NEAR(a[1], 0.5, 1e-6);
+  EXPECT_FLOAT_EQ(a[2], 0.3f);
+  EXPECT_FLOAT_EQ(a[3], 1.0f);
+  EXPECT_FLOAT_EQ(a[4], 1.0f);
+  // flatten carries it to the GPU materials.
+  const FlatScene flat = flatten(scene, 0.0f);
+  EXPECT_NEAR(flat.materials[0].avg_opacity, 3.14159265 / 6.640625, 0.02);
+  EXPECT_FLOAT_EQ(flat.materials[3].avg_opacity, 1.0f);
 }
 
 TEST(Bvh, MaterialMirror) {
@@ -1095,7 +1133,7 @@ struct GpuRun {
 };
 
 GpuRun run_gpu(Gpu& gpu, const FlatScene& scene, const Bvh& bvh,
-               const std::vector<TestRay>& rays, uint32_t flags) {
+               const std::vector<TestRay>& rays, uint32_t flags, uint32_t alpha_strategy = 0, uint32_t alpha_limit = 0) {
   using namespace bvh_test;
   std::vector<std::shared_ptr<Buffer>> keep;
   auto buffer = [&](const void* data, uint64_t bytes, const char* name) {
@@ -1138,7 +1176,7 @@ GpuRun run_gpu(Gpu& gpu, const FlatScene& scene, const Bvh& bvh,
   binds.push_back({BVH_TEST_BINDING_RAYS, ray_buf.get()});
   binds.push_back({BVH_TEST_BINDING_HITS, hit_buf.get()});
   const auto pipeline = gpu.compute_pipeline(desc);
-  const BvhTestPush push{uint32_t(rays.size()), flags};
+  const BvhTestPush push{uint32_t(rays.size()), flags, alpha_strategy, alpha_limit};
   auto cmd = gpu.begin();
   cmd->bind(*pipeline, binds, &push, sizeof(push));
   cmd->dispatch((uint32_t(rays.size()) + BVH_TEST_WORKGROUP_SIZE - 1) / BVH_TEST_WORKGROUP_SIZE);
@@ -1248,6 +1286,63 @@ TEST(BvhGpu, AlphaTestedTraversalMatchesCpu) {
     opaque_hits += opaque.hits[i].hit;
   }
   EXPECT_LT(alpha_hits, opaque_hits);
+}
+
+// The alpha strategies (alpha_strategy.glsl) against their CPU mirror on the CPU BVH, whose
+// traversal order is the GPU's (an any-hit limit depends on the order candidates are met):
+// closest and any hit per ray. lavapipe divides like the CPU, so every ray agrees; a GPU may
+// differ where a hit lies on a triangle edge or a mask boundary (the judge's tolerances).
+TEST(BvhGpu, AlphaStrategiesMatchTheirCpuMirror) {
+  auto gpu = Gpu::create(GpuOptions{});
+  Soup soup = make_soup(15);
+  FlatScene& s = soup.scene;
+  assign_alpha_materials(s);
+  for (GpuMaterial& m : s.materials) m.avg_opacity = m.alpha ? 0.45f : 1.0f;
+  const Bvh bvh = build_bvh(s);
+  const std::vector<TestRay> rays = make_rays(soup, 17, 8000);
+  struct Case { const char* name; uint32_t strategy, limit; };
+  std::map<std::string, size_t> hits;
+  for (const Case& k : {Case{"test", 0, 0}, Case{"limit 2", 0, 2}, Case{"limit 4", 0, 4}, Case{"dither", 1, 0},
+                        Case{"dither + limit 2", 1, 2}, Case{"opaque approx", 2, 0}, Case{"opaque", 3, 0}}) {
+    const GpuRun run = run_gpu(*gpu, s, bvh, rays, BVH_TEST_FLAG_ALPHA, k.strategy, k.limit);
+    struct Ctx { const FlatScene* s; AlphaRay ray; uint32_t seed; } ctx{&s, {}, 0};
+    AlphaTest alpha{[](const void* u, uint32_t tri, float bu, float bv) {
+                      auto* c = const_cast<Ctx*>(static_cast<const Ctx*>(u));
+                      return alpha_strategy_accept(*c->s, c->ray, tri, bu, bv, c->seed);
+                    },
+                    &ctx};
+    size_t closest_mismatch = 0, any_mismatch = 0, n = 0;
+    for (uint32_t i = 0; i < rays.size(); ++i) {
+      const TestRay& r = rays[i];
+      ctx.seed = i;
+      ctx.ray = AlphaRay{k.strategy, k.limit, 0, alpha_ray_key(r.ray.origin, r.ray.dir)};
+      const Hit cpu = intersect_bvh(bvh, s, r.ray, r.tmin, r.tmax, alpha);
+      ctx.ray.calls = 0;
+      const bool occ = occluded_bvh(bvh, s, r.ray, r.tmin, r.tmax, alpha);
+      const bvh_test::BvhTestHit& g = run.hits[i];
+      // A GPU's division may round t by a few ulps (Vulkan allows 2.5): t within 1e-5 relative
+      // is the same hit; lavapipe's must be equal bits.
+      const float t_tol = gpu->info().is_software() ? 0.0f : 1e-5f * std::max(1.0f, std::fabs(cpu.t));
+      closest_mismatch +=
+          (g.hit != 0) != cpu.hit || (cpu.hit && (g.triangle != cpu.triangle || std::fabs(g.t - cpu.t) > t_tol));
+      any_mismatch += (g.any_hit != 0) != occ;
+      n += cpu.hit;
+    }
+    hits[k.name] = n;
+    std::printf("[bvh gpu] alpha strategy %s: %zu hits of %zu rays, %zu closest / %zu any-hit mismatches\n", k.name, n,
+                rays.size(), closest_mismatch, any_mismatch);
+    const size_t allowed = gpu->info().is_software() ? 0 : size_t(rays.size() * (kMaxTieFraction + kMaxAlphaBoundaryFraction));
+    EXPECT_LE(closest_mismatch, allowed) << k.name;
+    EXPECT_LE(any_mismatch, allowed) << k.name;
+  }
+  // Each strategy does what it says: a limit or ignoring alpha only adds occlusion; dither and
+  // the opaque approximation keep about the average opacity's share of the alpha hits.
+  EXPECT_GE(hits["limit 2"], hits["test"]);
+  EXPECT_GE(hits["limit 2"], hits["limit 4"]);
+  EXPECT_GE(hits["opaque"], hits["limit 2"]);
+  EXPECT_GT(hits["opaque"], hits["test"]);
+  EXPECT_LT(hits["opaque approx"], hits["opaque"]);
+  EXPECT_LT(hits["dither"], hits["opaque"]);
 }
 #endif  // GIB_BVH_TEST_NO_GPU
 

@@ -343,7 +343,9 @@ TEST_F(SppSplit, SmallBudgetsUnchangedLargeOnesUseFewerFrames) {
   TempDir dir;
   write_tiny_case(dir.path() / "cases");
   Case c = load_case((dir.path() / "cases" / "tiny.json").string());
-  TechniqueRun row{"reference", {"ultra"}, {}, "", {}, {}, {}, 0};
+  TechniqueRun row;
+  row.technique = "reference";
+  row.presets = {"ultra"};
   for (auto [spp, frames] : std::vector<std::pair<uint32_t, uint32_t>>{{12, 1}, {24, 2}, {512, 32}, {600, 25}, {1024, 32}}) {
     c.reference_spp = spp;
     CaseRender r = render_reference(gpu(), c);

@@ -380,6 +380,7 @@ void Executor::upload_frame_constants(float time) {
   const uint32_t decal_count = uint32_t(std::min<size_t>(decals_.size(), kMaxDecals));  // the loader refuses more
   std::memcpy(f.decals, decals_.data(), decal_count * sizeof(GpuDecal));
   f.scene_info = {scene_gpu_.triangle_count, scene_gpu_.instance_count, settings_.seed, decal_count};
+  f.alpha_info = {static_cast<uint32_t>(settings_.alpha.strategy), settings_.alpha.any_hit_limit, 0, 0};
   if (!scene_gpu_.frame) scene_gpu_.frame = gpu_.create_buffer(sizeof(f), BufferUsage::uniform, "frame_constants");
   gpu_.upload(*scene_gpu_.frame, &f, sizeof(f));
 }

@@ -36,6 +36,20 @@ struct DebugSettings {
   bool injects(uint32_t target, uint32_t frame) const { return inject_nan == target && frame == inject_frame; }
 };
 
+// How ray traversals treat alpha-tested triangles (common options alpha_strategy and
+// alpha_any_hit_limit; AC Shadows' alpha sampling study; renderer/shaders/include/
+// alpha_strategy.glsl). Primary visibility (rasterised) always tests the mask.
+enum class AlphaStrategy : uint32_t {
+  test = 0,           // evaluate the mask at every candidate (the reference)
+  dither = 1,         // the baked average opacity against a per-ray hash, no mask fetch
+  opaque_approx = 2,  // triangles shrunk about their centroid to area x average opacity, opaque
+  opaque = 3,         // alpha ignored: every card opaque (a negative control)
+};
+struct AlphaSettings {
+  AlphaStrategy strategy = AlphaStrategy::test;
+  uint32_t any_hit_limit = 0;  // > 0: after this many alpha-tested candidates a ray treats the rest as opaque
+};
+
 // Owns one TechniqueSettings; copies clone it, so Settings copies like a value.
 class TechniqueSettingsHolder {
  public:
@@ -72,6 +86,7 @@ struct Settings {
   // when the executor uploads the scene: the far-from-origin stress case (options
   // world_offset_x/y/z). The image is unchanged in exact arithmetic.
   Vec3 world_offset{0, 0, 0};
+  AlphaSettings alpha;
   DebugSettings debug;
 
   // The technique whose settings struct `technique_settings` holds ("" before apply_preset /

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace gib {
 namespace {
@@ -100,6 +101,89 @@ bool alpha_accept_default(const FlatScene& scene, uint32_t triangle, float u, fl
     return material_hash01(material_hash2(hash_seed, triangle)) < a;
   }
   return a >= m.alpha_cutoff;
+}
+
+uint32_t alpha_ray_key(Vec3 o, Vec3 d) {
+  auto bits = [](float f) {
+    uint32_t b;
+    std::memcpy(&b, &f, 4);
+    return b;
+  };
+  uint32_t h = material_hash2(bits(o.x), bits(o.y));
+  h = material_hash2(h, bits(o.z));
+  h = material_hash2(h, bits(d.x));
+  h = material_hash2(h, bits(d.y));
+  return material_hash2(h, bits(d.z));
+}
+
+bool alpha_strategy_accept(const FlatScene& scene, AlphaRay& ray, uint32_t triangle, float u, float v,
+                           uint32_t hash_seed) {
+  const GpuMaterial& m = scene.materials[scene.instances[scene.triangles[triangle].instance].material];
+  if (m.alpha == uint32_t(AlphaKind::none)) return true;
+  if (ray.strategy == 3) return true;  // opaque
+  if (ray.strategy == 2) {             // opaque approximation
+    const float s = std::sqrt(m.avg_opacity);
+    const float edge = (1.0f - s) / 3.0f;
+    const float w = 1.0f - u - v;
+    return w >= edge && u >= edge && v >= edge;
+  }
+  ray.calls += 1;
+  if (ray.limit != 0 && ray.calls > ray.limit) return true;
+  if (ray.strategy == 1) return material_hash01(material_hash2(ray.key, ray.calls)) < m.avg_opacity;
+  return alpha_accept_default(scene, triangle, u, v, hash_seed);
+}
+
+std::vector<float> bake_average_opacity(const Scene& scene, uint32_t grid) {
+  std::vector<double> sum(scene.materials.size(), 0.0), count(scene.materials.size(), 0.0);
+  std::vector<GpuMaterial> gpu(scene.materials.size());
+  for (size_t i = 0; i < scene.materials.size(); ++i) gpu[i] = material_to_gpu(scene.materials[i]);
+  // Each (mesh, material) pair once: instances of one mesh share its UVs.
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;
+  for (const Instance& inst : scene.instances)
+    if (inst.mesh < scene.meshes.size() && inst.material < scene.materials.size() &&
+        (scene.materials[inst.material].alpha == AlphaKind::leaf_mask ||
+         scene.materials[inst.material].alpha == AlphaKind::checker_mask))
+      pairs.emplace_back(inst.mesh, inst.material);
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  const double g = grid;
+  for (auto [mesh_index, material] : pairs) {
+    const Mesh& mesh = scene.meshes[mesh_index];
+    if (mesh.uvs.size() < mesh.positions.size()) continue;  // no UVs: nothing to rasterise
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+      const uint32_t ia = mesh.indices[t], ib = mesh.indices[t + 1], ic = mesh.indices[t + 2];
+      if (ia >= mesh.uvs.size() || ib >= mesh.uvs.size() || ic >= mesh.uvs.size()) continue;
+      const Vec2 a = mesh.uvs[ia], b = mesh.uvs[ib], c = mesh.uvs[ic];
+      auto edge = [](Vec2 p, Vec2 q, double x, double y) { return (q.x - p.x) * (y - p.y) - (q.y - p.y) * (x - p.x); };
+      const double area = edge(a, b, c.x, c.y);
+      const double x0 = std::floor(std::min({a.x, b.x, c.x}) * g), x1 = std::ceil(std::max({a.x, b.x, c.x}) * g);
+      const double y0 = std::floor(std::min({a.y, b.y, c.y}) * g), y1 = std::ceil(std::max({a.y, b.y, c.y}) * g);
+      double tri_sum = 0, tri_count = 0;
+      if (area != 0 && std::isfinite(area) && (x1 - x0) * (y1 - y0) <= 4.0 * g * g)
+        for (double j = y0; j < y1; ++j)
+          for (double i = x0; i < x1; ++i) {
+            const double x = (i + 0.5) / g, y = (j + 0.5) / g;
+            const double e0 = edge(b, c, x, y) * area, e1 = edge(c, a, x, y) * area, e2 = edge(a, b, x, y) * area;
+            if (e0 < 0 || e1 < 0 || e2 < 0) continue;
+            // A centre on an edge is shared with the neighbour across it: half a texel each.
+            const double w = (e0 > 0 && e1 > 0 && e2 > 0) ? 1.0 : 0.5;
+            tri_sum += w * material_alpha(gpu[material], {float(x), float(y)}, 0);
+            tri_count += w;
+          }
+      if (tri_count == 0) {  // smaller than a texel (or degenerate / huge): its centroid
+        tri_sum = material_alpha(gpu[material], {(a.x + b.x + c.x) / 3.0f, (a.y + b.y + c.y) / 3.0f}, 0);
+        tri_count = 1;
+      }
+      sum[material] += tri_sum;
+      count[material] += tri_count;
+    }
+  }
+  std::vector<float> out(scene.materials.size(), 1.0f);
+  for (size_t i = 0; i < out.size(); ++i) {
+    if (scene.materials[i].alpha == AlphaKind::opacity) out[i] = scene.materials[i].opacity;
+    else if (count[i] > 0) out[i] = float(sum[i] / count[i]);
+  }
+  return out;
 }
 
 float sheen_distribution(float roughness, float cos_h) {

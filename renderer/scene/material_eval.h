@@ -27,6 +27,24 @@ Vec2 triangle_uv(const FlatScene& scene, uint32_t triangle, float u, float v);
 bool alpha_accept_default(const FlatScene& scene, uint32_t triangle, float u, float v,
                           uint32_t hash_seed);
 
+// alpha_strategy.glsl: the alpha strategies of ray traversals (AlphaStrategy in settings.h, as
+// numbers: 0 test, 1 dither, 2 opaque approximation, 3 opaque). One AlphaRay per traversal: calls
+// counts the any-hit calls it made, key is alpha_ray_key(o, d).
+uint32_t alpha_ray_key(Vec3 o, Vec3 d);
+struct AlphaRay {
+  uint32_t strategy = 0, limit = 0;
+  uint32_t calls = 0, key = 0;
+};
+bool alpha_strategy_accept(const FlatScene& scene, AlphaRay& ray, uint32_t triangle, float u, float v,
+                           uint32_t hash_seed);
+// The mean of a material's alpha over the texel centres (a raster of 1/grid UV texels) inside
+// the UV triangles of the meshes that use it: the seed bakes its average opacity "by rasterising
+// each mesh onto its alpha texture", our masks are procedural in UV, so the raster is of UV
+// space. A triangle covering no texel centre counts its UV centroid. 1 for a material without
+// alpha or one no instance uses; its opacity for AlphaKind::opacity. Per material (the seed's is
+// per mesh; here every mesh of a material shares its value).
+std::vector<float> bake_average_opacity(const Scene& scene, uint32_t grid = 64);
+
 // brdf.glsl gib_sheen_lobe: the cloth class's sheen x D_charlie x V_neubelt (1/sr).
 float sheen_lobe(float sheen, float roughness, Vec3 n, Vec3 wi, Vec3 wo);
 // The Charlie distribution alone (a = max(roughness^2, 0.01)), for its normalisation test.

@@ -1,5 +1,7 @@
 #include "renderer/scene/scene.h"
 
+#include "renderer/scene/material_eval.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -47,23 +49,6 @@ struct NormalMatrix {
   Vec3 apply(Vec3 n) const { return normalize(c0 * n.x + c1 * n.y + c2 * n.z); }
 };
 
-GpuMaterial to_gpu(const Material& m) {
-  GpuMaterial g{};
-  g.albedo[0] = m.albedo.x; g.albedo[1] = m.albedo.y; g.albedo[2] = m.albedo.z;
-  g.roughness = m.roughness;
-  g.emissive[0] = m.emissive.x; g.emissive[1] = m.emissive.y; g.emissive[2] = m.emissive.z;
-  g.metalness = m.metalness;
-  g.albedo2[0] = m.albedo2.x; g.albedo2[1] = m.albedo2.y; g.albedo2[2] = m.albedo2.z;
-  g.translucency = m.translucency;
-  g.texture = static_cast<uint32_t>(m.texture);
-  g.alpha = static_cast<uint32_t>(m.alpha);
-  g.alpha_cutoff = m.alpha_cutoff;
-  g.texture_scale = m.texture_scale;
-  g.opacity = m.opacity;
-  g.sheen = m.brdf == BrdfKind::cloth ? m.sheen : 0.0f;
-  return g;
-}
-
 GpuDecal to_gpu(const Decal& d, Vec3 world_offset) {
   const Mat4 r = Mat4::trs({0, 0, 0}, d.rotation_deg, {1, 1, 1});
   GpuDecal g{};
@@ -98,6 +83,24 @@ GpuLight to_gpu(const LocalLight& l) {
 }
 
 }  // namespace
+
+GpuMaterial material_to_gpu(const Material& m) {
+  GpuMaterial g{};
+  g.albedo[0] = m.albedo.x; g.albedo[1] = m.albedo.y; g.albedo[2] = m.albedo.z;
+  g.roughness = m.roughness;
+  g.emissive[0] = m.emissive.x; g.emissive[1] = m.emissive.y; g.emissive[2] = m.emissive.z;
+  g.metalness = m.metalness;
+  g.albedo2[0] = m.albedo2.x; g.albedo2[1] = m.albedo2.y; g.albedo2[2] = m.albedo2.z;
+  g.translucency = m.translucency;
+  g.texture = static_cast<uint32_t>(m.texture);
+  g.alpha = static_cast<uint32_t>(m.alpha);
+  g.alpha_cutoff = m.alpha_cutoff;
+  g.texture_scale = m.texture_scale;
+  g.opacity = m.opacity;
+  g.sheen = m.brdf == BrdfKind::cloth ? m.sheen : 0.0f;
+  g.avg_opacity = 1.0f;
+  return g;
+}
 
 SceneFeatures Scene::features() const {
   SceneFeatures f;
@@ -219,7 +222,9 @@ FlatScene flatten(const Scene& scene, float time, Vec3 world_offset) {
   }
 
   out.materials.reserve(scene.materials.size());
-  for (const Material& m : scene.materials) out.materials.push_back(to_gpu(m));
+  for (const Material& m : scene.materials) out.materials.push_back(material_to_gpu(m));
+  const std::vector<float> opacity = bake_average_opacity(scene);
+  for (size_t i = 0; i < out.materials.size(); ++i) out.materials[i].avg_opacity = opacity[i];
   out.lights.reserve(scene.lights.size());
   for (const LocalLight& l : scene.lights) {
     GpuLight g = to_gpu(l);

@@ -163,7 +163,10 @@ struct GpuMaterial {  // 80 bytes
   float texture_scale;
   float opacity;
   float sheen;  // cloth's sheen strength; 0: the standard BRDF
-  float pad[2];
+  // Baked mean coverage of its alpha mask over the triangles that use it (1 without alpha):
+  // the dither and opaque-approximation alpha strategies (alpha_strategy.glsl).
+  float avg_opacity;
+  float pad;
 };
 struct GpuLight {  // 64 bytes
   float position[3];
@@ -203,5 +206,7 @@ struct FlatScene {
 // the far-from-origin stress cases move the whole scene (Settings::world_offset), the camera
 // with it (Executor), so the image is unchanged in exact arithmetic.
 FlatScene flatten(const Scene& scene, float time, Vec3 world_offset = {});
+// A material as the GPU reads it (avg_opacity left at 1: flatten bakes it, material_eval.h).
+GpuMaterial material_to_gpu(const Material& m);
 
 }  // namespace gib

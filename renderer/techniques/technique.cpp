@@ -106,6 +106,14 @@ std::vector<TechniqueOption> with_common_options(std::vector<TechniqueOption> op
   // seed-to-seed noise, the scale "comparable image quality" is judged against (vrcs-parity).
   opts.push_back(common_option("seed_offset", "added to the run's random seed (another sample of the same estimator)", 0,
                                1e6, true, [](Settings& s, double v) { s.seed += uint32_t(v); }));
+  // How rays treat alpha-tested triangles (AC Shadows' alpha sampling; Settings::alpha).
+  opts.push_back(common_option("alpha_strategy",
+                               "rays vs alpha-tested triangles: 0 test the mask, 1 dither the baked average opacity, 2 "
+                               "opaque approximation (shrunk triangles), 3 opaque (alpha ignored: a negative control)",
+                               0, 3, true, [](Settings& s, double v) { s.alpha.strategy = AlphaStrategy(uint32_t(v)); }));
+  opts.push_back(common_option("alpha_any_hit_limit",
+                               "alpha-tested candidates a ray evaluates before it treats the rest as opaque (0: no limit)",
+                               0, 1024, true, [](Settings& s, double v) { s.alpha.any_hit_limit = uint32_t(v); }));
   // The far-from-origin stress: the whole scene and the camera moved (Settings::world_offset).
   opts.push_back(common_option("world_offset_x", "metres added to every world-space x (scene, lights, camera)", -1e6,
                                1e6, false, [](Settings& s, double v) { s.world_offset.x = float(v); }));

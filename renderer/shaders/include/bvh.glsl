@@ -7,19 +7,25 @@
 // Use:
 //   #include "scene.glsl"
 //   GIB_SCENE_BUFFERS(0, 0)
-//   #define GIB_ALPHA_TEST            // optional: then define, anywhere in the shader,
-//   #include "bvh.glsl"               //   bool gib_alpha_accept(uint triangle, float u, float v)
+//   #define GIB_ALPHA_TEST            // optional: then define, anywhere in the shader, bool
+//   #include "bvh.glsl"               //   gib_alpha_accept(uint triangle, float u, float v,
+//                                     //                    inout uint calls, uint ray_key)
 //
 // trace_closest / trace_any accept hits with tmin <= t <= tmax. d need not be normalised (t is
 // in units of d); a zero or non-finite d, or a non-finite o, misses. u, v are the barycentrics
 // of the triangle's second and third vertex; triangle is the original GpuTriangle index.
 // With GIB_ALPHA_TEST, a candidate hit is kept only if gib_alpha_accept returns true (shadow
-// rays included). The GPU result can differ from the CPU's by float ulps where the driver's
+// rays included); `calls` starts at 0 for each ray and is the accept function's to count with
+// (any-hit limits), `ray_key` is gib_alpha_ray_key(o, d) (alpha_strategy.glsl). The GPU result can differ from the CPU's by float ulps where the driver's
 // division is not correctly rounded (Vulkan allows 2.5 ulp) or flushes denormals.
 #ifndef GIB_BVH_GLSL
 #define GIB_BVH_GLSL
 
 #include "scene.glsl"
+#ifdef GIB_ALPHA_TEST
+#include "material.glsl"
+#include "alpha_strategy.glsl"
+#endif
 
 #define GIB_BVH_STACK_SIZE 64            // == kBvhMaxDepth (bvh.h); the build guarantees depth
 #define GIB_BVH_BOX_SLACK (1.0 + 1.0 / 1048576.0)  // 1 + 2^-20, == kBoxSlack (bvh.cpp)
@@ -34,7 +40,7 @@ struct GibHit {
 };
 
 #ifdef GIB_ALPHA_TEST
-bool gib_alpha_accept(uint triangle, float u, float v);
+bool gib_alpha_accept(uint triangle, float u, float v, inout uint calls, uint ray_key);
 #endif
 
 struct GibRayPre {
@@ -159,6 +165,10 @@ bool gib_bvh_traverse(vec3 o, vec3 d, float tmin, float tmax, const bool any_hit
   uint stack[GIB_BVH_STACK_SIZE];
   int sp = 0;
   bool found = false;
+#ifdef GIB_ALPHA_TEST
+  uint alpha_calls = 0u;
+  uint ray_key = gib_alpha_ray_key(o, d);
+#endif
   for (;;) {
     bool descend = false;
     if (node.count > 0u) {
@@ -173,7 +183,7 @@ bool gib_bvh_traverse(vec3 o, vec3 d, float tmin, float tmax, const bool any_hit
         }
         if (!(t >= tmin && (t < hit.t || (t == hit.t && id < hit.triangle)))) continue;
 #ifdef GIB_ALPHA_TEST
-        if (!gib_alpha_accept(id, u, v)) continue;
+        if (!gib_alpha_accept(id, u, v, alpha_calls, ray_key)) continue;
 #endif
         hit = GibHit(t, id, u, v);
         found = true;

@@ -35,6 +35,7 @@ struct GpuFrame {
   vec4 sky_ground;      // rgb, w: unused
   uvec4 frame_info;     // frame index, render width, render height, light count
   uvec4 scene_info;     // triangle count, instance count, seed, decal count
+  uvec4 alpha_info;     // alpha strategy (AlphaStrategy), any-hit limit (0: none), unused, unused
   GpuDecal decals[kMaxDecals];
 };
 

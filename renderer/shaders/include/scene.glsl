@@ -69,7 +69,7 @@ struct GpuMaterial {  // 80 bytes
   float texture_scale;
   float opacity;
   float sheen;  // cloth: sheen lobe strength; 0: the standard BRDF (brdf.glsl)
-  float pad1;
+  float avg_opacity;  // baked mean alpha coverage (1 without alpha): alpha_strategy.glsl
   float pad2;
 };
 

@@ -5,6 +5,7 @@
 // wherever the feature is absent, so the two agree bit for bit.
 #include "renderer/techniques/deferred/deferred_lighting/deferred_lighting_shared.h"
 #include "frame.glsl"
+#include "renderer/techniques/deferred/include/tile_list.glsl"
 #include "scene.glsl"
 GIB_SCENE_BUFFERS(0, kBindSceneFirst)
 #include "hash.glsl"
@@ -49,11 +50,7 @@ void store_light(ivec2 q, vec3 result) {
 
 void main() {
 #ifdef GIB_LIGHTING_CLASSIFIED
-  // kLightingGroupsPerTile 8x8 workgroups cover one listed tile.
-  uint entry = gl_WorkGroupID.x / kLightingGroupsPerTile, part = gl_WorkGroupID.x % kLightingGroupsPerTile;
-  uint tile = wl[kTileHeader + kWorkload * push.tiles + entry];
-  ivec2 p = ivec2(tile % push.tiles_x, tile / push.tiles_x) * int(kDeferredTile) +
-            ivec2(part % 4u, part / 4u) * int(kLightingGroup) + ivec2(gl_LocalInvocationID.xy);
+  ivec2 p = gib_tile_list_pixel(wl[kTileHeader + kWorkload * push.tiles + gib_tile_list_entry()], push.tiles_x);
 #else
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
 #endif

@@ -28,6 +28,7 @@ class GbufferUpdatePass final : public Pass {
     const uint32_t tiles_x = div_up(w, kDeferredTile);
     UpdatePush push{tiles_x, tiles_x * div_up(h, kDeferredTile), div_up(w, kVrcsTile), 0};
     static_assert(sizeof(push) == 16, "UpdatePush must match gbuffer_update.glsl's push block");
+    static_assert(kUpdateGroup == kLightingGroup, "gbuffer_update covers listed tiles as the lighting does (tile_list.glsl)");
     const std::vector<ImageBinding> images = {{kUpdateBindVbuffer, "vbuffer"},
                                               {kUpdateBindPosition, "gbuffer_position"},
                                               {kUpdateBindNormal, "gbuffer_normal"},

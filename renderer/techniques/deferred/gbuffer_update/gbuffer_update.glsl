@@ -6,6 +6,7 @@
 // channels"; sheen in its alpha is kept).
 #include "renderer/techniques/deferred/gbuffer_update/gbuffer_update_shared.h"
 #include "frame.glsl"
+#include "renderer/techniques/deferred/include/tile_list.glsl"
 #include "decals.glsl"
 
 layout(local_size_x = kUpdateGroup, local_size_y = kUpdateGroup) in;
@@ -31,11 +32,7 @@ void update_texel(ivec2 q, vec4 kc) {
 
 void main() {
 #ifdef GIB_UPDATE_CLASSIFIED
-  // kLightingGroupsPerTile 8x8 workgroups cover one listed tile.
-  uint entry = gl_WorkGroupID.x / kLightingGroupsPerTile, part = gl_WorkGroupID.x % kLightingGroupsPerTile;
-  uint tile = wl[kTileHeader + kTileListDecals * push.tiles + entry];
-  ivec2 p = ivec2(tile % push.tiles_x, tile / push.tiles_x) * int(kDeferredTile) +
-            ivec2(part % 4u, part / 4u) * int(kUpdateGroup) + ivec2(gl_LocalInvocationID.xy);
+  ivec2 p = gib_tile_list_pixel(wl[kTileHeader + kTileListDecals * push.tiles + gib_tile_list_entry()], push.tiles_x);
 #else
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
 #endif

@@ -12,8 +12,10 @@ layout(constant_id = kPathTraceSpecAlpha) const bool kHasAlpha = true;
 // Stochastic opacity needs a fresh decision per ray; alpha masks ignore the seed.
 uint g_alpha_seed = 0u;
 #define GIB_ALPHA_TEST
-bool gib_alpha_accept(uint triangle, float u, float v) {
-  return !kHasAlpha || gib_alpha_accept_default(triangle, u, v, gib_pcg(g_alpha_seed ^ triangle));
+#include "alpha_strategy.glsl"
+bool gib_alpha_accept(uint triangle, float u, float v, inout uint calls, uint ray_key) {
+  return !kHasAlpha || gib_alpha_strategy_accept(triangle, u, v, calls, ray_key, gib_pcg(g_alpha_seed ^ triangle),
+                                                 gib_frame.alpha_info.x, gib_frame.alpha_info.y);
 }
 #include "bvh.glsl"
 #include "lights.glsl"
