@@ -73,6 +73,25 @@ TEST(WorldOffset, SharedOptionsOfEveryTechnique) {
   EXPECT_EQ(Settings{}.world_offset, (Vec3{0, 0, 0}));
 }
 
+// The alpha strategy and translucency switches are shared by every technique (every ray
+// traversal and every material read honours them) and land in Settings.
+TEST(SharedOptions, AlphaStrategyAndTranslucencyOfEveryTechnique) {
+  for (const Technique& t : techniques()) {
+    Settings s = apply_options(t, Settings{}, {{"alpha_strategy", 2}, {"alpha_any_hit_limit", 4}, {"translucency", 0}});
+    EXPECT_EQ(s.alpha.strategy, AlphaStrategy::opaque_approx) << t.name;
+    EXPECT_EQ(s.alpha.any_hit_limit, 4u) << t.name;
+    EXPECT_FALSE(s.translucency) << t.name;
+    EXPECT_NE(check_option(t, "alpha_strategy", 4).find("expected an integer in [0, 3], got 4"), std::string::npos)
+        << check_option(t, "alpha_strategy", 4);
+    EXPECT_NE(check_option(t, "alpha_any_hit_limit", 2.5).find("expected an integer"), std::string::npos);
+    EXPECT_NE(check_option(t, "translucency", 2).find("expected an integer in [0, 1], got 2"), std::string::npos);
+  }
+  const Settings d;
+  EXPECT_EQ(d.alpha.strategy, AlphaStrategy::test);
+  EXPECT_EQ(d.alpha.any_hit_limit, 0u);
+  EXPECT_TRUE(d.translucency);
+}
+
 TEST(RenderOptions, ParsesNameEqualsValueAndValidates) {
   const Technique& direct = find_technique("direct");
   auto opts = parse_render_options(direct, {"world_offset_x=10000", "nan_guards=0", "sky_rays=16"});

@@ -324,6 +324,8 @@ void Executor::collect_scan_results() {
 
 void Executor::upload_scene(float time) {
   FlatScene flat = flatten(scene_, time, settings_.world_offset);
+  if (!settings_.translucency)
+    for (GpuMaterial& m : flat.materials) m.translucency = 0.0f;  // option translucency 0 (a control)
   Bvh bvh = build_bvh(flat);
   auto put = [&](uint32_t i, const void* data, uint64_t bytes, const char* name) {
     uint64_t alloc = std::max<uint64_t>(bytes, 16);

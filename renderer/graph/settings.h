@@ -87,6 +87,10 @@ struct Settings {
   // world_offset_x/y/z). The image is unchanged in exact arithmetic.
   Vec3 world_offset{0, 0, 0};
   AlphaSettings alpha;
+  // false: every material's translucency is 0 for this run (option `translucency`): the
+  // technique without translucency support, AC Shadows' "missing contributions" image (a
+  // negative control of translucent-paper).
+  bool translucency = true;
   DebugSettings debug;
 
   // The technique whose settings struct `technique_settings` holds ("" before apply_preset /

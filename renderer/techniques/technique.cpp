@@ -114,6 +114,10 @@ std::vector<TechniqueOption> with_common_options(std::vector<TechniqueOption> op
   opts.push_back(common_option("alpha_any_hit_limit",
                                "alpha-tested candidates a ray evaluates before it treats the rest as opaque (0: no limit)",
                                0, 1024, true, [](Settings& s, double v) { s.alpha.any_hit_limit = uint32_t(v); }));
+  opts.push_back(common_option("translucency",
+                               "0: every material's translucency ignored by this run (no light through thin "
+                               "translucent surfaces: a negative control)",
+                               0, 1, true, [](Settings& s, double v) { s.translucency = v != 0.0; }));
   // The far-from-origin stress: the whole scene and the camera moved (Settings::world_offset).
   opts.push_back(common_option("world_offset_x", "metres added to every world-space x (scene, lights, camera)", -1e6,
                                1e6, false, [](Settings& s, double v) { s.world_offset.x = float(v); }));
