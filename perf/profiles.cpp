@@ -228,6 +228,27 @@ std::vector<SeedTable> parse_seed_tables(const std::string& text, const std::str
 
 std::vector<SeedTable> load_seed_tables(const std::string& path) { return parse_seed_tables(read_text(path), path); }
 
+AlphaCostTable parse_alpha_cost_table(const std::string& text, const std::string& file) {
+  ojson j = parse_json(text, file);
+  const std::string name = "ac_shadows_alpha_test_cost";
+  const ojson& table = member(j, name, file, "", "the AC Shadows alpha-test cost table");
+  AlphaCostTable t;
+  t.source = table.value("source", "");
+  const std::pair<std::pair<uint32_t, uint32_t>, const char*> rows[] = {
+      {{0, 2}, "any_hit_limit_2"},
+      {{0, 4}, "any_hit_limit_4"},
+      {{1, 0}, "dither_average_opacity"},
+      {{1, 2}, "dither_plus_any_hit_limit_2"},
+      {{2, 0}, "opaque_approximation"}};
+  for (auto& [key, row] : rows) {
+    const double v = positive(table, row, file, "/" + name);
+    t.relative[key] = {row, v};
+  }
+  return t;
+}
+
+AlphaCostTable load_alpha_cost_table(const std::string& path) { return parse_alpha_cost_table(read_text(path), path); }
+
 PassSplit split_pass(double device_ms, double bytes, const DeviceThroughput& dev) {
   PassSplit s;
   s.device_ms = std::max(0.0, device_ms);

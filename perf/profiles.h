@@ -61,6 +61,17 @@ struct SeedTable {
 std::vector<SeedTable> parse_seed_tables(const std::string& text, const std::string& file);
 std::vector<SeedTable> load_seed_tables(const std::string& path);
 
+// AC Shadows' alpha-test cost table (ac_shadows_alpha_test_cost): each strategy's ray tracing
+// cost relative to the full alpha test, on an NVIDIA GPU. Rows keyed by our option values
+// (alpha_strategy, alpha_any_hit_limit): (0, 2) any_hit_limit_2, (0, 4) any_hit_limit_4,
+// (1, 0) dither_average_opacity, (1, 2) dither_plus_any_hit_limit_2, (2, 0) opaque_approximation.
+struct AlphaCostTable {
+  std::string source;
+  std::map<std::pair<uint32_t, uint32_t>, std::pair<std::string, double>> relative;  // (strategy, limit) -> row, cost
+};
+AlphaCostTable parse_alpha_cost_table(const std::string& text, const std::string& file);
+AlphaCostTable load_alpha_cost_table(const std::string& path);
+
 // ---- the scaling model
 struct DeviceThroughput {
   double fp32_gflops = 0;    // achieved FP32 rate (calibrated)

@@ -236,6 +236,10 @@ TEST(PerfProfiles, ErrorsNameTheFileAndField) {
   const std::string idtech = R"("idtech8_gi_hotspot": {"platforms": {"ps5": {"resolution": [2560, 1440], "upscale": 0.7}}})";
   e = error_of([&] { parse_seed_tables("{" + idtech + "}", "s.json"); });
   EXPECT_NE(e.find("s.json: /doom_visibility_buffer: expected the DOOM visibility buffer table"), std::string::npos) << e;
+  e = error_of([&] { parse_alpha_cost_table(R"({"ac_shadows_alpha_test_cost": {"any_hit_limit_2": 0.85}})", "s.json"); });
+  EXPECT_NE(e.find("s.json: /ac_shadows_alpha_test_cost/any_hit_limit_4: expected a positive number, got nothing"),
+            std::string::npos)
+      << e;
   e = error_of([&] {
     parse_seed_tables("{" + idtech + R"(, "doom_visibility_buffer": {"siege_scene_xbox_series_x_1440p_ms":
         {"deferred_texturing": {"no_vrcs": 4.2}}}})", "s.json");
@@ -285,6 +289,12 @@ TEST(PerfProfiles, RepoDataLoads) {
         EXPECT_NEAR(sum, p.ms.at(t.total_row), 1e-9) << p.column;
       }
   }
+  // AC Shadows' alpha table, keyed by our option values.
+  const AlphaCostTable alpha = load_alpha_cost_table(dir + "/seed-timings.json");
+  ASSERT_EQ(alpha.relative.size(), 5u);
+  EXPECT_DOUBLE_EQ(alpha.relative.at({0, 2}).second, 0.85);
+  EXPECT_DOUBLE_EQ(alpha.relative.at({2, 0}).second, 0.6);
+  EXPECT_EQ(alpha.relative.at({1, 2}).first, "dither_plus_any_hit_limit_2");
   // DOOM's table: a column per VRCS setting, at the seed's 2560x1440; the rate only with VRCS.
   const SeedTable& doom = seeds[1];
   EXPECT_EQ(doom.column_option, "vrcs");
