@@ -264,6 +264,35 @@ TEST(CaseErrors, TechniquesPresetsOptions) {
   expect_error(dir, d, "/techniques/2/presets/1", "/techniques/0");
 }
 
+// A label tells apart runs of one technique and preset with other options (alpha-foliage's
+// strategies): rows, images and goldens are named TECHNIQUE+LABEL; a repeated technique+label
+// and preset, a malformed label or one on a negative control is an error naming the field.
+TEST(CaseLoad, LabelsTellRunsOfOneTechniqueAndPresetApart) {
+  TempDir dir;
+  json d = valid_case();
+  json run = d["techniques"][0];
+  run["label"] = "limit2";
+  run["options"] = {{"alpha_any_hit_limit", 2}};
+  d["techniques"].push_back(run);
+  Case c = load_case(dir.write("labels.json", d.dump()));
+  ASSERT_EQ(c.techniques.size(), 3u);
+  EXPECT_EQ(c.techniques[0].name(), c.techniques[0].technique);
+  EXPECT_EQ(c.techniques[2].name(), c.techniques[2].technique + "+limit2");
+  EXPECT_EQ(c.techniques[2].options.at("alpha_any_hit_limit"), 2.0);
+
+  json again = d;
+  again["techniques"].push_back(run);
+  expect_error(dir, again, "/techniques/3/presets/0", "+limit2");
+  for (const json& bad : {json(""), json("Limit2"), json("a b"), json(7), json(std::string(33, 'a'))}) {
+    json e = valid_case();
+    e["techniques"][0]["label"] = bad;
+    expect_error(dir, e, "/techniques/0/label", "a-z, 0-9");
+  }
+  json nc = valid_case();
+  nc["negative_controls"][0]["label"] = "x";
+  expect_error(dir, nc, "/negative_controls/0/label", "no label in a negative control");
+}
+
 TEST(CaseLoad, KnownFailureEverywhereOrPerDeviceClass) {
   TempDir dir;
   json d = valid_case();
