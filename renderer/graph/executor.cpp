@@ -10,6 +10,7 @@
 
 #include "renderer/graph/stability_scan_shared.h"
 #include "renderer/scene/bvh.h"
+#include "renderer/scene/material_eval.h"
 #include "renderer/shaders/include/frame_shared.h"
 
 namespace gib {
@@ -83,7 +84,11 @@ void record_compute(RecordContext& ctx, const ComputeDispatch& d) {
 // ---------------------------------------------------------------- Executor
 Executor::Executor(Gpu& gpu, const Scene& scene, Settings settings, std::vector<std::unique_ptr<Pass>> passes,
                    std::vector<std::string> outputs)
-    : gpu_(gpu), scene_(scene), settings_(std::move(settings)), passes_(std::move(passes)) {
+    : gpu_(gpu),
+      scene_(scene),
+      settings_(std::move(settings)),
+      passes_(std::move(passes)),
+      average_opacity_(bake_average_opacity(scene_)) {
   for (auto& p : passes_) decls_.push_back(p->declare(scene_, settings_));
   CompileOptions opts;
   opts.features = scene_.features();
@@ -323,7 +328,7 @@ void Executor::collect_scan_results() {
 }
 
 void Executor::upload_scene(float time) {
-  FlatScene flat = flatten(scene_, time, settings_.world_offset);
+  FlatScene flat = flatten(scene_, time, settings_.world_offset, &average_opacity_);
   if (!settings_.translucency)
     for (GpuMaterial& m : flat.materials) m.translucency = 0.0f;  // option translucency 0 (a control)
   Bvh bvh = build_bvh(flat);

@@ -67,6 +67,8 @@ class Executor {
   std::vector<PassDecl> decls_;
   Plan plan_;
   SceneGpu scene_gpu_;
+  // bake_average_opacity(scene_), once: an animated scene is flattened every frame.
+  std::vector<float> average_opacity_;
   std::vector<GpuDecal> decals_;  // world space (offset applied), copied into each frame's constants
   struct Allocation {
     std::shared_ptr<Image> image[2];

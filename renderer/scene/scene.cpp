@@ -171,7 +171,7 @@ Camera Scene::camera_at(float time) const {
   return c;
 }
 
-FlatScene flatten(const Scene& scene, float time, Vec3 world_offset) {
+FlatScene flatten(const Scene& scene, float time, Vec3 world_offset, const std::vector<float>* average_opacity) {
   FlatScene out;
   size_t vertex_total = 0, triangle_total = 0;
   for (const Instance& inst : scene.instances) {
@@ -223,8 +223,8 @@ FlatScene flatten(const Scene& scene, float time, Vec3 world_offset) {
 
   out.materials.reserve(scene.materials.size());
   for (const Material& m : scene.materials) out.materials.push_back(material_to_gpu(m));
-  const std::vector<float> opacity = bake_average_opacity(scene);
-  for (size_t i = 0; i < out.materials.size(); ++i) out.materials[i].avg_opacity = opacity[i];
+  const std::vector<float> opacity = average_opacity ? *average_opacity : bake_average_opacity(scene);
+  for (size_t i = 0; i < out.materials.size() && i < opacity.size(); ++i) out.materials[i].avg_opacity = opacity[i];
   out.lights.reserve(scene.lights.size());
   for (const LocalLight& l : scene.lights) {
     GpuLight g = to_gpu(l);

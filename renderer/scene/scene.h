@@ -204,8 +204,11 @@ struct FlatScene {
 };
 // world_offset translates every position (vertices and lights) after the instance transform:
 // the far-from-origin stress cases move the whole scene (Settings::world_offset), the camera
-// with it (Executor), so the image is unchanged in exact arithmetic.
-FlatScene flatten(const Scene& scene, float time, Vec3 world_offset = {});
+// with it (Executor), so the image is unchanged in exact arithmetic. average_opacity: the
+// materials' bake_average_opacity(scene) (material_eval.h), which depends on no time, for a
+// caller that flattens every frame (an animated scene) and keeps it; null: baked here.
+FlatScene flatten(const Scene& scene, float time, Vec3 world_offset = {},
+                  const std::vector<float>* average_opacity = nullptr);
 // A material as the GPU reads it (avg_opacity left at 1: flatten bakes it, material_eval.h).
 GpuMaterial material_to_gpu(const Material& m);
 
