@@ -270,12 +270,56 @@ void print_seed_comparison(const std::vector<SeedTable>& seeds, const std::vecto
   }
 }
 
+// AC Shadows' alpha-test cost table: variants that change only the alpha strategy, against their
+// plain run (the exact test, unless the preset says otherwise); printed, and returned as JSON.
+nlohmann::json alpha_cost_comparison(const std::vector<TechniqueRun>& runs, const AlphaCostTable& alpha_costs) {
+  nlohmann::json jalpha = nlohmann::json::array();
+  bool alpha_header = false;
+  for (auto& r : runs) {
+    if (r.base < 0 || r.variant_options.empty()) continue;
+    const bool only_alpha = std::all_of(r.variant_options.begin(), r.variant_options.end(), [](auto& kv) {
+      return kv.first == "alpha_strategy" || kv.first == "alpha_any_hit_limit";
+    });
+    const TechniqueRun& b = runs[size_t(r.base)];
+    if (!only_alpha || b.settings_full.alpha.strategy != AlphaStrategy::test || b.settings_full.alpha.any_hit_limit != 0)
+      continue;
+    const auto key = std::make_pair(static_cast<uint32_t>(r.settings_full.alpha.strategy), r.settings_full.alpha.any_hit_limit);
+    auto seed = alpha_costs.relative.find(key);
+    // The plain run's costliest pass: where the traversals are.
+    const PassRun* top = nullptr;
+    for (auto& bp : b.passes)
+      if (!top || median_of(bp.samples) > median_of(top->samples)) top = &bp;
+    double pass_ratio = 0;
+    if (top)
+      for (auto& vp : r.passes)
+        if (vp.name == top->name) pass_ratio = median_of(vp.samples) / median_of(top->samples);
+    const double frame_ratio = median_of(r.frame_ms) / median_of(b.frame_ms);
+    if (!alpha_header) {
+      fmt::print("\n== seed comparison: ac_shadows_alpha_test_cost ({}): cost relative to the exact alpha test ==\n",
+                 alpha_costs.source);
+      fmt::print("{:<34} {:<26} {:>8} {:>8} {:>8}  {}\n", "variant", "costliest pass", "pass", "frame", "seed",
+                 "seed row");
+      alpha_header = true;
+    }
+    fmt::print("{:<34} {:<26} {:>8.3f} {:>8.3f} {:>8}  {}\n", r.name, top ? top->name : "-", pass_ratio, frame_ratio,
+               seed == alpha_costs.relative.end() ? "-" : fmt::format("{:.2f}", seed->second.second),
+               seed == alpha_costs.relative.end() ? "(none: alpha ignored or another setting)" : seed->second.first);
+    jalpha.push_back({{"variant", r.name}, {"base", b.name}, {"pass", top ? top->name : ""}, {"pass_ratio", pass_ratio},
+                      {"frame_ratio", frame_ratio},
+                      {"seed_row", seed == alpha_costs.relative.end() ? "" : seed->second.first},
+                      {"seed_ratio", seed == alpha_costs.relative.end() ? 0.0 : seed->second.second}});
+  }
+
+  return jalpha;
+}
+
 int cmd_bench(const BenchOptions& o) {
   const std::string data = find_data_dir(o.data_dir);
   const std::string profiles_path = data + "/console-profiles.json", seeds_path = data + "/seed-timings.json";
   auto all_profiles = load_profiles(profiles_path);
   auto profiles = select_profiles(all_profiles, o.profiles);
   const std::vector<SeedTable> seeds = load_seed_tables(seeds_path);
+  const AlphaCostTable alpha_costs = load_alpha_cost_table(seeds_path);  // before the runs: a bad table fails first
 
   std::vector<const Technique*> techs;
   if (o.techniques.empty())
@@ -602,45 +646,7 @@ int cmd_bench(const BenchOptions& o) {
     row("frame", b.frame_ms, r.frame_ms);
   }
 
-  // AC Shadows' alpha-test cost table: variants that change only the alpha strategy, against
-  // their plain run (the exact test, unless the preset says otherwise).
-  auto& jalpha = out["seed_alpha_comparison"] = nlohmann::json::array();
-  const AlphaCostTable alpha_costs = load_alpha_cost_table(seeds_path);
-  bool alpha_header = false;
-  for (auto& r : runs) {
-    if (r.base < 0 || r.variant_options.empty()) continue;
-    const bool only_alpha = std::all_of(r.variant_options.begin(), r.variant_options.end(), [](auto& kv) {
-      return kv.first == "alpha_strategy" || kv.first == "alpha_any_hit_limit";
-    });
-    const TechniqueRun& b = runs[size_t(r.base)];
-    if (!only_alpha || b.settings_full.alpha.strategy != AlphaStrategy::test || b.settings_full.alpha.any_hit_limit != 0)
-      continue;
-    const auto key = std::make_pair(static_cast<uint32_t>(r.settings_full.alpha.strategy), r.settings_full.alpha.any_hit_limit);
-    auto seed = alpha_costs.relative.find(key);
-    // The plain run's costliest pass: where the traversals are.
-    const PassRun* top = nullptr;
-    for (auto& bp : b.passes)
-      if (!top || median_of(bp.samples) > median_of(top->samples)) top = &bp;
-    double pass_ratio = 0;
-    if (top)
-      for (auto& vp : r.passes)
-        if (vp.name == top->name) pass_ratio = median_of(vp.samples) / median_of(top->samples);
-    const double frame_ratio = median_of(r.frame_ms) / median_of(b.frame_ms);
-    if (!alpha_header) {
-      fmt::print("\n== seed comparison: ac_shadows_alpha_test_cost ({}): cost relative to the exact alpha test ==\n",
-                 alpha_costs.source);
-      fmt::print("{:<34} {:<26} {:>8} {:>8} {:>8}  {}\n", "variant", "costliest pass", "pass", "frame", "seed",
-                 "seed row");
-      alpha_header = true;
-    }
-    fmt::print("{:<34} {:<26} {:>8.3f} {:>8.3f} {:>8}  {}\n", r.name, top ? top->name : "-", pass_ratio, frame_ratio,
-               seed == alpha_costs.relative.end() ? "-" : fmt::format("{:.2f}", seed->second.second),
-               seed == alpha_costs.relative.end() ? "(none: alpha ignored or another setting)" : seed->second.first);
-    jalpha.push_back({{"variant", r.name}, {"base", b.name}, {"pass", top ? top->name : ""}, {"pass_ratio", pass_ratio},
-                      {"frame_ratio", frame_ratio},
-                      {"seed_row", seed == alpha_costs.relative.end() ? "" : seed->second.first},
-                      {"seed_ratio", seed == alpha_costs.relative.end() ? 0.0 : seed->second.second}});
-  }
+  out["seed_alpha_comparison"] = alpha_cost_comparison(runs, alpha_costs);
 
   if (!o.json.empty()) {
     std::ofstream(o.json) << out.dump(1) << "\n";

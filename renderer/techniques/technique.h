@@ -37,10 +37,6 @@ struct PassEntry {
   std::unique_ptr<Pass> (*make)() = nullptr;
 };
 
-// A figure a technique counts on the GPU each frame (work skipped, pixels shaded at a coarse
-// rate, ...): word `word` of buffer resource `resource`, divided by word `of_word` when that is
-// set (a fraction). Reported per row as metric "stat_<name>" after the last frame; a case may
-// bound it. Not reported when the resource is not in the run's plan (the step is switched off).
 // Word i (uint32) of a buffer read back as bytes; 0 past its end.
 inline uint32_t buffer_word(const std::vector<uint8_t>& bytes, uint64_t i) {
   uint32_t w = 0;
@@ -48,6 +44,10 @@ inline uint32_t buffer_word(const std::vector<uint8_t>& bytes, uint64_t i) {
   return w;
 }
 
+// A figure a technique counts on the GPU each frame (work skipped, pixels shaded at a coarse
+// rate, ...): word `word` of buffer resource `resource`, divided by word `of_word` when that is
+// set (a fraction). Reported per row as metric "stat_<name>" after the last frame; a case may
+// bound it. Not reported when the resource is not in the run's plan (the step is switched off).
 struct TechniqueStat {
   std::string name;
   std::string description;
