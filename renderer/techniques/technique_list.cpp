@@ -7,7 +7,8 @@
   X(direct)                   \
   X(reference)                \
   X(radiance_cache)           \
-  X(deferred)
+  X(deferred)                 \
+  X(probe_volume)
 
 namespace gib {
 

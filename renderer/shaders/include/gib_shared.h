@@ -11,6 +11,7 @@ struct vec2 { float x, y; };
 struct vec4 { float x, y, z, w; };
 struct uvec2 { uint32_t x, y; };
 struct uvec4 { uint32_t x, y, z, w; };
+struct ivec4 { int32_t x, y, z, w; };
 struct mat4 { float m[16]; };  // column-major, as GLSL
 }  // namespace gib::glsl
 #define GIB_SHARED_BEGIN namespace gib::glsl {

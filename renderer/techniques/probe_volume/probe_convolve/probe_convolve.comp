@@ -1,0 +1,153 @@
+// probe_convolve: filtered radiance, irradiance and depth moments of each selected probe (see
+// probe_convolve.h). One workgroup per probe: the 20x20 texels are box-filtered to 10x10 in
+// group-shared memory (the seed's bilinear pre-filter), each thread convolves one output texel,
+// then the bordered tiles are written.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "renderer/techniques/probe_volume/probe_convolve/probe_convolve_shared.h"
+#include "frame.glsl"
+#include "scene.glsl"
+#include "lights.glsl"
+#include "sampling.glsl"
+layout(constant_id = kPvConvolveSpecSky) const bool kHasSky = true;
+layout(push_constant) uniform Push { PvParams pv; };
+#include "renderer/techniques/probe_volume/include/pv_common.glsl"
+PV_STATE_BUFFER(kPvConvolveBindState, )
+layout(std430, set = 0, binding = kPvConvolveBindSelection) readonly buffer SelectionBuffer {
+  PvSelection sel;
+  uint pv_entries[];
+};
+layout(std430, set = 0, binding = kPvConvolveBindMaterial) readonly buffer MaterialBuffer { uvec2 gb_material[]; };
+layout(std430, set = 0, binding = kPvConvolveBindDepth) readonly buffer DepthBuffer { uint gb_depth[]; };
+layout(std430, set = 0, binding = kPvConvolveBindRadianceIn) readonly buffer RadianceIn { vec4 texel_radiance[]; };
+layout(std430, set = 0, binding = kPvConvolveBindLocal) readonly buffer LocalIn { float texel_local[]; };
+layout(std430, set = 0, binding = kPvConvolveBindIrradiance) buffer IrradianceOut { uvec2 out_irradiance[]; };
+layout(std430, set = 0, binding = kPvConvolveBindRadiance) buffer RadianceOut { uvec2 out_radiance[]; };
+layout(std430, set = 0, binding = kPvConvolveBindVisibility) buffer VisibilityOut { uint out_visibility[]; };
+layout(local_size_x = kPvConvolveGroup) in;
+
+const uint kBlocks = kPvRadianceInterior * kPvRadianceInterior;  // 10x10 blocks of 2x2 texels
+const uint kIrr = kPvIrradianceInterior * kPvIrradianceInterior;
+shared vec3 s_dir[kBlocks];
+shared vec3 s_total[kBlocks];     // everything arriving: reflected + emission + sky x visibility
+shared vec4 s_reflected[kBlocks]; // rgb reflected, a sky visibility
+shared vec2 s_moments[kBlocks];
+shared float s_local[kBlocks];
+shared vec4 s_out_radiance[kBlocks];
+shared vec2 s_out_moments[kBlocks];
+shared vec3 s_out_irradiance[kIrr];
+shared float s_scale;
+
+float depth_of(uint probe, uint t) {
+  uint w = gb_depth[pv_gbuffer_index(probe, t) >> 1u];
+  uint h = (t & 1u) != 0u ? w >> 16u : w & 0xffffu;
+  return h == kPvMissDepthBits ? 3.4e38 : gib_half_to_float(h);
+}
+
+void main() {
+  uint e = gl_WorkGroupID.x;
+  uint probe = pv_entries[e];
+  uint tid = gl_LocalInvocationIndex;
+  PvProbe p = pv_probes[probe];
+  bool quarter = (uint(p.coord.w) & kPvProbeQuarter) != 0u;
+  float unit = pv_spacing(pv_cascade_of(probe)) * kPvSqrt3;
+
+  if (tid < kBlocks) {
+    uint bx = tid % kPvRadianceInterior, by = tid / kPvRadianceInterior;
+    vec3 d = gib_oct_decode((vec2(bx, by) + 0.5) / float(kPvRadianceInterior));
+    vec3 sky = kHasSky ? gib_sky_radiance(d) : vec3(0.0);
+    vec3 total = vec3(0.0);
+    vec4 reflected = vec4(0.0);
+    vec2 moments = vec2(0.0);
+    float local = 0.0;
+    for (uint k = 0u; k < 4u; ++k) {
+      uint t = (by * 2u + (k >> 1u)) * kPvGbufferSide + bx * 2u + (k & 1u);
+      uint src = quarter ? (by * 2u) * kPvGbufferSide + bx * 2u : t;  // a quarter probe lit one texel per block
+      vec4 r = texel_radiance[e * kPvGbufferTexels + src];
+      float depth = depth_of(probe, t);
+      vec3 emission = depth < 3.4e38 ? gib_unpack_rgb9e5(gb_material[pv_gbuffer_index(probe, t)].y) : vec3(0.0);
+      total += r.rgb + emission + r.a * sky;
+      reflected += r;
+      // Rescaled and clamped before averaging (the seed: fewer leaks in interior corners).
+      float z = min(depth / unit, 1.0);
+      moments += vec2(z, z * z);
+      local += texel_local[e * kPvGbufferTexels + src];
+    }
+    s_dir[tid] = d;
+    s_total[tid] = total * 0.25;
+    s_reflected[tid] = reflected * 0.25;
+    s_moments[tid] = moments * 0.25;
+    s_local[tid] = local * 0.25;
+  }
+  barrier();
+  if (tid == 0u) {
+    float sky = 0.0, lum = 0.0, local = 0.0;
+    for (uint b = 0u; b < kBlocks; ++b) {
+      sky += s_reflected[b].a;
+      lum += gib_luminance(s_total[b]);
+      local += s_local[b];
+    }
+    sky /= float(kBlocks);
+    lum /= float(kBlocks);
+    local /= float(kBlocks);
+    // Each probe stores its lighting times 1 / its mean luminance (the seed's lighting scale:
+    // precision from dark caves to noon).
+    float scale = lum > 1e-6 ? 1.0 / lum : 1.0;
+    s_scale = scale;
+    pv_probes[probe].offset.w = scale;
+    pv_probes[probe].meta = vec4(sky, pv_sun_sky_estimate(sky), local, lum);
+    pv_probes[probe].coord.w = p.coord.w | int(kPvProbeValid);
+  }
+  if (tid < kBlocks) {
+    // Filtered radiance and depth moments: the seed's small lobe pow(saturate((cos - 0.75) / 0.25), 4).
+    vec3 d = s_dir[tid];
+    vec4 sum = vec4(0.0);
+    vec2 moments = vec2(0.0);
+    float weight = 0.0;
+    for (uint b = 0u; b < kBlocks; ++b) {
+      float w = clamp((dot(d, s_dir[b]) - 0.75) * 4.0, 0.0, 1.0);
+      w = (w * w) * (w * w);
+      sum += w * s_reflected[b];
+      moments += w * s_moments[b];
+      weight += w;
+    }
+    s_out_radiance[tid] = sum / weight;
+    s_out_moments[tid] = moments / weight;
+  } else if (tid < kBlocks + kIrr) {
+    // Irradiance / pi: the cosine-weighted mean of everything arriving.
+    uint i = tid - kBlocks;
+    vec3 n = gib_oct_decode((vec2(i % kPvIrradianceInterior, i / kPvIrradianceInterior) + 0.5) / float(kPvIrradianceInterior));
+    vec3 sum = vec3(0.0);
+    float weight = 0.0;
+    for (uint b = 0u; b < kBlocks; ++b) {
+      float w = max(dot(n, s_dir[b]), 0.0);
+      sum += w * s_total[b];
+      weight += w;
+    }
+    s_out_irradiance[i] = sum / weight;
+  }
+  barrier();
+  float scale = s_scale;
+  for (uint t = tid; t < kPvRadianceTexels; t += kPvConvolveGroup) {
+    ivec2 at = ivec2(t % kPvRadianceSide, t / kPvRadianceSide);
+    ivec2 src = gib_oct_border_source(at, int(kPvRadianceInterior)) - 1;
+    vec4 r = s_out_radiance[uint(src.y) * kPvRadianceInterior + uint(src.x)];
+    out_radiance[pv_radiance_index(probe, at)] = uvec2(gib_pack_half2x16(r.rg * scale), gib_pack_half2x16(vec2(r.b * scale, r.a)));
+  }
+  for (uint pair = tid; pair < kPvRadianceTexels / 2u; pair += kPvConvolveGroup) {
+    uint word = 0u;
+    for (uint k = 0u; k < 2u; ++k) {
+      uint t = pair * 2u + k;
+      ivec2 src = gib_oct_border_source(ivec2(t % kPvRadianceSide, t / kPvRadianceSide), int(kPvRadianceInterior)) - 1;
+      uvec2 m = uvec2(clamp(s_out_moments[uint(src.y) * kPvRadianceInterior + uint(src.x)], 0.0, 1.0) * 255.0 + 0.5);
+      word |= (m.x | (m.y << 8u)) << (16u * k);
+    }
+    out_visibility[probe * (kPvRadianceTexels / 2u) + pair] = word;
+  }
+  for (uint t = tid; t < kPvIrradianceTexels; t += kPvConvolveGroup) {
+    ivec2 at = ivec2(t % kPvIrradianceSide, t / kPvIrradianceSide);
+    ivec2 src = gib_oct_border_source(at, int(kPvIrradianceInterior)) - 1;
+    vec3 r = s_out_irradiance[uint(src.y) * kPvIrradianceInterior + uint(src.x)] * scale;
+    out_irradiance[pv_irradiance_index(probe, at)] = uvec2(gib_pack_half2x16(r.rg), gib_pack_half2x16(vec2(r.b, 0.0)));
+  }
+}

@@ -1,0 +1,137 @@
+// probe_select: moves each cascade with the camera and picks this frame's probes (see
+// probe_select.h). One workgroup; every list is compacted in probe order with a subgroup
+// ballot and a scan over the subgroups, so the selection is the same on every run.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_ballot : require
+#include "renderer/techniques/probe_volume/probe_select/probe_select_shared.h"
+#include "frame.glsl"
+layout(push_constant) uniform Push { PvParams pv; };
+#include "renderer/techniques/probe_volume/include/pv_common.glsl"
+PV_STATE_BUFFER(kPvSelectBindState, )
+layout(std430, set = 0, binding = kPvSelectBindSelection) buffer SelectionBuffer {
+  PvSelection sel;
+  uint pv_entries[];
+};
+layout(local_size_x = kPvSelectGroup) in;
+
+shared ivec3 s_origin[kPvMaxCascades];
+shared uint s_subgroup[kPvSelectGroup];
+shared uint s_count;  // entries written so far
+
+// Appends `value` when `pred` (called by every thread of the group): entries keep thread order.
+void append(bool pred, uint value, uint limit) {
+  uvec4 ballot = subgroupBallot(pred);
+  if (subgroupElect()) s_subgroup[gl_SubgroupID] = subgroupBallotBitCount(ballot);
+  barrier();
+  uint before = s_count, total = 0u;
+  for (uint i = 0u; i < gl_NumSubgroups; ++i) {
+    if (i < gl_SubgroupID) before += s_subgroup[i];
+    total += s_subgroup[i];
+  }
+  uint at = before + subgroupBallotExclusiveBitCount(ballot);
+  if (pred && at < limit) pv_entries[at] = value;
+  barrier();
+  if (gl_LocalInvocationIndex == 0u) s_count += total;
+  barrier();
+}
+
+void main() {
+  uint tid = gl_LocalInvocationIndex;
+  uint now = pv_frame() + 1u;
+  uint budget = pv.flags.y;
+  uint cascades = pv_cascades();
+  uint per = pv_probes_per_cascade();
+  if (tid < cascades) {
+    // The volume's centre: the camera plus forward_offset of the cascade's width along the view.
+    vec3 o, d;
+    gib_camera_ray(vec2(gib_render_size()) * 0.5, o, d);
+    float s = pv_spacing(tid);
+    vec3 centre = o + normalize(d) * (pv.volume.y * float(pv.grid.x) * s);
+    ivec3 origin = ivec3(floor(centre / s)) - pv_dims() / 2;
+    s_origin[tid] = origin;
+    pv_cascade[tid].origin = ivec4(origin, 0);
+    pv_cascade[tid].rr.z = 0u;
+  }
+  if (tid == 0u) s_count = 0u;
+  barrier();
+
+  // 1. New probes: slots whose cell changed (or never traced, or moved by relocation).
+  uint fresh_total = 0u;
+  for (uint base = 0u; base < cascades * per; base += kPvSelectGroup) {
+    uint i = base + tid;
+    bool fresh = false;
+    if (i < cascades * per) {
+      uint c = i / per;
+      ivec3 cell = pv_cell_of_slot(s_origin[c], pv_slot_of_index(i % per));
+      PvProbe p = pv_probes[i];
+      uint f = uint(p.coord.w);
+      if (any(notEqual(p.coord.xyz, cell))) {
+        // The slot now holds another cell: nothing of its data is valid.
+        pv_probes[i].coord = ivec4(cell, 0);
+        pv_probes[i].offset = vec4(0.0, 0.0, 0.0, 1.0);
+        pv_probes[i].geometry = vec4(0.0);
+        f = 0u;
+      }
+      fresh = (f & kPvProbeTraced) == 0u || (f & kPvProbeRetrace) != 0u;
+    }
+    append(fresh, i, budget);
+    if (fresh && i < cascades * per) atomicAdd(pv_cascade[i / per].rr.z, 1u);
+  }
+  uint total_new = s_count;
+  uint n_new = min(total_new, budget);
+  for (uint k = tid; k < n_new; k += kPvSelectGroup) {
+    uint i = pv_entries[k];
+    pv_probes[i].stamp.xy = uvec2(now, kPvClassNew);
+  }
+  if (tid == 0u) s_count = n_new;
+  memoryBarrierBuffer();
+  barrier();
+
+  // 2. G-buffer refreshes, then 3. relight only: round robin per cascade, the biggest first,
+  // the class's share split evenly (remainders to the biggest).
+  uint rest = budget - n_new;
+  uint gbuffer_total = uint(floor(float(rest) * pv.sampling.w + 0.5));
+  uint totals[2] = uint[2](gbuffer_total, rest - gbuffer_total);
+  uint counts[2] = uint[2](0u, 0u);
+  for (uint cls = 0u; cls < 2u; ++cls) {
+    for (uint k = 0u; k < cascades; ++k) {
+      uint c = cascades - 1u - k;
+      uint share = totals[cls] / cascades + (k < totals[cls] % cascades ? 1u : 0u);
+      share = min(share, per);
+      uint start = cls == 0u ? pv_cascade[c].rr.x : pv_cascade[c].rr.y;
+      uint first = s_count;
+      for (uint j0 = 0u; j0 < share; j0 += kPvSelectGroup) {
+        uint j = j0 + tid;
+        uint i = c * per + (start + j) % per;
+        bool pick = false;
+        if (j < share) {
+          PvProbe p = pv_probes[i];
+          uint f = uint(p.coord.w);
+          pick = p.stamp.x != now && (f & kPvProbeTraced) != 0u && (cls == 0u || (f & kPvProbeDisabled) == 0u);
+        }
+        append(pick, i, budget);
+      }
+      uint last = min(s_count, budget);
+      for (uint e = first + tid; e < last; e += kPvSelectGroup)
+        pv_probes[pv_entries[e]].stamp.xy = uvec2(now, cls == 0u ? kPvClassGbuffer : kPvClassRelight);
+      memoryBarrierBuffer();
+      barrier();
+      if (tid == 0u) {
+        counts[cls] += last - first;
+        if (cls == 0u)
+          pv_cascade[c].rr.x = (start + share) % per;
+        else
+          pv_cascade[c].rr.y = (start + share) % per;
+      }
+    }
+  }
+  if (tid == 0u) {
+    uint traced = n_new + counts[0];
+    uint all_selected = traced + counts[1];
+    sel.traced_args = uvec4(traced, 1u, 1u, 0u);
+    sel.all_args = uvec4(all_selected, 1u, 1u, 0u);
+    sel.counts = uvec4(n_new, counts[0], counts[1], total_new - n_new);
+  }
+}
