@@ -335,7 +335,8 @@ Threshold read_threshold(const Node& n, const Case& c, const TechniqueRun& run) 
 
 // Fields shared by technique entries and negative controls.
 const std::vector<std::string> kRunKeys = {"technique",  "label",    "presets",       "options", "compare_aov",
-                                           "thresholds", "variants", "known_failure", "spp"};
+                                           "thresholds", "variants", "known_failure", "spp",
+                                           "frames"};
 
 // An object of option name -> number, validated against the technique's options.
 std::map<std::string, double> read_options(const Node& options, const Technique& tech) {
@@ -405,6 +406,12 @@ TechniqueRun read_run(const Node& n, const Case& c, bool negative) {
   if (Node spp = n["spp"]; spp.present()) {
     if (tech.name != "reference") spp.fail("no \"spp\" outside a reference (path tracer) run");
     run.spp = read_uint(spp, 1, 1048576);
+  }
+  if (Node f = n["frames"]; f.present()) {
+    if (tech.name == "reference") f.fail("no \"frames\" in a reference (path tracer) run (it has \"spp\")");
+    if (!c.eval_frames.empty() || c.convergence || c.flicker_frames)
+      f.fail("no \"frames\" in a case evaluated per frame (eval_frames, convergence or flicker_frames)");
+    run.frames = read_uint(f, 1, 100000);
   }
   if (Node kf = n["known_failure"]; kf.present()) {
     if (negative) kf.fail("no \"known_failure\" in a negative control (it must fail anyway)");

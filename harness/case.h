@@ -95,6 +95,11 @@ struct TechniqueRun {
   // reference's; independent of Case::reference_spp (the committed reference's budget, often
   // 65536+ and rendered on a GPU). 0: the case's frames at the preset's spp per frame.
   uint32_t spp = 0;
+  // > 0: frames this run renders instead of the case's (a technique that converges over many
+  // frames beside rows that need few, e.g. probe-volume in alpha-foliage); its last frame is
+  // compared. Not for reference runs (they have spp) nor in cases evaluated per frame
+  // (eval_frames, convergence, flicker_frames).
+  uint32_t frames = 0;
 };
 
 // Per-frame tracking of the mean luminance in one ROI (the convergence curve): conv_* metrics.

@@ -36,7 +36,7 @@ CaseRender render(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::s
   s.seed = c.reference_seed + seed_offset;
   s = apply_preset(t, preset, s);
   const bool reference = t.name == "reference";
-  uint32_t frames = c.frames;
+  uint32_t frames = run.frames ? run.frames : c.frames;
   const bool spp_budget = reference && budget > 0;
   if (spp_budget) {
     // Up to 512 spp at most 16 per frame (the committed lavapipe references were split so).

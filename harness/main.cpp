@@ -61,6 +61,8 @@ int main(int argc, char** argv) {
                 "skip the GPU scan of every resource each pass writes for NaN, Inf, negative and out-of-bound values");
   run->add_option("--shard", run_opts.shard,
                   "K/N: run the rows i with i % N == K (0-based; default: GTEST_SHARD_INDEX/GTEST_TOTAL_SHARDS if set)");
+  run->add_option("--technique", run_opts.techniques,
+                  "run only the rows and negative controls of this technique (repeatable; default: all)");
   run->add_option("--golden-class", run_opts.golden_class,
                   "compare with this device class's approved goldens (lavapipe, nvidia, ...; default: the device's)");
   run->add_flag("--noise-floor", run_opts.noise_floor,

@@ -540,20 +540,28 @@ int cmd_run(const SuiteOptions& o) {
   }
   auto is_ours = [&](const Case& c, const std::string& kind, const std::string& technique, const std::string& preset,
                      const std::string& control) { return ours.count(row_key(c.name, kind, technique, preset, control)) > 0; };
+  auto selected = [&](const std::string& technique) {
+    return o.techniques.empty() || std::find(o.techniques.begin(), o.techniques.end(), technique) != o.techniques.end();
+  };
+  for (const std::string& t : o.techniques) find_technique(t);  // an unknown name is an error, not an empty run
   for (const Case& c : cases) {
     if (!our_cases.count(c.name)) continue;
+    const bool any = std::any_of(c.techniques.begin(), c.techniques.end(), [&](auto& r) { return selected(r.technique); }) ||
+                     std::any_of(c.negative_controls.begin(), c.negative_controls.end(),
+                                 [&](auto& nc) { return selected(nc.run.technique); });
+    if (!any) continue;
     CaseContext ctx{c, GoldenStore(o.goldens_dir, c.name), suite.device_class, suite.golden_class, {}, {}, o};
     if (c.analytic_value) ctx.analytic = FloatImage(c.width, c.height, 4, float(*c.analytic_value));
     try {
       check_noise_floor(ctx, *gpu);
       for (auto& run : c.techniques)
         for (auto& preset : run.presets) {
-          if (!is_ours(c, "technique", run.name(), preset, "")) continue;
+          if (!is_ours(c, "technique", run.name(), preset, "") || !selected(run.technique)) continue;
           ResultRow row = evaluate(ctx, *gpu, run, preset, "technique");
           suite.rows.push_back(std::move(row));
         }
       for (auto& nc : c.negative_controls) {
-        if (!is_ours(c, "negative_control", nc.run.technique, "", nc.name)) continue;
+        if (!is_ours(c, "negative_control", nc.run.technique, "", nc.name) || !selected(nc.run.technique)) continue;
         ResultRow row = evaluate(ctx, *gpu, nc.run, nc.run.presets.front(), "negative_control", nc.name);
         row.control_name = nc.name;
         row.control_why = nc.why;

@@ -33,6 +33,9 @@ struct SuiteOptions {
   // every row. (The CLI fills it from GTEST_SHARD_INDEX / GTEST_TOTAL_SHARDS when --shard is
   // not given; the library never reads them, so a sharded test binary does not shard suites.)
   std::string shard;
+  // run: only rows (and negative controls) of these techniques; empty: every technique. Cases
+  // with none are skipped whole.
+  std::vector<std::string> techniques;
 };
 
 struct CheckResult {

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -478,11 +479,21 @@ int cmd_bench(const BenchOptions& o) {
     fmt::print(" ==\n");
     bool has_probe_pass = false;
     for (auto& pr : r.passes) has_probe_pass |= pr.name.find("probe") != std::string::npos;
+    // A technique with a per-frame probe budget (probe-volume's probe_budget) ran at its preset's
+    // or variant's; one without (radiance-cache) at its own schedule.
+    std::optional<double> budget;
+    for (const TechniqueOption& opt : technique_options(*r.technique))
+      if (opt.name == "probe_budget" && opt.read) budget = opt.read(r.settings_full);
     for (auto* p : w.profiles)
-      if (p->probes_per_frame && has_probe_pass)
-        fmt::print("note: {} targets {} probes/frame; {} has no probes-per-frame setting, so it ran at its own "
-                   "(16^3 probes of one cascade per frame)\n",
-                   p->name, *p->probes_per_frame, r.name);
+      if (p->probes_per_frame && has_probe_pass) {
+        if (!budget)
+          fmt::print("note: {} targets {} probes/frame; {} has no probes-per-frame setting, so it ran at its own "
+                     "(16^3 probes of one cascade per frame)\n",
+                     p->name, *p->probes_per_frame, r.name);
+        else if (*budget != double(*p->probes_per_frame))
+          fmt::print("note: {} targets {} probes/frame; {} ran with probe_budget {} (set it with --variant to match)\n",
+                     p->name, *p->probes_per_frame, r.name, *budget);
+      }
     std::string header = fmt::format("{:<26} {:>10} {:>21} {:>7} {:>10} {:>9} {:>9} {:>9} |", "pass", "meas ms",
                                      "IQR [q1, q3]", "work x", "ms @full", "MB moved", "mem ms", "comp ms");
     for (auto* p : w.profiles) header += fmt::format(" {:>13}", p->name);

@@ -137,6 +137,28 @@ double milliseconds(const ojson& v, const std::string& file, const std::string& 
   return v.get<double>();
 }
 
+// A table's "platforms" object: per platform its rows in milliseconds, at its own "resolution"
+// (has_resolution) or at 2560x1440 (per-probe tables); "probes_per_frame" is a budget, not a row.
+std::vector<SeedPlatform> read_platforms(const ojson& table, const std::string& file, const std::string& base,
+                                         bool has_resolution) {
+  const ojson& plats = member(table, "platforms", file, base, "an object of platforms");
+  if (!plats.is_object()) throw PerfError(fmt::format("{}: {}/platforms: expected an object, got {}", file, base, got(plats)));
+  std::vector<SeedPlatform> out;
+  for (auto& [name, p] : plats.items()) {
+    std::string ptr = base + "/platforms/" + name;
+    SeedPlatform sp;
+    sp.profile = name;
+    if (has_resolution)
+      std::tie(sp.width, sp.height) = resolution(p, file, ptr);
+    else
+      std::tie(sp.width, sp.height) = std::pair<uint32_t, uint32_t>(2560, 1440);
+    for (auto& [k, v] : p.items())
+      if (k != "resolution" && k != "probes_per_frame") sp.ms[k] = milliseconds(v, file, ptr + "/" + k);
+    out.push_back(std::move(sp));
+  }
+  return out;
+}
+
 // idTech 8's "Hotspot Performance" table: a row set per platform, each at its own resolution.
 SeedTable idtech8_table(const ojson& j, const std::string& file) {
   SeedTable t;
@@ -155,17 +177,7 @@ SeedTable idtech8_table(const ojson& j, const std::string& file) {
   const ojson& table = member(j, t.name, file, "", "the idTech 8 hotspot table");
   const std::string base = "/" + t.name;
   t.source = table.value("source", "");
-  const ojson& plats = member(table, "platforms", file, base, "an object of platforms");
-  if (!plats.is_object()) throw PerfError(fmt::format("{}: {}/platforms: expected an object, got {}", file, base, got(plats)));
-  for (auto& [name, p] : plats.items()) {
-    std::string ptr = base + "/platforms/" + name;
-    SeedPlatform sp;
-    sp.profile = name;
-    std::tie(sp.width, sp.height) = resolution(p, file, ptr);
-    for (auto& [k, v] : p.items())
-      if (k != "resolution") sp.ms[k] = milliseconds(v, file, ptr + "/" + k);
-    t.platforms.push_back(std::move(sp));
-  }
+  t.platforms = read_platforms(table, file, base, true);
   return t;
 }
 
@@ -219,11 +231,42 @@ SeedTable doom_table(const ojson& j, const std::string& file) {
   return t;
 }
 
+// AC Shadows' probe update and diffuse GI tables: a row set per platform. The probe update
+// has no resolution (it is per probe): its rows are compared at the bench's 2560x1440; its
+// "probes_per_frame" is the budget, not a row. Sun shadows have no pass of ours (the shadow rays
+// are traced inside probe_gbuffer), so that row is compared through the total only.
+SeedTable ac_shadows_table(const ojson& j, const std::string& file, const std::string& name,
+                           std::map<std::string, std::string> pass_row, bool has_resolution) {
+  SeedTable t;
+  t.name = name;
+  t.technique = "probe-volume";
+  t.pass_row = std::move(pass_row);
+  t.total_row = "total";
+  const ojson& table = member(j, t.name, file, "", "an AC Shadows timing table");
+  const std::string base = "/" + t.name;
+  t.source = table.value("source", "");
+  t.platforms = read_platforms(table, file, base, has_resolution);
+  return t;
+}
+
 }  // namespace
 
 std::vector<SeedTable> parse_seed_tables(const std::string& text, const std::string& file) {
   ojson j = parse_json(text, file);
-  return {idtech8_table(j, file), doom_table(j, file)};
+  return {idtech8_table(j, file), doom_table(j, file),
+          ac_shadows_table(j, file, "ac_shadows_probe_update",
+                           {{"probe_gbuffer", "gbuffer_update"},
+                            {"probe_relight", "lighting_update"},
+                            {"probe_convolve", "lighting_convolution"},
+                            {"probe_relocate", "probe_relocation"}},
+                           false),
+          ac_shadows_table(j, file, "ac_shadows_diffuse_gi",
+                           {{"screen_trace", "ss_tracing"},
+                            {"world_trace", "ws_tracing"},
+                            {"hit_lighting", "lighting"},
+                            {"pixel_denoise", "denoising"},
+                            {"pixel_upscale", "denoising"}},
+                           true)};
 }
 
 std::vector<SeedTable> load_seed_tables(const std::string& path) { return parse_seed_tables(read_text(path), path); }

@@ -35,6 +35,8 @@ std::vector<ConsoleProfile> select_profiles(const std::vector<ConsoleProfile>& a
 //   idtech8_gi_hotspot      radiance-cache; one row set per platform (its own resolution)
 //   doom_visibility_buffer  deferred; the "Siege" table (Xbox Series X, 2560x1440) with a
 //                           column per value of the technique's `vrcs` option
+//   ac_shadows_probe_update probe-volume; per platform (its probes_per_frame budget), at 2560x1440
+//   ac_shadows_diffuse_gi   probe-volume; per platform (its own resolution; quarter-res rays)
 struct SeedPlatform {
   std::string profile;  // console-profiles.json name
   std::string column;   // "" (one column) or the column's name ("no_vrcs", "vrcs")

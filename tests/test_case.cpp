@@ -267,6 +267,26 @@ TEST(CaseErrors, TechniquesPresetsOptions) {
 // A label tells apart runs of one technique and preset with other options (alpha-foliage's
 // strategies): rows, images and goldens are named TECHNIQUE+LABEL; a repeated technique+label
 // and preset, a malformed label or one on a negative control is an error naming the field.
+TEST(CaseLoad, RowFramesOverrideTheCaseFramesWhereAllowed) {
+  TempDir dir;
+  json d = valid_case();
+  d["techniques"][0]["frames"] = 12;
+  Case c = load_case(dir.write("frames.json", d.dump()));
+  EXPECT_EQ(c.techniques[0].frames, 12u);
+  EXPECT_EQ(c.techniques[1].frames, 0u);  // the case's
+  d = valid_case();
+  d["techniques"][1]["frames"] = 8;  // the reference has spp instead
+  expect_error(dir, d, "/techniques/1/frames", "no \"frames\" in a reference");
+  d = valid_case();
+  d["techniques"][0]["frames"] = 0;
+  expect_error(dir, d, "/techniques/0/frames");
+  d = valid_case();
+  d["frames"] = 4;
+  d["eval_frames"] = {2, 4};
+  d["techniques"][0]["frames"] = 8;
+  expect_error(dir, d, "/techniques/0/frames", "evaluated per frame");
+}
+
 TEST(CaseLoad, LabelsTellRunsOfOneTechniqueAndPresetApart) {
   TempDir dir;
   json d = valid_case();

@@ -248,6 +248,17 @@ TEST(PerfProfiles, ErrorsNameTheFileAndField) {
                    "milliseconds, got nothing"),
             std::string::npos)
       << e;
+  // The AC Shadows tables: missing, and a non-number row.
+  const std::string doom = R"("doom_visibility_buffer": {"siege_scene_xbox_series_x_1440p_ms": {"gbuffer_update": 0.2}})";
+  e = error_of([&] { parse_seed_tables("{" + idtech + ", " + doom + "}", "s.json"); });
+  EXPECT_NE(e.find("s.json: /ac_shadows_probe_update: expected an AC Shadows timing table"), std::string::npos) << e;
+  e = error_of([&] {
+    parse_seed_tables("{" + idtech + ", " + doom +
+                          R"(, "ac_shadows_probe_update": {"platforms": {"ps5": {"probes_per_frame": 1024, "gbuffer_update": "fast"}}}})",
+                      "s.json");
+  });
+  EXPECT_NE(e.find("s.json: /ac_shadows_probe_update/platforms/ps5/gbuffer_update: expected milliseconds"), std::string::npos)
+      << e;
 }
 
 // The repository ships its own data/ (console profiles, seed timings): a missing or unreadable
@@ -262,7 +273,7 @@ TEST(PerfProfiles, RepoDataLoads) {
   auto ps5 = select_profiles(profiles, "ps5");
   EXPECT_EQ(ps5.at(0).width, 2560u);
   const std::vector<SeedTable> seeds = load_seed_tables(dir + "/seed-timings.json");
-  ASSERT_EQ(seeds.size(), 2u);
+  ASSERT_EQ(seeds.size(), 4u);
   const SeedTable& idtech = seeds[0];
   ASSERT_NE(idtech.find("ps5"), nullptr);
   EXPECT_GT(idtech.find("ps5")->ms.at("final_gather"), 0);
@@ -289,6 +300,21 @@ TEST(PerfProfiles, RepoDataLoads) {
         EXPECT_NEAR(sum, p.ms.at(t.total_row), 1e-9) << p.column;
       }
   }
+  // AC Shadows' probe update (per probe: compared at 2560x1440, the budget is not a row) and
+  // diffuse GI (its own resolution per platform) tables, both for probe-volume.
+  const SeedTable& probes = seeds[2];
+  EXPECT_EQ(probes.name, "ac_shadows_probe_update");
+  EXPECT_EQ(probes.technique, "probe-volume");
+  ASSERT_NE(probes.find("ps5"), nullptr);
+  EXPECT_DOUBLE_EQ(probes.find("ps5")->ms.at("gbuffer_update"), 0.35);
+  EXPECT_DOUBLE_EQ(probes.find("ps5")->ms.at("total"), 1.24);
+  EXPECT_EQ(probes.find("ps5")->ms.count("probes_per_frame"), 0u);
+  EXPECT_EQ(probes.find("ps5")->width, 2560u);
+  const SeedTable& diffuse = seeds[3];
+  EXPECT_EQ(diffuse.name, "ac_shadows_diffuse_gi");
+  ASSERT_NE(diffuse.find("xbox-series-s"), nullptr);
+  EXPECT_EQ(diffuse.find("xbox-series-s")->height, 900u);
+  EXPECT_DOUBLE_EQ(diffuse.find("ps5")->ms.at("total"), 7.12);
   // AC Shadows' alpha table, keyed by our option values.
   const AlphaCostTable alpha = load_alpha_cost_table(dir + "/seed-timings.json");
   ASSERT_EQ(alpha.relative.size(), 5u);

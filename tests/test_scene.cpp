@@ -131,7 +131,7 @@ TEST(SceneFeatures, NamesAndToString) {
   EXPECT_EQ(to_string(SceneFeatures(Feature::sun) | Feature::sky), "sun,sky");
   SceneFeatures all;
   for (uint32_t i = 0; i < kFeatureCount; ++i) all |= static_cast<Feature>(1u << i);
-  EXPECT_EQ(to_string(all), "sun,sky,local_lights,emissive,alpha_tested,translucent,textured,motion,decals,cloth");
+  EXPECT_EQ(to_string(all), "sun,sky,local_lights,emissive,alpha_tested,translucent,textured,motion,decals,cloth,indoor_volumes");
 }
 
 Scene minimal_scene() {
@@ -157,6 +157,24 @@ TEST(SceneFeatures, DecalsAndCloth) {
   EXPECT_FALSE(s.features().has(Feature::cloth));
   s.instances[0].material = 1;
   EXPECT_TRUE(s.features().has(Feature::cloth));
+}
+
+TEST(SceneFeatures, IndoorVolumesAreLoadedOffsetAndAFeature) {
+  Scene s = minimal_scene();
+  EXPECT_FALSE(s.features().has(Feature::indoor_volumes));
+  s.indoor_volumes.push_back(IndoorVolume{"room", {-1, 0, -1}, {1, 2, 1}});
+  EXPECT_TRUE(s.features().has(Feature::indoor_volumes));
+  // flatten carries them with the world offset, as every other position.
+  FlatScene f = flatten(s, 0.0f, {10000, 0, -5});
+  ASSERT_EQ(f.indoor_volumes.size(), 1u);
+  EXPECT_EQ(f.indoor_volumes[0].min.x, 9999.0f);
+  EXPECT_EQ(f.indoor_volumes[0].max.z, -4.0f);
+  Scene loaded = parse_scene(nlohmann::json::parse(R"({"materials": {"w": {}}, "objects": [{"primitive": {"type": "quad"},
+      "material": "w"}], "indoor_volumes": [{"name": "hall", "min": [0, 0, 0], "max": [4, 3, 5]}]})"),
+                             "mem.json");
+  ASSERT_EQ(loaded.indoor_volumes.size(), 1u);
+  EXPECT_EQ(loaded.indoor_volumes[0].name, "hall");
+  EXPECT_EQ(loaded.indoor_volumes[0].max.z, 5.0f);
 }
 
 TEST(SceneFeatures, SunAndSky) {
@@ -556,6 +574,18 @@ const BadCase kBadCases[] = {
        d["decals"] = json::array();
        for (int i = 0; i < 17; ++i) d["decals"].push_back(json::parse(R"({"position": [0, 0, 0], "size": [1, 1, 1], "albedo": [0, 0, 0]})"));
      }, "/decals", "expected at most 16 decals (the frame constants hold 16), got 17 decals"},
+    {"indoor volume max not above min", [](json& d) {
+       d["indoor_volumes"] = json::parse(R"([{"min": [0, 0, 0], "max": [1, 0, 1]}])");
+     }, "/indoor_volumes/0/max", "expected a corner above \"min\" on every axis, got [1, 0, 1] with min [0, 0, 0]"},
+    {"indoor volume without min", [](json& d) { d["indoor_volumes"] = json::parse(R"([{"max": [1, 1, 1]}])"); },
+     "/indoor_volumes/0/min", "got missing key"},
+    {"indoor volume unknown key", [](json& d) {
+       d["indoor_volumes"] = json::parse(R"([{"min": [0, 0, 0], "max": [1, 1, 1], "planes": 2}])");
+     }, "/indoor_volumes/0/planes", "unknown key \"planes\""},
+    {"too many indoor volumes", [](json& d) {
+       d["indoor_volumes"] = json::array();
+       for (int i = 0; i < 9; ++i) d["indoor_volumes"].push_back(json::parse(R"({"min": [0, 0, 0], "max": [1, 1, 1]})"));
+     }, "/indoor_volumes", "expected at most 8 indoor volumes (the frame constants hold 8), got 9 volumes"},
     {"root is not an object", [](json& d) { d = json::array({1, 2}); }, "/", "expected object, got array of 2 elements"},
     {"objects missing", [](json& d) { d.erase("objects"); }, "/objects", "got missing key"},
     {"objects empty", [](json& d) { d["objects"] = json::array(); }, "/objects", "got empty array"},
@@ -620,7 +650,7 @@ const BadCase kBadCases[] = {
      "/camera/target", "expected target different from position"},
     {"frame time zero", [](json& d) { d["frame_time"] = 0; }, "/frame_time", "expected number > 0, got 0"},
     {"unknown top-level key", [](json& d) { d["lihgts"] = json::array(); }, "/lihgts",
-     "expected one of the keys materials, objects, lights, decals, sun, sky, camera, frame_time"},
+     "expected one of the keys materials, objects, lights, decals, indoor_volumes, sun, sky, camera, frame_time"},
     // mesh primitive (kMeshDoc: 3 positions, 1 triangle)
     {"mesh index out of range", [](json& d) { set_mesh(d)["indices"] = json::parse("[[0, 1, 2], [0, 2, 3]]"); },
      "/objects/0/primitive/indices/1/2", "expected integer in [0, 2], got 3"},

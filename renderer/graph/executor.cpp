@@ -349,6 +349,7 @@ void Executor::upload_scene(float time) {
   scene_gpu_.instance_count = static_cast<uint32_t>(flat.instances.size());
   scene_gpu_.light_count = static_cast<uint32_t>(flat.lights.size());
   decals_ = std::move(flat.decals);  // carried by the frame constants
+  indoor_volumes_ = std::move(flat.indoor_volumes);
 }
 
 void Executor::upload_frame_constants(float time) {
@@ -388,6 +389,14 @@ void Executor::upload_frame_constants(float time) {
   std::memcpy(f.decals, decals_.data(), decal_count * sizeof(GpuDecal));
   f.scene_info = {scene_gpu_.triangle_count, scene_gpu_.instance_count, settings_.seed, decal_count};
   f.alpha_info = {static_cast<uint32_t>(settings_.alpha.strategy), settings_.alpha.any_hit_limit, 0, 0};
+  static_assert(glsl::kMaxIndoorVolumes == kMaxIndoorVolumes, "frame_shared.h holds scene.h's indoor volumes");
+  const uint32_t volumes = uint32_t(std::min<size_t>(indoor_volumes_.size(), kMaxIndoorVolumes));  // the loader refuses more
+  f.volume_info = {volumes, 0, 0, 0};
+  for (uint32_t i = 0; i < volumes; ++i) {
+    const IndoorVolume& v = indoor_volumes_[i];
+    f.indoor_min[i] = {v.min.x, v.min.y, v.min.z, 0};
+    f.indoor_max[i] = {v.max.x, v.max.y, v.max.z, 0};
+  }
   if (!scene_gpu_.frame) scene_gpu_.frame = gpu_.create_buffer(sizeof(f), BufferUsage::uniform, "frame_constants");
   gpu_.upload(*scene_gpu_.frame, &f, sizeof(f));
 }

@@ -70,6 +70,7 @@ class Executor {
   // bake_average_opacity(scene_), once: an animated scene is flattened every frame.
   std::vector<float> average_opacity_;
   std::vector<GpuDecal> decals_;  // world space (offset applied), copied into each frame's constants
+  std::vector<IndoorVolume> indoor_volumes_;  // carried by the frame constants
   struct Allocation {
     std::shared_ptr<Image> image[2];
     std::shared_ptr<Buffer> buffer[2];

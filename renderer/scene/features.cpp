@@ -14,6 +14,7 @@ std::string_view feature_name(Feature f) {
     case Feature::motion: return "motion";
     case Feature::decals: return "decals";
     case Feature::cloth: return "cloth";
+    case Feature::indoor_volumes: return "indoor_volumes";
   }
   return "unknown";  // a value cast from an integer that names no feature
 }

@@ -17,8 +17,9 @@ enum class Feature : uint32_t {
   motion = 1u << 7,
   decals = 1u << 8,  // projected decals (Scene::decals) with some opacity
   cloth = 1u << 9,   // a material of the cloth BRDF class
+  indoor_volumes = 1u << 10,  // Scene::indoor_volumes (probe-volume's indoor/outdoor classes)
 };
-inline constexpr uint32_t kFeatureCount = 10;
+inline constexpr uint32_t kFeatureCount = 11;
 
 struct SceneFeatures {
   uint32_t bits = 0;

@@ -126,6 +126,7 @@ SceneFeatures Scene::features() const {
     if (m.brdf == BrdfKind::cloth && m.sheen > 0) f |= Feature::cloth;
   }
   if (std::any_of(decals.begin(), decals.end(), [](const Decal& d) { return d.opacity > 0; })) f |= Feature::decals;
+  if (!indoor_volumes.empty()) f |= Feature::indoor_volumes;
 
   bool camera_moves = false;
   for (size_t i = 1; i < camera.animation.size() && !camera_moves; ++i) {
@@ -232,6 +233,11 @@ FlatScene flatten(const Scene& scene, float time, Vec3 world_offset, const std::
     out.lights.push_back(g);
   }
   for (const Decal& d : scene.decals) out.decals.push_back(to_gpu(d, world_offset));
+  for (IndoorVolume v : scene.indoor_volumes) {
+    v.min = v.min + world_offset;
+    v.max = v.max + world_offset;
+    out.indoor_volumes.push_back(v);
+  }
   return out;
 }
 

@@ -51,6 +51,16 @@ struct Decal {
 };
 inline constexpr uint32_t kMaxDecals = 16;  // glsl::kMaxDecals: the frame constants hold them
 
+// An indoor volume (AC Shadows' "Indoor volumes": interiors the GI keeps apart from the outside):
+// an axis-aligned box. probe-volume classifies its probes and the points it lights as indoor
+// (inside any volume) or outdoor and blends only probes of the point's class. The scene key and
+// its errors: cases/scenes/README.md. No other technique reads it.
+struct IndoorVolume {
+  std::string name;
+  Vec3 min{0, 0, 0}, max{0, 0, 0};
+};
+inline constexpr uint32_t kMaxIndoorVolumes = 8;  // glsl::kMaxIndoorVolumes: the frame constants hold them
+
 struct Keyframe {
   float time = 0;  // seconds
   Vec3 translation{0, 0, 0};
@@ -125,6 +135,7 @@ struct Scene {
   std::vector<Instance> instances;
   std::vector<LocalLight> lights;
   std::vector<Decal> decals;  // static, world space, applied in order
+  std::vector<IndoorVolume> indoor_volumes;  // static, world space
   Sun sun;
   Sky sky;
   Camera camera;
@@ -201,6 +212,7 @@ struct FlatScene {
   std::vector<GpuMaterial> materials;
   std::vector<GpuLight> lights;
   std::vector<GpuDecal> decals;
+  std::vector<IndoorVolume> indoor_volumes;  // world_offset applied
 };
 // world_offset translates every position (vertices and lights) after the instance transform:
 // the far-from-origin stress cases move the whole scene (Settings::world_offset), the camera

@@ -218,6 +218,18 @@ Decal parse_decal(const Node& n, size_t index) {
   return d;
 }
 
+IndoorVolume parse_indoor_volume(const Node& n, size_t index) {
+  check_object(n, {"name", "min", "max"});
+  IndoorVolume v;
+  v.name = get_string(n["name"], "indoor" + std::to_string(index));
+  v.min = get_vec3(n["min"], kAny, std::nullopt);
+  v.max = get_vec3(n["max"], kAny, std::nullopt);
+  if (!(v.min.x < v.max.x && v.min.y < v.max.y && v.min.z < v.max.z))
+    n["max"].fail("a corner above \"min\" on every axis",
+                  fmt::format("[{}, {}, {}] with min [{}, {}, {}]", v.max.x, v.max.y, v.max.z, v.min.x, v.min.y, v.min.z));
+  return v;
+}
+
 // A primitive description reduced to a canonical key (equal descriptions share one Mesh,
 // whatever defaults were spelled out) and a builder.
 struct Primitive {
@@ -536,7 +548,7 @@ Camera parse_camera(const Node& n) {
 
 Scene parse_document(const json& doc, const std::string& source_name) {
   Node root{&doc, "", &source_name};
-  check_object(root, {"materials", "objects", "lights", "decals", "sun", "sky", "camera", "frame_time"});
+  check_object(root, {"materials", "objects", "lights", "decals", "indoor_volumes", "sun", "sky", "camera", "frame_time"});
   Scene scene;
   scene.source = source_name;
 
@@ -567,6 +579,14 @@ Scene parse_document(const json& doc, const std::string& source_name) {
       decals.fail(fmt::format("at most {} decals (the frame constants hold {})", kMaxDecals, kMaxDecals),
                   fmt::format("{} decals", decals.v->size()));
     for (size_t i = 0; i < decals.v->size(); ++i) scene.decals.push_back(parse_decal(decals[i], i));
+  }
+  Node indoor = root["indoor_volumes"];
+  if (indoor.present()) {
+    check_array(indoor, false);
+    if (indoor.v->size() > kMaxIndoorVolumes)
+      indoor.fail(fmt::format("at most {} indoor volumes (the frame constants hold {})", kMaxIndoorVolumes, kMaxIndoorVolumes),
+                  fmt::format("{} volumes", indoor.v->size()));
+    for (size_t i = 0; i < indoor.v->size(); ++i) scene.indoor_volumes.push_back(parse_indoor_volume(indoor[i], i));
   }
   if (root["sun"].present()) scene.sun = parse_sun(root["sun"]);
   if (root["sky"].present()) scene.sky = parse_sky(root["sky"]);

@@ -10,6 +10,12 @@ uvec2 gib_render_size() { return gib_frame.frame_info.yz; }
 uint gib_light_count() { return gib_frame.frame_info.w; }
 uint gib_seed() { return gib_frame.scene_info.z; }
 uint gib_decal_count() { return gib_frame.scene_info.w; }
+// Inside one of the scene's indoor volumes (Scene::indoor_volumes; none: false).
+bool gib_indoor(vec3 x) {
+  for (uint i = 0u; i < gib_frame.volume_info.x; ++i)
+    if (all(greaterThanEqual(x, gib_frame.indoor_min[i].xyz)) && all(lessThanEqual(x, gib_frame.indoor_max[i].xyz))) return true;
+  return false;
+}
 
 // World-space ray through a position in pixel units (0..width, 0..height). The direction comes
 // from the camera-relative inverse, so it is as precise 10 km from the origin as at it.

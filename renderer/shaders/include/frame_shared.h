@@ -12,6 +12,7 @@ GIB_CONST(uint, kSceneBufferCount, 7)
 GIB_CONST(uint, kBindPassFirst, 8)   // a pass's own slots start here
 
 GIB_CONST(uint, kMaxDecals, 16)  // decals a scene may have (scene.h kMaxDecals; loader limit)
+GIB_CONST(uint, kMaxIndoorVolumes, 8)  // indoor volumes a scene may have (scene.h kMaxIndoorVolumes)
 
 // A box-projected decal (renderer/scene/scene.h GpuDecal, decals.glsl): a point x lies at box
 // coordinates l_i = dot(axis_i.xyz, x - centre.xyz) * axis_i.w, inside when all |l_i| <= 0.5.
@@ -37,6 +38,9 @@ struct GpuFrame {
   uvec4 scene_info;     // triangle count, instance count, seed, decal count
   uvec4 alpha_info;     // alpha strategy (AlphaStrategy), any-hit limit (0: none), unused, unused
   GpuDecal decals[kMaxDecals];
+  uvec4 volume_info;                      // x: indoor volume count (Scene::indoor_volumes), y-w: unused
+  vec4 indoor_min[kMaxIndoorVolumes];     // xyz: box minimum corner (world space)
+  vec4 indoor_max[kMaxIndoorVolumes];     // xyz: box maximum corner
 };
 
 GIB_SHARED_END

@@ -32,10 +32,18 @@ struct ProbeVolumeSettings : TechniqueSettingsOf<ProbeVolumeSettings>, DirectLig
   bool inverse_ray_offset = true;   // back along the incoming ray, at most half its length
   bool probe_ao = true;             // darken irradiance where the ray is shorter than a spacing
   bool relocation = true;           // probe_relocate moves probes out of / away from geometry
+  bool indoor_classes = true;       // probes blend only with points of their class (indoor volumes of the scene)
   float nearest_weight = 0.9f;      // nearest-probe fast path when its trilinear weight exceeds this (> 1: off)
   // ---- per pixel (AC Shadows "Per-pixel diffuse algorithm")
   uint32_t pixel_divisor = 2;       // rays traced at 1/2 (quarter resolution) or 1 (full)
+  uint32_t screen_steps = 24;       // screen_trace steps per ray (0: every ray in the BVH)
+  float screen_thickness = 0.1f;    // metres behind the depth buffer a screen hit may be
+  bool screen_resume = false;       // world rays resume from the last visible point (the seed's; leaks at silhouettes)
   float pixel_range = 2.0f;         // per-pixel rays reach this many times the probe trace range
+  // Per-pixel rays skip this many metres first (the seed's 0.05 against self-intersection; ours
+  // start from an offset origin and need none: 0.05 lets rays from a room's corners skip the
+  // adjacent wall's face and leak in light from behind it: extreme-range's interior 1e5x).
+  float min_start = 0.0f;
   uint32_t denoise_radius = 2;      // spatial filter half-width (quarter-res pixels; 0: off)
   uint32_t history_max_frames = 16; // temporal filter n_max (1: no history)
   bool material_mask = true;        // spatial filter keeps translucent and opaque pixels apart

@@ -11,8 +11,8 @@
 
 namespace gib {
 
-static_assert(sizeof(glsl::PvParams) == 64, "PvParams: 64 bytes in every probe-volume push block");
-static_assert(sizeof(glsl::PvProbe) == 80 && sizeof(glsl::PvCascade) == 32 && sizeof(glsl::PvSelection) == 48 && sizeof(glsl::PvTexelLists) == 32,
+static_assert(sizeof(glsl::PvParams) == 80, "PvParams: 80 bytes in every probe-volume push block");
+static_assert(sizeof(glsl::PvProbe) == 96 && sizeof(glsl::PvCascade) == 32 && sizeof(glsl::PvSelection) == 48 && sizeof(glsl::PvTexelLists) == 32,
               "probe-volume buffer structs: std430 sizes");
 
 inline uint32_t pv_probe_count(const ProbeVolumeSettings& p) { return p.cascades * p.grid_xz * p.grid_xz * p.grid_y; }
@@ -35,13 +35,23 @@ inline glsl::PvParams make_pv_params(const Settings& s, uint32_t frame) {
                    (p.lighting_scale ? kPvFlagLightingScale : 0) | (p.visibility_test ? kPvFlagVisibility : 0) |
                    (p.inverse_ray_offset ? kPvFlagInverseRay : 0) | (p.probe_ao ? kPvFlagProbeAo : 0) |
                    (p.relocation ? kPvFlagRelocation : 0) | (p.material_mask ? kPvFlagMaterialMask : 0) |
-                   (p.translucent_rays ? kPvFlagTranslucentRays : 0) | (p.quarter_res_new ? kPvFlagQuarterNew : 0);
+                   (p.translucent_rays ? kPvFlagTranslucentRays : 0) | (p.quarter_res_new ? kPvFlagQuarterNew : 0) |
+                   (p.indoor_classes ? kPvFlagIndoor : 0);
   PvParams r{};
   r.grid = {p.grid_xz, p.grid_y, p.cascades, frame};
   r.volume = {p.probe_spacing, p.forward_offset, p.trace_range, p.pixel_range};
   r.sampling = {p.normal_offset, p.view_offset, p.nearest_weight, p.gbuffer_share};
   r.flags = {flags, p.probe_budget, p.pixel_divisor, p.denoise_radius | (p.history_max_frames << 16)};
+  r.pixel = {p.min_start, 0, 0, 0};
   return r;
+}
+
+// A buffer resource of `bytes` (persistent: kept across frames, e.g. the per-probe caches).
+inline ResourceDesc pv_buffer(uint64_t bytes, bool persistent) {
+  ResourceDesc b{Format::buffer, SizeRule::buffer};
+  b.bytes = bytes;
+  b.persistent = persistent;
+  return b;
 }
 
 // Bytes of the probe buffers (probe_volume_shared.h).

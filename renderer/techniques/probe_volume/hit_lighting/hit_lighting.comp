@@ -35,7 +35,7 @@ vec3 ray_radiance(PvPixelRay r, uvec4 h) {
   if ((h.w & kPvPixelHit) == 0u) {
     // Miss: the filtered radiance probes at the ray's end (reflected light only), else nothing.
     vec3 end = r.origin + r.dir * t;
-    return pv_cascade_at(end) < kPvMaxCascades ? pv_sample_radiance(end, r.dir, false).rgb : vec3(0.0);
+    return pv_cascade_at(end) < kPvMaxCascades ? pv_sample_radiance(end, r.dir, pv_point_indoor(end, vec3(0.0))).rgb : vec3(0.0);
   }
   vec4 albedo_t = pv_unpack_albedo(uvec2(h.x, 0u));
   vec3 n = gib_oct_decode(vec2(h.y & 0xffffu, h.y >> 16u) * (1.0 / 65535.0));
@@ -47,7 +47,7 @@ vec3 ray_radiance(PvPixelRay r, uvec4 h) {
     if (c > 0.0 || albedo_t.a > 0.0) sun = trace_any(gib_offset_ray(x, c > 0.0 ? n : -n), l, 0.0, 3.4e38) ? 0.0 : 1.0;
   }
   vec3 l = albedo_t.rgb * (pv_sun(n, albedo_t.a, sun) + pv_local_lights(x, n, albedo_t.a)) / GIB_PI;
-  vec3 e = pv_bounce(x, n, albedo_t.a, r.dir, t, false);
+  vec3 e = pv_bounce(x, n, albedo_t.a, r.dir, t);
   if (pv_flag(kPvFlagProbeAo)) {
     float s = pv_spacing(min(pv_cascade_at(x), pv_cascades() - 1u));
     e *= clamp(t / s * kPvProbeAoScale + kPvProbeAoBias, 0.0, 1.0);

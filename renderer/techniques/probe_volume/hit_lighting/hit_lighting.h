@@ -11,7 +11,7 @@
 // probe_irradiance, probe_radiance, probe_visibility; writes pixel_sh (rg32ui).
 // Limits: no pre-exposure (the seed scales by last frame's exposure; the codec's per-pixel
 // exponent keeps the precision instead); the seed's nearest-probe fast path is shared with
-// every probe lookup (nearest_weight); probes are all treated as outdoor (no indoor volumes yet).
+// every probe lookup (nearest_weight).
 #pragma once
 #include <memory>
 

@@ -41,15 +41,16 @@ GIB_CONST(uint, kPvProbeValid, 2)      // lit and convolved: samplers may use it
 GIB_CONST(uint, kPvProbeDisabled, 4)   // inside geometry and could not move: samplers skip it
 GIB_CONST(uint, kPvProbeIndoor, 8)     // inside an indoor volume (probe_classify)
 GIB_CONST(uint, kPvProbeQuarter, 16)   // last traced at quarter resolution
-GIB_CONST(uint, kPvProbeRetrace, 32)   // moved by probe_relocate: its G-buffer is stale
+GIB_CONST(uint, kPvProbeRetrace, 32)   // probe_relocate chose a new offset (pending): traced there first among the G-buffer refreshes
 
 struct PvProbe {
   ivec4 coord;     // xyz: the world grid cell whose data the slot holds; w: kPvProbe* flags
   vec4 offset;     // xyz: relocation offset (m), w: lighting scale (stored lighting = true x scale)
   vec4 meta;       // x: sky visibility, y: sun + sky estimate (luminance) at the last relight,
                    // z: local-light luminance (mean over texels), w: mean luminance
-  vec4 geometry;   // x: back-face fraction, y: min depth, z: max depth (m), w: texel of max depth
+  vec4 geometry;   // x: back faces within reach / hits, y: min depth, z: max depth (m), w: texel of max depth
   uvec4 stamp;     // x: frame + 1 when last selected, y: class then (kPvClass*), z: frame + 1 when last traced, w: unused
+  vec4 pending;    // xyz: the offset probe_relocate chose, taken at the next trace (kPvProbeRetrace); w: unused
 };
 struct PvCascade {
   ivec4 origin;  // xyz: grid cell of the volume's minimum corner this frame
@@ -80,6 +81,9 @@ struct PvTexelLists {
 GIB_CONST(uint, kPvPixelValid, 1)   // the source pixel is a surface (not sky)
 GIB_CONST(uint, kPvPixelHit, 2)     // the ray hit within its range
 GIB_CONST(uint, kPvPixelBack, 4)    // the ray left through the back of a translucent surface
+GIB_CONST(uint, kPvPixelWorld, 8)   // screen_trace could not settle it: world_trace traces it from z (start distance)
+GIB_CONST(uint, kPvPixelScreen, 16) // settled on screen (hit: material from the G-buffer at the hit pixel)
+// pixel_trace_stats (screen_trace, world_trace): uvec4 (valid ray pixels, screen hits, screen misses, world rays).
 
 // Flags (PvParams.flags.x).
 GIB_CONST(uint, kPvFlagNanGuards, 1)
@@ -92,14 +96,16 @@ GIB_CONST(uint, kPvFlagRelocation, 64)
 GIB_CONST(uint, kPvFlagMaterialMask, 128)
 GIB_CONST(uint, kPvFlagTranslucentRays, 256)
 GIB_CONST(uint, kPvFlagQuarterNew, 512)
+GIB_CONST(uint, kPvFlagIndoor, 1024)   // indoor / outdoor classes (Scene::indoor_volumes)
 
-// Push constants shared by the probe-volume passes (64 bytes); a pass may append its own.
+// Push constants shared by the probe-volume passes (80 bytes); a pass may append its own.
 struct PvParams {
   uvec4 grid;      // x: probes along x and z, y: along y, z: cascades, w: frame
   vec4 volume;     // x: cascade-0 spacing (m), y: forward offset (share of the width), z: probe trace range
                    //    (spacings), w: per-pixel range (x the probe trace range)
   vec4 sampling;   // x: normal offset, y: view offset (spacings), z: nearest-probe weight, w: G-buffer share
   uvec4 flags;     // x: kPvFlag* bits, y: probe budget, z: pixel divisor, w: denoise radius | history n_max << 16
+  vec4 pixel;      // x: per-pixel rays' minimum start distance (m), y-w: unused
 };
 
 GIB_SHARED_END

@@ -61,6 +61,11 @@ vec3 pv_cell_position(uint c, ivec3 cell) {
   return p;
 }
 
+// The class of a point seen from the side of unit normal n (zero: the point itself), indoor
+// when 5 cm off that side lies in an indoor volume (the seed classifies the two faces of a
+// translucent surface separately). Outdoor for every point when indoor_classes is off.
+bool pv_point_indoor(vec3 x, vec3 n) { return pv_flag(kPvFlagIndoor) && gib_indoor(x + n * 0.05); }
+
 // ---- tile addressing
 uint pv_gbuffer_index(uint probe, uint t) { return probe * kPvGbufferTexels + t; }
 uint pv_irradiance_index(uint probe, ivec2 t) { return probe * kPvIrradianceTexels + uint(t.y) * kPvIrradianceSide + uint(t.x); }

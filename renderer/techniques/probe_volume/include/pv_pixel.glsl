@@ -8,8 +8,8 @@
 // cosine-distributed about the normal of the side chosen: on a translucent surface the back
 // side with probability t / (1 + t) (translucent_rays), whose result is weighted by t / p, the
 // front's by (1 - t) / (1 - p), so that the sum estimates (1 - t) E_front + t E_back. Rays start
-// 0.05 m along the ray (the seed's minimum start distance) and reach pixel_range x the probe trace
-// range of the cascade around the origin.
+// pv_min_start() metres along the ray (option min_start, default 0; the seed's 0.05 m) from an
+// offset origin and reach pixel_range x the probe trace range of the cascade around the origin.
 //
 // The irradiance a ray estimates, E = pi x L x weight, is kept as YCoCg with order 1 for Y: Y0 = E_Y
 // and the band-1 vector D = E_Y x d', d' the ray direction (mirrored to the front side for a
@@ -22,7 +22,7 @@
 #ifndef GIB_PV_PIXEL_GLSL
 #define GIB_PV_PIXEL_GLSL
 
-const float kPvMinStart = 0.05;
+float pv_min_start() { return pv.pixel.x; }
 
 uint pv_divisor() { return pv.flags.z; }
 

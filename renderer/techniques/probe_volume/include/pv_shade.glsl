@@ -35,10 +35,11 @@ vec3 pv_local_lights(vec3 x, vec3 n, float translucency) {
 }
 
 // Irradiance / pi from the probes on the seen side (and, for a translucent surface, the back
-// side's share): (1 - t) E(n) + t E(-n). d: the incoming ray (unit), length its hit distance.
-vec3 pv_bounce(vec3 x, vec3 n, float translucency, vec3 d, float length, bool indoor) {
-  vec3 e = (1.0 - translucency) * pv_sample_irradiance(x, n, -d, d, length, indoor);
-  if (translucency > 0.0) e += translucency * pv_sample_irradiance(x, -n, -d, d, length, indoor);
+// side's share): (1 - t) E(n) + t E(-n), each side with the probes of its own class.
+// d: the incoming ray (unit), length its hit distance.
+vec3 pv_bounce(vec3 x, vec3 n, float translucency, vec3 d, float length) {
+  vec3 e = (1.0 - translucency) * pv_sample_irradiance(x, n, -d, d, length, pv_point_indoor(x, n));
+  if (translucency > 0.0) e += translucency * pv_sample_irradiance(x, -n, -d, d, length, pv_point_indoor(x, -n));
   return e;
 }
 

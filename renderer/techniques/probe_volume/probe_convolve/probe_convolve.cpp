@@ -13,12 +13,7 @@ class ProbeConvolvePass final : public Pass {
     const uint64_t probes = pv_probe_count(p);
     PassDecl d;
     d.name = "probe_convolve";
-    auto buffer = [](uint64_t bytes) {
-      ResourceDesc b{Format::buffer, SizeRule::buffer};
-      b.bytes = bytes;
-      b.persistent = true;
-      return b;
-    };
+    auto buffer = [](uint64_t bytes) { return pv_buffer(bytes, true); };
     d.slots = {{"probe_selection", Access::read},
                {"probe_gb_material", Access::read},
                {"probe_gb_depth", Access::read},

@@ -33,7 +33,7 @@ struct Texel {
   uint depth;  // half-float bits
 };
 
-Texel trace_texel(vec3 o, vec3 d, float range) {
+Texel trace_texel(vec3 o, vec3 d, float range, float reach) {
   Texel r;
   GibHit hit;
   if (!trace_closest(o, d, 0.0, range, hit)) {
@@ -47,7 +47,9 @@ Texel trace_texel(vec3 o, vec3 d, float range) {
   GpuMaterial m = gib_materials[s.material];
   bool back = dot(s.normal, d) > 0.0;
   // A thin translucent sheet has no inside: its back is not a sign of being in geometry.
-  if (back && m.translucency == 0.0) atomicAdd(s_backfaces, 1u);
+  // Within reach of the probe's cell only: a room modelled as a closed box seen from inside shows
+  // back faces everywhere (our surfaces are two-sided), a probe inside a wall sees them close.
+  if (back && m.translucency == 0.0 && hit.t < reach) atomicAdd(s_backfaces, 1u);
   atomicAdd(s_hits, 1u);
   vec3 n = back ? -s.normal : s.normal;  // the side the probe sees
   float sun = 0.0;
@@ -80,8 +82,11 @@ void main() {
   bool quarter = pv_probes[probe].stamp.y == kPvClassNew && pv_flag(kPvFlagQuarterNew);
   uint c = pv_cascade_of(probe);
   PvProbe p = pv_probes[probe];
+  // A probe probe_relocate moved is traced at its new offset, which it keeps from now on.
+  if ((uint(p.coord.w) & kPvProbeRetrace) != 0u) p.offset.xyz = p.pending.xyz;
   vec3 o = pv_cell_position(c, p.coord.xyz) + p.offset.xyz;
   float range = pv_trace_range(c);
+  float reach = kPvBackfaceReach * pv_spacing(c);
   if (tid == 0u) {
     s_backfaces = 0u;
     s_hits = 0u;
@@ -92,27 +97,27 @@ void main() {
   if (quarter) {
     for (uint b = tid; b < kPvGbufferTexels / 4u; b += kPvGbufferGroup) {
       uint t = (b / (kPvGbufferSide / 2u)) * 2u * kPvGbufferSide + (b % (kPvGbufferSide / 2u)) * 2u;
-      Texel r = trace_texel(o, pv_gbuffer_direction(t, true), range);
+      Texel r = trace_texel(o, pv_gbuffer_direction(t, true), range, reach);
       store(probe, t, r, r);
       store(probe, t + kPvGbufferSide, r, r);
     }
   } else {
     for (uint pair = tid; pair < kPvGbufferTexels / 2u; pair += kPvGbufferGroup) {
       uint t = pair * 2u;
-      Texel a = trace_texel(o, pv_gbuffer_direction(t, false), range);
-      Texel b = trace_texel(o, pv_gbuffer_direction(t + 1u, false), range);
+      Texel a = trace_texel(o, pv_gbuffer_direction(t, false), range, reach);
+      Texel b = trace_texel(o, pv_gbuffer_direction(t + 1u, false), range, reach);
       store(probe, t, a, b);
     }
   }
   barrier();
   if (tid == 0u) {
-    float traced = quarter ? float(kPvGbufferTexels / 4u) : float(kPvGbufferTexels);
     // The deepest direction: the texel whose (quantised) depth is largest; ties keep the
     // first found, so it is recomputed from the stored depths in probe_relocate.
     pv_probes[probe].geometry =
-        vec4(float(s_backfaces) / traced, uintBitsToFloat(s_min_depth), float(s_max_key >> 16u) / 65534.0 * range, 0.0);
+        vec4(float(s_backfaces) / float(max(s_hits, 1u)), uintBitsToFloat(s_min_depth), float(s_max_key >> 16u) / 65534.0 * range, 0.0);
     uint f = (uint(p.coord.w) | kPvProbeTraced) & ~(kPvProbeRetrace | kPvProbeQuarter);
     pv_probes[probe].coord.w = int(f | (quarter ? kPvProbeQuarter : 0u));
+    pv_probes[probe].offset.xyz = p.offset.xyz;
     pv_probes[probe].stamp.z = pv_frame() + 1u;
   }
 }

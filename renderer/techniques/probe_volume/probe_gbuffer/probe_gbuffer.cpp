@@ -13,12 +13,7 @@ class ProbeGbufferPass final : public Pass {
     const uint64_t texels = uint64_t(pv_probe_count(p)) * glsl::kPvGbufferTexels;
     PassDecl d;
     d.name = "probe_gbuffer";
-    auto buffer = [](uint64_t bytes) {
-      ResourceDesc b{Format::buffer, SizeRule::buffer};
-      b.bytes = bytes;
-      b.persistent = true;
-      return b;
-    };
+    auto buffer = [](uint64_t bytes) { return pv_buffer(bytes, true); };
     d.slots = {{"probe_selection", Access::read},
                {"probe_state", Access::read_write},
                {"probe_gb_material", Access::read_write, buffer(texels * 8)},

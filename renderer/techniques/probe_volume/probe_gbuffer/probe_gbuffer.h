@@ -7,7 +7,7 @@
 // the side the probe sees (12+12-bit octahedral), sun visibility (one shadow ray to the sun's
 // centre, cast from the side facing it; both sides for translucent hits), hit distance (half;
 // +Inf on a miss): 14 bytes. Per probe (probe_state): back-face fraction (hits on the back of
-// opaque surfaces), min and max depth; flags traced / quarter.
+// opaque surfaces within one spacing, of all hits), min and max depth; flags traced / quarter.
 // Slots: read probe_selection; read_write probe_state, probe_gb_material, probe_gb_normal,
 // probe_gb_depth (persistent, probe-major, probe_volume_shared.h).
 // Limits: the sun shadow is a hard shadow ray (the seed: a secondary shadow map, rays outside

@@ -12,6 +12,8 @@ GIB_CONST(uint, kPvGbufferBindNormal, 11)     // probe_gb_normal (read_write)
 GIB_CONST(uint, kPvGbufferBindDepth, 12)      // probe_gb_depth (read_write)
 GIB_CONST(uint, kPvGbufferSpecAlpha, 0)
 GIB_CONST(uint, kPvGbufferSpecSun, 1)
+// Back faces count towards "inside geometry" only when hit within this many spacings.
+GIB_CONST(float, kPvBackfaceReach, 1.0)
 struct PvGbufferPush {
   PvParams pv;
 };

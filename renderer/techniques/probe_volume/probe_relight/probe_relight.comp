@@ -101,11 +101,10 @@ void light_hit() {
   uint nw = gb_normal[g];
   vec3 n = pv_unpack_normal(nw);
   vec3 x = o + d * depth;
-  bool indoor = (uint(p.coord.w) & kPvProbeIndoor) != 0u;
   vec3 local = pv_local_lights(x, n, albedo_t.a);
   vec3 light = pv_sun(n, albedo_t.a, pv_unpack_shadow(nw)) + local;
   vec3 radiance = albedo_t.rgb * light / GIB_PI;
-  if (pv_flag(kPvFlagMultiBounce)) radiance += albedo_t.rgb * pv_bounce(x, n, albedo_t.a, d, depth, indoor);
+  if (pv_flag(kPvFlagMultiBounce)) radiance += albedo_t.rgb * pv_bounce(x, n, albedo_t.a, d, depth);
   if (pv_flag(kPvFlagNanGuards) && !gib_finite(radiance)) radiance = vec3(0.0);
   texel_radiance[e * kPvGbufferTexels + t] = vec4(radiance, 0.0);
   texel_local[e * kPvGbufferTexels + t] = gib_luminance(albedo_t.rgb * local / GIB_PI);
@@ -122,7 +121,7 @@ void light_miss() {
   bool quarter = (uint(p.coord.w) & kPvProbeQuarter) != 0u;
   vec3 d = pv_gbuffer_direction(t, quarter);
   vec3 end = pv_cell_position(c, p.coord.xyz) + p.offset.xyz + d * pv_trace_range(c);
-  bool indoor = (uint(p.coord.w) & kPvProbeIndoor) != 0u;
+  bool indoor = pv_point_indoor(end, vec3(0.0));
   // Inside the volume: the filtered radiance probes there (a coarser cascade's, typically);
   // outside: the sky, whole (its radiance is added where it is used, from the direction).
   // Single bounce (multi_bounce 0): the radiance probes' sky visibility only.

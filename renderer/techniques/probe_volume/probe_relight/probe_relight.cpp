@@ -13,11 +13,7 @@ class ProbeRelightPass final : public Pass {
     const uint64_t texels = uint64_t(p.probe_budget) * glsl::kPvGbufferTexels;
     PassDecl d;
     d.name = "probe_relight";
-    auto buffer = [](uint64_t bytes) {
-      ResourceDesc b{Format::buffer, SizeRule::buffer};
-      b.bytes = bytes;
-      return b;
-    };
+    auto buffer = [](uint64_t bytes) { return pv_buffer(bytes, false); };
     ResourceDesc radiance = buffer(texels * 16);
     radiance.values = non_negative_values().layout(4, 0, 4);
     ResourceDesc local = buffer(texels * 4);

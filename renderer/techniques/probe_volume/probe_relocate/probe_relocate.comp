@@ -53,8 +53,8 @@ void main() {
   vec3 moved = clamp(p.offset.xyz + dir * min(0.5 * max_depth, limit), vec3(-limit), vec3(limit));
   bool moves = distance(moved, p.offset.xyz) > 0.05 * s;
   if (moves) {
-    pv_probes[probe].offset.xyz = moved;
-    f |= kPvProbeRetrace;  // probe_select re-traces it next frame
+    pv_probes[probe].pending = vec4(moved, 0.0);
+    f |= kPvProbeRetrace;  // probe_select re-traces it there first among the G-buffer refreshes
   }
   // Inside and unable to move: disabled (samplers skip it) until a later trace finds it outside.
   if (inside && !moves) f |= kPvProbeDisabled;

@@ -74,7 +74,7 @@ void main() {
         pv_probes[i].geometry = vec4(0.0);
         f = 0u;
       }
-      fresh = (f & kPvProbeTraced) == 0u || (f & kPvProbeRetrace) != 0u;
+      fresh = (f & kPvProbeTraced) == 0u;
     }
     append(fresh, i, budget);
     if (fresh && i < cascades * per) atomicAdd(pv_cascade[i / per].rr.z, 1u);
@@ -89,12 +89,28 @@ void main() {
   memoryBarrierBuffer();
   barrier();
 
-  // 2. G-buffer refreshes, then 3. relight only: round robin per cascade, the biggest first,
-  // the class's share split evenly (remainders to the biggest).
+  // 2. G-buffer refreshes: first the probes probe_relocate moved (traced at their new offset),
+  // in probe order, then round robin; 3. relight only, round robin. Round robin per cascade,
+  // the biggest first, the class's share split evenly (remainders to the biggest).
   uint rest = budget - n_new;
   uint gbuffer_total = uint(floor(float(rest) * pv.sampling.w + 0.5));
-  uint totals[2] = uint[2](gbuffer_total, rest - gbuffer_total);
-  uint counts[2] = uint[2](0u, 0u);
+  for (uint base = 0u; base < cascades * per; base += kPvSelectGroup) {
+    uint i = base + tid;
+    bool moved = false;
+    if (i < cascades * per) {
+      uint f = uint(pv_probes[i].coord.w);
+      moved = (f & kPvProbeTraced) != 0u && (f & kPvProbeRetrace) != 0u && pv_probes[i].stamp.x != now;
+    }
+    append(moved, i, n_new + gbuffer_total);
+  }
+  uint n_moved = min(s_count, n_new + gbuffer_total) - n_new;
+  for (uint k = n_new + tid; k < n_new + n_moved; k += kPvSelectGroup) pv_probes[pv_entries[k]].stamp.xy = uvec2(now, kPvClassGbuffer);
+  memoryBarrierBuffer();
+  barrier();
+  if (tid == 0u) s_count = n_new + n_moved;
+  barrier();
+  uint totals[2] = uint[2](gbuffer_total - n_moved, rest - gbuffer_total);
+  uint counts[2] = uint[2](n_moved, 0u);
   for (uint cls = 0u; cls < 2u; ++cls) {
     for (uint k = 0u; k < cascades; ++k) {
       uint c = cascades - 1u - k;

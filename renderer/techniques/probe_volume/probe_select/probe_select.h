@@ -2,7 +2,8 @@
 // and "Probe selection"). Each cascade's volume follows the camera with a forward offset
 // (toroidal addressing: a slot whose cell changed is a new probe, its data invalid). Then, up
 // to probe_budget probes: 1. new probes (full update, quarter resolution), in probe order;
-// 2. G-buffer refreshes, gbuffer_share of the rest, round robin per cascade from the biggest;
+// 2. G-buffer refreshes, gbuffer_share of the rest: first probes probe_relocate moved (their
+// G-buffer is traced at the new offset), then round robin per cascade from the biggest;
 // 3. relight only, the remainder, round robin per cascade (two round-robin indices per
 // cascade, kept in probe_state). Counts per class each frame in probe_selection.counts.
 // Slots: read_write probe_state (persistent; zeroed on the first frame: every probe new);

@@ -20,28 +20,27 @@ PV_STATE_BUFFER(kPvWorldTraceBindState, readonly)
 layout(set = 0, binding = kPvWorldTraceBindPosition, rgba32f) uniform readonly image2D gb_position;
 layout(set = 0, binding = kPvWorldTraceBindNormal, rgba16f) uniform readonly image2D gb_normal;
 layout(set = 0, binding = kPvWorldTraceBindEmissive, rgba16f) uniform readonly image2D gb_emissive;
-layout(set = 0, binding = kPvWorldTraceBindHits, rgba32ui) uniform writeonly uimage2D out_hits;
+layout(set = 0, binding = kPvWorldTraceBindHits, rgba32ui) uniform uimage2D out_hits;
 layout(local_size_x = kPvWorldTraceGroup, local_size_y = kPvWorldTraceGroup) in;
 
 void main() {
   ivec2 q = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(q, imageSize(out_hits)))) return;
+  uvec4 prior = imageLoad(out_hits, q);
+  if ((prior.w & kPvPixelWorld) == 0u) return;  // settled on screen, or no surface
   ivec2 p = pv_source_pixel(q);
-  vec4 pos = imageLoad(gb_position, p);
-  if (pos.w == 0.0) {
-    imageStore(out_hits, q, uvec4(0u));
-    return;
-  }
+  vec3 pos = imageLoad(gb_position, p).xyz;
   vec3 n = imageLoad(gb_normal, p).xyz;
-  if (!(gib_finite(n) && dot(n, n) > 0.25)) n = normalize(gib_frame.camera_pos.xyz - pos.xyz);  // NaN guard
+  if (!(gib_finite(n) && dot(n, n) > 0.25)) n = normalize(gib_frame.camera_pos.xyz - pos);  // NaN guard
   n = normalize(n);
   float translucency = imageLoad(gb_emissive, p).w;
-  PvPixelRay r = pv_pixel_ray(q, pos.xyz, n, translucency);
-  uint c = pv_cascade_at(pos.xyz);
+  PvPixelRay r = pv_pixel_ray(q, pos, n, translucency);
+  uint c = pv_cascade_at(pos);
   float range = pv.volume.w * pv_trace_range(min(c, pv_cascades() - 1u));
-  uint flags = kPvPixelValid | (r.back ? kPvPixelBack : 0u);
+  float start = max(uintBitsToFloat(prior.z), pv_min_start());
+  uint flags = prior.w;
   GibHit hit;
-  if (!trace_closest(r.origin, r.dir, kPvMinStart, range, hit)) {
+  if (!trace_closest(r.origin, r.dir, start, range, hit)) {
     imageStore(out_hits, q, uvec4(0u, 0u, floatBitsToUint(range), flags));
     return;
   }

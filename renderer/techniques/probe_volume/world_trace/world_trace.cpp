@@ -12,12 +12,11 @@ class WorldTracePass final : public Pass {
     const ProbeVolumeSettings& p = s.params<ProbeVolumeSettings>();
     PassDecl d;
     d.name = "world_trace";
-    const SizeRule size = p.pixel_divisor == 1 ? SizeRule::render : SizeRule::half;
     d.slots = {{"gbuffer_position", Access::read},
                {"gbuffer_normal", Access::read},
                {"gbuffer_emissive", Access::read},
                {"probe_state", Access::read},
-               {"pixel_hits", Access::write, ResourceDesc{Format::rgba32_uint, size}}};
+               {"pixel_hits", Access::read_write}};
     d.work = {{"rays", double(s.width) * s.height / (p.pixel_divisor * p.pixel_divisor)}};
     return d;
   }
