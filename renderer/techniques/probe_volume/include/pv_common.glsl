@@ -21,6 +21,16 @@
     PvProbe pv_probes[];                                             \
   };
 
+// The probe G-buffer's depths (half floats, two texels per word) and their accessor:
+// pv_texel_depth(probe, t, miss) is texel t's hit distance, `miss` where its ray missed.
+#define PV_GBUFFER_DEPTH(B, QUAL)                                                               \
+  layout(std430, set = 0, binding = (B)) QUAL buffer DepthBuffer { uint gb_depth[]; };           \
+  float pv_texel_depth(uint probe, uint t, float miss) {                                         \
+    uint w = gb_depth[pv_gbuffer_index(probe, t) >> 1u];                                         \
+    uint h = (t & 1u) != 0u ? w >> 16u : w & 0xffffu;                                           \
+    return h == kPvMissDepthBits ? miss : gib_half_to_float(h);                                  \
+  }
+
 // The probe lighting buffers, readonly (pv_sample.glsl reads them).
 #define PV_PROBE_BUFFERS(BI, BR, BV)                                                                     \
   layout(std430, set = 0, binding = (BI)) readonly buffer PvIrradianceBuffer { uvec2 pv_irradiance[]; }; \

@@ -18,7 +18,7 @@ layout(std430, set = 0, binding = kPvConvolveBindSelection) readonly buffer Sele
   uint pv_entries[];
 };
 layout(std430, set = 0, binding = kPvConvolveBindMaterial) readonly buffer MaterialBuffer { uvec2 gb_material[]; };
-layout(std430, set = 0, binding = kPvConvolveBindDepth) readonly buffer DepthBuffer { uint gb_depth[]; };
+PV_GBUFFER_DEPTH(kPvConvolveBindDepth, readonly)
 layout(std430, set = 0, binding = kPvConvolveBindRadianceIn) readonly buffer RadianceIn { vec4 texel_radiance[]; };
 layout(std430, set = 0, binding = kPvConvolveBindLocal) readonly buffer LocalIn { float texel_local[]; };
 layout(std430, set = 0, binding = kPvConvolveBindIrradiance) buffer IrradianceOut { uvec2 out_irradiance[]; };
@@ -37,12 +37,6 @@ shared vec4 s_out_radiance[kBlocks];
 shared vec2 s_out_moments[kBlocks];
 shared vec3 s_out_irradiance[kIrr];
 shared float s_scale;
-
-float depth_of(uint probe, uint t) {
-  uint w = gb_depth[pv_gbuffer_index(probe, t) >> 1u];
-  uint h = (t & 1u) != 0u ? w >> 16u : w & 0xffffu;
-  return h == kPvMissDepthBits ? 3.4e38 : gib_half_to_float(h);
-}
 
 void main() {
   uint e = gl_WorkGroupID.x;
@@ -64,7 +58,7 @@ void main() {
       uint t = (by * 2u + (k >> 1u)) * kPvGbufferSide + bx * 2u + (k & 1u);
       uint src = quarter ? (by * 2u) * kPvGbufferSide + bx * 2u : t;  // a quarter probe lit one texel per block
       vec4 r = texel_radiance[e * kPvGbufferTexels + src];
-      float depth = depth_of(probe, t);
+      float depth = pv_texel_depth(probe, t, 3.4e38);
       vec3 emission = depth < 3.4e38 ? gib_unpack_rgb9e5(gb_material[pv_gbuffer_index(probe, t)].y) : vec3(0.0);
       total += r.rgb + emission + r.a * sky;
       reflected += r;

@@ -22,7 +22,7 @@ layout(std430, set = 0, binding = kPvGbufferBindSelection) readonly buffer Selec
 };
 layout(std430, set = 0, binding = kPvGbufferBindMaterial) buffer MaterialBuffer { uvec2 gb_material[]; };
 layout(std430, set = 0, binding = kPvGbufferBindNormal) buffer NormalBuffer { uint gb_normal[]; };
-layout(std430, set = 0, binding = kPvGbufferBindDepth) buffer DepthBuffer { uint gb_depth[]; };
+PV_GBUFFER_DEPTH(kPvGbufferBindDepth, )
 layout(local_size_x = kPvGbufferGroup) in;
 
 shared uint s_backfaces, s_hits, s_min_depth, s_max_key;

@@ -25,7 +25,7 @@ layout(std430, set = 0, binding = kPvRelightBindSelection) readonly buffer Selec
 };
 layout(std430, set = 0, binding = kPvRelightBindMaterial) readonly buffer MaterialBuffer { uvec2 gb_material[]; };
 layout(std430, set = 0, binding = kPvRelightBindNormal) readonly buffer NormalBuffer { uint gb_normal[]; };
-layout(std430, set = 0, binding = kPvRelightBindDepth) readonly buffer DepthBuffer { uint gb_depth[]; };
+PV_GBUFFER_DEPTH(kPvRelightBindDepth, readonly)
 layout(std430, set = 0, binding = kPvRelightBindTexels) buffer TexelBuffer {
   PvTexelLists lists;
   uint texel_list[];
@@ -39,11 +39,7 @@ layout(local_size_x = kPvRelightGroup) in;
 
 uint list_capacity() { return pv.flags.y * kPvGbufferTexels; }
 
-float texel_depth(uint probe, uint t) {
-  uint w = gb_depth[pv_gbuffer_index(probe, t) >> 1u];
-  uint h = (t & 1u) != 0u ? w >> 16u : w & 0xffffu;
-  return h == kPvMissDepthBits ? -1.0 : gib_half_to_float(h);
-}
+float texel_depth(uint probe, uint t) { return pv_texel_depth(probe, t, -1.0); }
 
 void rescale() {
   uint probe = gl_GlobalInvocationID.x;

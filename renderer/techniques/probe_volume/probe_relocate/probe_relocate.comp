@@ -10,7 +10,7 @@ layout(std430, set = 0, binding = kPvRelocateBindSelection) readonly buffer Sele
   PvSelection sel;
   uint pv_entries[];
 };
-layout(std430, set = 0, binding = kPvRelocateBindDepth) readonly buffer DepthBuffer { uint gb_depth[]; };
+PV_GBUFFER_DEPTH(kPvRelocateBindDepth, readonly)
 layout(local_size_x = kPvRelocateGroup) in;
 
 shared uint s_key[kPvRelocateGroup];
@@ -24,9 +24,7 @@ void main() {
   // The deepest texel (a miss counts as the full range); ties: the lowest texel.
   uint best = 0u;
   for (uint t = tid; t < kPvGbufferTexels; t += kPvRelocateGroup) {
-    uint w = gb_depth[pv_gbuffer_index(probe, t) >> 1u];
-    uint h = (t & 1u) != 0u ? w >> 16u : w & 0xffffu;
-    float depth = h == kPvMissDepthBits ? range : min(gib_half_to_float(h), range);
+    float depth = min(pv_texel_depth(probe, t, range), range);
     uint key = (uint(depth / range * 4194303.0) << 9u) | (511u - t);
     best = max(best, key);
   }
