@@ -516,6 +516,7 @@ void check_noise_floor(CaseContext& ctx, Gpu& gpu) {
 
 int cmd_run(const SuiteOptions& o) {
   std::vector<Case> cases = select_cases(o);
+  for (const std::string& t : o.techniques) find_technique(t);  // an unknown name is an error, not an empty run
   auto gpu = Gpu::create({o.device, o.validate});
   SuiteResult suite;
   suite.device = gpu->info();
@@ -543,7 +544,6 @@ int cmd_run(const SuiteOptions& o) {
   auto selected = [&](const std::string& technique) {
     return o.techniques.empty() || std::find(o.techniques.begin(), o.techniques.end(), technique) != o.techniques.end();
   };
-  for (const std::string& t : o.techniques) find_technique(t);  // an unknown name is an error, not an empty run
   for (const Case& c : cases) {
     if (!our_cases.count(c.name)) continue;
     const bool any = std::any_of(c.techniques.begin(), c.techniques.end(), [&](auto& r) { return selected(r.technique); }) ||

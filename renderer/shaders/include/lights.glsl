@@ -23,6 +23,14 @@ vec3 gib_sky_radiance(vec3 d) {
   return base * (1.0 + glow);
 }
 
+// Lambertian weight (times pi) of light from wi at a thin surface whose seen side has normal n:
+// reflected on the front, transmitted from the back scaled by translucency. Multiplied by an
+// irradiance-like e and albedo / pi by the caller.
+float gib_thin_facing(float translucency, vec3 n, vec3 wi) {
+  float c = dot(n, wi);
+  return c > 0.0 ? (1.0 - translucency) * c : translucency * (-c);
+}
+
 // Radiance arriving at p from local light l (before visibility), and the direction/distance
 // to it. Inverse-square falloff, spot smoothstep between outer and inner cones, zero past range.
 vec3 gib_local_light(GpuLight l, vec3 p, out vec3 wi, out float dist) {

@@ -115,13 +115,13 @@ std::string print_probes(const std::vector<uint8_t>& bytes, uint32_t, uint32_t) 
   std::vector<PvProbe> probes(count);
   std::memcpy(probes.data(), bytes.data() + header, count * sizeof(PvProbe));
   std::string out = "cascade  probes  valid  disabled  indoor  moved | indoor: mean lum max / mean, sky vis max | outdoor: same\n";
-  uint32_t cascades = 0;
+  uint32_t cascades = 0;  // probe_select marks the run's cascades (rr.w)
   for (uint32_t c = 0; c < kPvMaxCascades; ++c) {
     PvCascade pc;
     std::memcpy(&pc, bytes.data() + c * sizeof(PvCascade), sizeof(pc));
-    if (pc.rr.x || pc.rr.y || pc.origin.x || pc.origin.y || pc.origin.z) cascades = c + 1;
+    if (pc.rr.w) cascades = c + 1;
   }
-  if (cascades == 0) cascades = 1;
+  if (cascades == 0) return "probe_state: no cascade selected yet\n";
   const size_t per = count / cascades;
   for (uint32_t c = 0; c < cascades; ++c) {
     uint32_t valid = 0, disabled = 0, indoor = 0, moved = 0;

@@ -46,6 +46,14 @@ inline glsl::PvParams make_pv_params(const Settings& s, uint32_t frame) {
   return r;
 }
 
+// The per-pixel rays' resolution (pixel_divisor 1: full, 2: half width and height) and how many
+// ray pixels a frame has.
+inline SizeRule pv_pixel_size(const ProbeVolumeSettings& p) { return p.pixel_divisor == 1 ? SizeRule::render : SizeRule::half; }
+inline double pv_ray_pixels(const Settings& s) {
+  const uint32_t d = s.params<ProbeVolumeSettings>().pixel_divisor;
+  return double(s.width) * s.height / (d * d);
+}
+
 // A buffer resource of `bytes` (persistent: kept across frames, e.g. the per-probe caches).
 inline ResourceDesc pv_buffer(uint64_t bytes, bool persistent) {
   ResourceDesc b{Format::buffer, SizeRule::buffer};

@@ -21,10 +21,11 @@ PV_STATE_BUFFER(kPvHitLightingBindState, readonly)
 PV_PROBE_BUFFERS(kPvHitLightingBindIrradiance, kPvHitLightingBindRadiance, kPvHitLightingBindVisibility)
 #include "renderer/techniques/probe_volume/include/pv_sample.glsl"
 #include "renderer/techniques/probe_volume/include/pv_shade.glsl"
-#include "renderer/techniques/probe_volume/include/pv_pixel.glsl"
 layout(set = 0, binding = kPvHitLightingBindPosition, rgba32f) uniform readonly image2D gb_position;
 layout(set = 0, binding = kPvHitLightingBindNormal, rgba16f) uniform readonly image2D gb_normal;
 layout(set = 0, binding = kPvHitLightingBindEmissive, rgba16f) uniform readonly image2D gb_emissive;
+#define PV_PIXEL_GBUFFER
+#include "renderer/techniques/probe_volume/include/pv_pixel.glsl"
 layout(set = 0, binding = kPvHitLightingBindHits, rgba32ui) uniform readonly uimage2D in_hits;
 layout(set = 0, binding = kPvHitLightingBindSh, rg32ui) uniform writeonly uimage2D out_sh;
 layout(local_size_x = kPvHitLightingGroup, local_size_y = kPvHitLightingGroup) in;
@@ -38,14 +39,9 @@ vec3 ray_radiance(PvPixelRay r, uvec4 h) {
     return pv_cascade_at(end) < kPvMaxCascades ? pv_sample_radiance(end, r.dir, pv_point_indoor(end, vec3(0.0))).rgb : vec3(0.0);
   }
   vec4 albedo_t = pv_unpack_albedo(uvec2(h.x, 0u));
-  vec3 n = gib_oct_decode(vec2(h.y & 0xffffu, h.y >> 16u) * (1.0 / 65535.0));
+  vec3 n = pv_unpack_normal16(h.y);
   vec3 x = r.origin + r.dir * t;
-  float sun = 0.0;
-  if (kHasSun && gib_frame.sun_irradiance.w > 0.0) {
-    vec3 l = gib_frame.sun_dir.xyz;
-    float c = dot(n, l);
-    if (c > 0.0 || albedo_t.a > 0.0) sun = trace_any(gib_offset_ray(x, c > 0.0 ? n : -n), l, 0.0, 3.4e38) ? 0.0 : 1.0;
-  }
+  float sun = kHasSun ? pv_sun_visibility(x, n, albedo_t.a) : 0.0;
   vec3 l = albedo_t.rgb * (pv_sun(n, albedo_t.a, sun) + pv_local_lights(x, n, albedo_t.a)) / GIB_PI;
   vec3 e = pv_bounce(x, n, albedo_t.a, r.dir, t);
   if (pv_flag(kPvFlagProbeAo)) {
@@ -64,11 +60,7 @@ void main() {
     return;
   }
   ivec2 p = pv_source_pixel(q);
-  vec3 pos = imageLoad(gb_position, p).xyz;
-  vec3 n = imageLoad(gb_normal, p).xyz;
-  if (!(gib_finite(n) && dot(n, n) > 0.25)) n = normalize(gib_frame.camera_pos.xyz - pos);
-  n = normalize(n);
-  PvPixelRay r = pv_pixel_ray(q, pos, n, imageLoad(gb_emissive, p).w);
+  PvPixelRay r = pv_pixel_ray_from(q, p, imageLoad(gb_position, p).xyz);
   vec3 e = GIB_PI * ray_radiance(r, h) * r.weight;
   if (pv_flag(kPvFlagNanGuards) && !gib_finite(e)) e = vec3(0.0);
   vec3 ycocg = gib_rgb_to_ycocg(e);

@@ -12,13 +12,13 @@ class HitLightingPass final : public Pass {
     const ProbeVolumeSettings& p = s.params<ProbeVolumeSettings>();
     PassDecl d;
     d.name = "hit_lighting";
-    const SizeRule size = p.pixel_divisor == 1 ? SizeRule::render : SizeRule::half;
+    const SizeRule size = pv_pixel_size(p);
     d.slots = {{"pixel_hits", Access::read},        {"gbuffer_position", Access::read},
                {"gbuffer_normal", Access::read},    {"gbuffer_emissive", Access::read},
                {"probe_state", Access::read},       {"probe_irradiance", Access::read},
                {"probe_radiance", Access::read},    {"probe_visibility", Access::read},
                {"pixel_sh", Access::write, ResourceDesc{Format::rg32_uint, size}}};
-    d.work = {{"rays", double(s.width) * s.height / (p.pixel_divisor * p.pixel_divisor)}};
+    d.work = {{"rays", pv_ray_pixels(s)}};
     return d;
   }
 

@@ -54,7 +54,7 @@ struct PvProbe {
 };
 struct PvCascade {
   ivec4 origin;  // xyz: grid cell of the volume's minimum corner this frame
-  uvec4 rr;      // x: next G-buffer refresh slot, y: next relight slot, z: new probes this frame, w: unused
+  uvec4 rr;      // x: next G-buffer refresh slot, y: next relight slot, z: new probes this frame, w: 1 for the run's cascades
 };
 // probe_state: kPvMaxCascades PvCascade, then one PvProbe per probe.
 

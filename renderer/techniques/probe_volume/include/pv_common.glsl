@@ -100,8 +100,27 @@ uint pv_pack_normal_shadow(vec3 n, float sun) {
   uvec2 o = uvec2(clamp(gib_oct_encode(n), 0.0, 1.0) * 4095.0 + 0.5);
   return o.x | (o.y << 12u) | (uint(clamp(sun, 0.0, 1.0) * 255.0 + 0.5) << 24u);
 }
+// The per-pixel hit normal (pixel_hits.y): octahedral 16+16 bits.
+uint pv_pack_normal16(vec3 n) {
+  uvec2 o = uvec2(clamp(gib_oct_encode(n), 0.0, 1.0) * 65535.0 + 0.5);
+  return o.x | (o.y << 16u);
+}
+vec3 pv_unpack_normal16(uint w) { return gib_oct_decode(vec2(w & 0xffffu, w >> 16u) * (1.0 / 65535.0)); }
 vec3 pv_unpack_normal(uint w) { return gib_oct_decode(vec2(w & 4095u, (w >> 12u) & 4095u) * (1.0 / 4095.0)); }
 float pv_unpack_shadow(uint w) { return float(w >> 24u) * (1.0 / 255.0); }
+
+#if defined(GIB_BVH_GLSL) && defined(GIB_SURFACE_GLSL)
+// The sun's visibility (0/1) from a hit at x whose seen side has normal n: one shadow ray to the
+// sun's centre from the side the sun lights (either side of a translucent surface); 0 with the
+// sun off or behind an opaque surface.
+float pv_sun_visibility(vec3 x, vec3 n, float translucency) {
+  if (gib_frame.sun_irradiance.w <= 0.0) return 0.0;
+  vec3 l = gib_frame.sun_dir.xyz;
+  float c = dot(n, l);
+  if (!(c > 0.0 || translucency > 0.0)) return 0.0;
+  return trace_any(gib_offset_ray(x, c > 0.0 ? n : -n), l, 0.0, 3.4e38) ? 0.0 : 1.0;
+}
+#endif
 
 #ifdef GIB_LIGHTS_GLSL  // and sampling.glsl
 // The seed's estimate of a probe's sun and sky light (AC Shadows "Lighting update"): the sun

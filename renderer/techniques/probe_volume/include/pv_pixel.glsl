@@ -56,12 +56,25 @@ PvPixelRay pv_pixel_ray(ivec2 q, vec3 position, vec3 n, float translucency) {
   r.origin = gib_offset_ray(position, side);
   return r;
 }
+
+#ifdef PV_PIXEL_GBUFFER  // the includer declared the images gb_normal and gb_emissive
+// The ray of ray pixel q traced from source pixel p's G-buffer surface at `position`. A normal
+// that is not finite or far from unit (a NaN-injection texel) faces the camera instead.
+PvPixelRay pv_pixel_ray_from(ivec2 q, ivec2 p, vec3 position) {
+  vec3 n = imageLoad(gb_normal, p).xyz;
+  if (!(gib_finite(n) && dot(n, n) > 0.25)) n = normalize(gib_frame.camera_pos.xyz - position);
+  return pv_pixel_ray(q, position, normalize(n), imageLoad(gb_emissive, p).w);
+}
 #endif
+#endif
+
+// Y0 of a sample traced about n0, re-evaluated for normal n.
+float pv_y_for_normal(float y0, vec3 y1, vec3 n, vec3 n0) { return max(0.0, y0 + dot(y1, n - n0)); }
 
 // Irradiance (rgb, not / pi) from a decoded sample for normal n; n0 the normal it was traced about.
 vec3 pv_eval_irradiance(float y0, vec3 y1, vec2 cocg, vec3 n, vec3 n0) {
   if (!(y0 > 0.0)) return vec3(0.0);
-  float y = max(0.0, y0 + dot(y1, n - n0));
+  float y = pv_y_for_normal(y0, y1, n, n0);
   return max(gib_ycocg_to_rgb(vec3(y, cocg * (y / y0))), vec3(0.0));
 }
 

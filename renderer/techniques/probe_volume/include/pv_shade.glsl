@@ -7,16 +7,10 @@
 #ifndef GIB_PV_SHADE_GLSL
 #define GIB_PV_SHADE_GLSL
 
-// The Lambertian weight (x pi) of light from wi at a surface whose seen side has normal n.
-float pv_facing(float translucency, vec3 n, vec3 wi) {
-  float c = dot(n, wi);
-  return c > 0.0 ? (1.0 - translucency) * c : translucency * (-c);
-}
-
 // Reflected radiance (x pi / albedo) from the sun, given its visibility on the side it reaches.
 vec3 pv_sun(vec3 n, float translucency, float visibility) {
   if (gib_frame.sun_irradiance.w <= 0.0) return vec3(0.0);
-  return pv_facing(translucency, n, gib_frame.sun_dir.xyz) * visibility * gib_frame.sun_irradiance.rgb;
+  return gib_thin_facing(translucency, n, gib_frame.sun_dir.xyz) * visibility * gib_frame.sun_irradiance.rgb;
 }
 
 // Reflected radiance (x pi / albedo) from every local light, one shadow ray each.
@@ -27,7 +21,7 @@ vec3 pv_local_lights(vec3 x, vec3 n, float translucency) {
     vec3 wi;
     float dist;
     vec3 e = gib_local_light(gib_lights[i], x, wi, dist);
-    float w = pv_facing(translucency, n, wi);
+    float w = gib_thin_facing(translucency, n, wi);
     if (w <= 0.0 || all(equal(e, vec3(0.0)))) continue;
     if (!trace_any(gib_offset_ray(x, dot(n, wi) > 0.0 ? n : -n), wi, 0.0, dist * 0.999)) sum += w * e;
   }

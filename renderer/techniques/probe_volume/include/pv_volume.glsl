@@ -12,4 +12,8 @@ uint pv_cascade_at(vec3 x) {
   return kPvMaxCascades;
 }
 
+// How far a per-pixel ray from x reaches: pixel_range x the probe trace range of the cascade
+// around x (the coarsest one outside the volume).
+float pv_pixel_range(vec3 x) { return pv.volume.w * pv_trace_range(min(pv_cascade_at(x), pv_cascades() - 1u)); }
+
 #endif  // GIB_PV_VOLUME_GLSL

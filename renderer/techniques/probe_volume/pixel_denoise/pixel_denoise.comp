@@ -30,7 +30,7 @@ void decode_at(ivec2 q, vec3 n, vec3 n0, out vec4 y, out vec2 c) {
   vec3 y1;
   vec2 cocg;
   gib_unpack_ycocg_sh(imageLoad(in_sh, q).xy, y0, y1, cocg);
-  float y_n = y0 > 0.0 ? max(0.0, y0 + dot(y1, n - n0)) : 0.0;
+  float y_n = y0 > 0.0 ? pv_y_for_normal(y0, y1, n, n0) : 0.0;
   y = vec4(y_n, y1);
   c = y0 > 0.0 ? cocg * (y_n / y0) : vec2(0.0);
 }
@@ -114,7 +114,7 @@ void poisson_pixel(ivec2 q, ivec2 size) {
       float w = pv_bilateral(a, b);
       if (w <= 0.0) continue;
       vec4 y2 = imageLoad(history_y, q2);  // Y0 for b's normal: re-evaluated for a's
-      sy += w * vec4(max(0.0, y2.x + dot(y2.yzw, a.normal - b.normal)), y2.yzw);
+      sy += w * vec4(pv_y_for_normal(y2.x, y2.yzw, a.normal, b.normal), y2.yzw);
       sc += w * imageLoad(history_c, q2).xy;
       sw += w;
     }

@@ -12,7 +12,7 @@ class PixelDenoisePass final : public Pass {
     const ProbeVolumeSettings& p = s.params<ProbeVolumeSettings>();
     PassDecl d;
     d.name = "pixel_denoise";
-    const SizeRule size = p.pixel_divisor == 1 ? SizeRule::render : SizeRule::half;
+    const SizeRule size = pv_pixel_size(p);
     ResourceDesc history{Format::rgba32_float, size};
     history.persistent = true;
     // Y0 >= 0 and the signed band-1 vector; Co, Cg (signed), frames, view depth.
@@ -33,7 +33,7 @@ class PixelDenoisePass final : public Pass {
                {"pixel_history_c", Access::read_prev},
                {"pixel_gi_y", Access::write, y},
                {"pixel_gi_c", Access::write, c}};
-    d.work = {{"pixels", double(s.width) * s.height / (p.pixel_divisor * p.pixel_divisor)}};
+    d.work = {{"pixels", pv_ray_pixels(s)}};
     return d;
   }
 

@@ -52,13 +52,7 @@ Texel trace_texel(vec3 o, vec3 d, float range, float reach) {
   if (back && m.translucency == 0.0 && hit.t < reach) atomicAdd(s_backfaces, 1u);
   atomicAdd(s_hits, 1u);
   vec3 n = back ? -s.normal : s.normal;  // the side the probe sees
-  float sun = 0.0;
-  if (kHasSun && gib_frame.sun_irradiance.w > 0.0) {
-    vec3 l = gib_frame.sun_dir.xyz;
-    float c = dot(n, l);
-    if (c > 0.0 || m.translucency > 0.0)
-      sun = trace_any(gib_offset_ray(s.position, c > 0.0 ? n : -n), l, 0.0, 3.4e38) ? 0.0 : 1.0;
-  }
+  float sun = kHasSun ? pv_sun_visibility(s.position, n, m.translucency) : 0.0;
   r.material = pv_pack_material(gib_material_albedo(m, s.uv), m.translucency, m.emissive);
   r.normal = pv_pack_normal_shadow(n, sun);
   r.depth = gib_float_to_half(hit.t);

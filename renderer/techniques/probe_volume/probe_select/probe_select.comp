@@ -52,7 +52,7 @@ void main() {
     ivec3 origin = ivec3(floor(centre / s)) - pv_dims() / 2;
     s_origin[tid] = origin;
     pv_cascade[tid].origin = ivec4(origin, 0);
-    pv_cascade[tid].rr.z = 0u;
+    pv_cascade[tid].rr.zw = uvec2(0u, 1u);
   }
   if (tid == 0u) s_count = 0u;
   barrier();

@@ -24,7 +24,7 @@ layout(set = 0, binding = kPvScreenTraceBindAlbedo, rgba16f) uniform readonly im
 layout(set = 0, binding = kPvScreenTraceBindHits, rgba32ui) uniform writeonly uimage2D out_hits;
 layout(std430, set = 0, binding = kPvScreenTraceBindStats) buffer StatsBuffer { uvec4 stats; };
 layout(local_size_x = kPvScreenTraceGroup, local_size_y = kPvScreenTraceGroup) in;
-
+#define PV_PIXEL_GBUFFER
 #include "renderer/techniques/probe_volume/include/pv_pixel.glsl"
 
 // Clip x, y, w of a world point, camera-relative (precise far from the origin): the camera's
@@ -53,10 +53,7 @@ void main() {
     return;
   }
   atomicAdd(stats.x, 1u);
-  vec3 n = imageLoad(gb_normal, p).xyz;
-  if (!(gib_finite(n) && dot(n, n) > 0.25)) n = normalize(gib_frame.camera_pos.xyz - pos.xyz);  // NaN guard
-  n = normalize(n);
-  PvPixelRay r = pv_pixel_ray(q, pos.xyz, n, imageLoad(gb_emissive, p).w);
+  PvPixelRay r = pv_pixel_ray_from(q, p, pos.xyz);
   uint flags = kPvPixelValid | (r.back ? kPvPixelBack : 0u);
   uint steps = uint(screen.x);
   // Back-side rays of translucent surfaces skip the screen (what is behind is not on it).
@@ -64,8 +61,7 @@ void main() {
     store_world(q, pv_min_start(), flags);
     return;
   }
-  uint c = pv_cascade_at(pos.xyz);
-  float range = pv.volume.w * pv_trace_range(min(c, pv_cascades() - 1u));
+  float range = pv_pixel_range(pos.xyz);
   // The march's end: the range, or just before the camera plane if the ray crosses it.
   vec3 c0 = clip_xyw(r.origin), cd = clip_xyw(r.origin + r.dir) - c0;
   float t_end = range;
@@ -118,7 +114,6 @@ void main() {
     // On screen: the hit's material from the G-buffer at that pixel, the distance to the
     // visible surface's plane along the ray (the point lit downstream lies on it).
     uvec2 mat = pv_pack_material(imageLoad(gb_albedo, hp).rgb, imageLoad(gb_emissive, hp).w, vec3(0.0));
-    uvec2 o = uvec2(clamp(gib_oct_encode(hn), 0.0, 1.0) * 65535.0 + 0.5);
     float hit_t = max(dot(hpos.xyz - r.origin, hn) / facing, pv_min_start());
     // ... and only near the point the pixel shows: a pixel straddling a silhouette shows the far
     // surface, whose plane the ray may cross far from it, beyond the near wall it really hit.
@@ -126,7 +121,7 @@ void main() {
       store_world(q, last, flags);
       return;
     }
-    imageStore(out_hits, q, uvec4(mat.x, o.x | (o.y << 16u), floatBitsToUint(hit_t), flags | kPvPixelHit | kPvPixelScreen));
+    imageStore(out_hits, q, uvec4(mat.x, pv_pack_normal16(hn), floatBitsToUint(hit_t), flags | kPvPixelHit | kPvPixelScreen));
     atomicAdd(stats.y, 1u);
     return;
   }

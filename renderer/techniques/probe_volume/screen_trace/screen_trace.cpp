@@ -12,7 +12,7 @@ class ScreenTracePass final : public Pass {
     const ProbeVolumeSettings& p = s.params<ProbeVolumeSettings>();
     PassDecl d;
     d.name = "screen_trace";
-    const SizeRule size = p.pixel_divisor == 1 ? SizeRule::render : SizeRule::half;
+    const SizeRule size = pv_pixel_size(p);
     ResourceDesc stats{Format::buffer, SizeRule::buffer};
     stats.bytes = 16;
     d.slots = {{"gbuffer_position", Access::read},
@@ -22,8 +22,8 @@ class ScreenTracePass final : public Pass {
                {"probe_state", Access::read},
                {"pixel_hits", Access::write, ResourceDesc{Format::rgba32_uint, size}},
                {"pixel_trace_stats", Access::write, stats}};
-    d.work = {{"rays", double(s.width) * s.height / (p.pixel_divisor * p.pixel_divisor)},
-              {"steps", double(s.width) * s.height / (p.pixel_divisor * p.pixel_divisor) * p.screen_steps}};
+    d.work = {{"rays", pv_ray_pixels(s)},
+              {"steps", pv_ray_pixels(s) * p.screen_steps}};
     return d;
   }
 

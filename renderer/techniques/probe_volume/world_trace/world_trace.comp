@@ -16,10 +16,11 @@ layout(push_constant) uniform Push { PvParams pv; };
 #include "renderer/techniques/probe_volume/include/pv_common.glsl"
 PV_STATE_BUFFER(kPvWorldTraceBindState, readonly)
 #include "renderer/techniques/probe_volume/include/pv_volume.glsl"
-#include "renderer/techniques/probe_volume/include/pv_pixel.glsl"
 layout(set = 0, binding = kPvWorldTraceBindPosition, rgba32f) uniform readonly image2D gb_position;
 layout(set = 0, binding = kPvWorldTraceBindNormal, rgba16f) uniform readonly image2D gb_normal;
 layout(set = 0, binding = kPvWorldTraceBindEmissive, rgba16f) uniform readonly image2D gb_emissive;
+#define PV_PIXEL_GBUFFER
+#include "renderer/techniques/probe_volume/include/pv_pixel.glsl"
 layout(set = 0, binding = kPvWorldTraceBindHits, rgba32ui) uniform uimage2D out_hits;
 layout(local_size_x = kPvWorldTraceGroup, local_size_y = kPvWorldTraceGroup) in;
 
@@ -30,13 +31,8 @@ void main() {
   if ((prior.w & kPvPixelWorld) == 0u) return;  // settled on screen, or no surface
   ivec2 p = pv_source_pixel(q);
   vec3 pos = imageLoad(gb_position, p).xyz;
-  vec3 n = imageLoad(gb_normal, p).xyz;
-  if (!(gib_finite(n) && dot(n, n) > 0.25)) n = normalize(gib_frame.camera_pos.xyz - pos);  // NaN guard
-  n = normalize(n);
-  float translucency = imageLoad(gb_emissive, p).w;
-  PvPixelRay r = pv_pixel_ray(q, pos, n, translucency);
-  uint c = pv_cascade_at(pos);
-  float range = pv.volume.w * pv_trace_range(min(c, pv_cascades() - 1u));
+  PvPixelRay r = pv_pixel_ray_from(q, p, pos);
+  float range = pv_pixel_range(pos);
   float start = max(uintBitsToFloat(prior.z), pv_min_start());
   uint flags = prior.w;
   GibHit hit;
@@ -48,6 +44,5 @@ void main() {
   GpuMaterial m = gib_materials[s.material];
   vec3 hn = dot(s.normal, r.dir) > 0.0 ? -s.normal : s.normal;  // the side the ray sees
   uvec2 mat = pv_pack_material(gib_material_albedo(m, s.uv), m.translucency, vec3(0.0));
-  uvec2 o = uvec2(clamp(gib_oct_encode(hn), 0.0, 1.0) * 65535.0 + 0.5);
-  imageStore(out_hits, q, uvec4(mat.x, o.x | (o.y << 16u), floatBitsToUint(hit.t), flags | kPvPixelHit));
+  imageStore(out_hits, q, uvec4(mat.x, pv_pack_normal16(hn), floatBitsToUint(hit.t), flags | kPvPixelHit));
 }

@@ -9,7 +9,6 @@ namespace {
 class WorldTracePass final : public Pass {
  public:
   PassDecl declare(const Scene&, const Settings& s) const override {
-    const ProbeVolumeSettings& p = s.params<ProbeVolumeSettings>();
     PassDecl d;
     d.name = "world_trace";
     d.slots = {{"gbuffer_position", Access::read},
@@ -17,7 +16,7 @@ class WorldTracePass final : public Pass {
                {"gbuffer_emissive", Access::read},
                {"probe_state", Access::read},
                {"pixel_hits", Access::read_write}};
-    d.work = {{"rays", double(s.width) * s.height / (p.pixel_divisor * p.pixel_divisor)}};
+    d.work = {{"rays", pv_ray_pixels(s)}};
     return d;
   }
 

@@ -35,14 +35,6 @@ RC_LIGHT_GRID_BUFFER(kRcShadeBindLightGrid)
 
 const float kFar = 3.4e38;
 
-// Lambertian response (times pi: multiplied by irradiance-like e, divided by pi by the caller)
-// to light from wi at a point with normal n facing the viewer: reflection in front, transmission
-// (translucency) from behind.
-float facing_weight(float translucency, vec3 n, vec3 wi) {
-  float c = dot(n, wi);
-  return c > 0.0 ? (1.0 - translucency) * c : translucency * (-c);
-}
-
 // Radiance leaving the surface at a hit of a bounce ray travelling along wi.
 vec3 bounce_radiance(GibHit hit, vec3 wi, uint now) {
   GibSurface s = gib_surface(hit.triangle, hit.u, hit.v, rc.flags.y != 0u);
@@ -115,7 +107,7 @@ void main() {
 
   if (kHasSun && gib_frame.sun_irradiance.w > 0.0) {
     vec3 wi = gib_uniform_cone(gib_frame.sun_dir.xyz, gib_frame.sun_dir.w, gib_next2(rng));
-    float w = facing_weight(translucency, n, wi);
+    float w = gib_thin_facing(translucency, n, wi);
     if (w > 0.0 && !trace_any(gib_offset_ray(x, dot(n, wi) > 0.0 ? n : -n), wi, 0.0, kFar))
       result += albedo / GIB_PI * w * gib_frame.sun_irradiance.rgb;
   }
@@ -127,7 +119,7 @@ void main() {
         vec3 wi;
         float dist;
         vec3 e = gib_local_light(gib_lights[LG_CELL_LIGHT(base, i)], x, wi, dist);
-        float w = facing_weight(translucency, n, wi);
+        float w = gib_thin_facing(translucency, n, wi);
         if (w <= 0.0 || all(equal(e, vec3(0.0)))) continue;
         if (!trace_any(gib_offset_ray(x, dot(n, wi) > 0.0 ? n : -n), wi, 0.0, dist * 0.999))
           result += albedo / GIB_PI * w * e;
