@@ -20,7 +20,7 @@ std::vector<uint32_t> evaluation_frames(const Case& c) {
 }
 
 bool per_frame_references(const Case& c) {
-  return !c.eval_frames.empty() && c.scene.features().has(Feature::motion);
+  return !c.eval_frames.empty() && c.scene.time_varying();
 }
 
 namespace {

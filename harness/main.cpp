@@ -85,6 +85,8 @@ int main(int argc, char** argv) {
   sweep_opts.out = "out/sweep";
   auto* sweep = app.add_subcommand("sweep", "error against GPU time for every technique x preset of a case");
   add_suite_options(sweep, sweep_opts);
+  sweep->add_option("--technique", sweep_opts.techniques,
+                    "only the rows of this technique (repeatable; default: every row of the case)");
 
   gib::TimingOptions timing_opts;
   auto* timing = app.add_subcommand(

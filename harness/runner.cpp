@@ -351,6 +351,12 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
     row.metrics["flip_vs_reference"] = compute_metric(c, "flip", final_image, ref, nullptr);
     row.metrics["psnr_vs_reference"] = compute_metric(c, "psnr", final_image, ref, nullptr);
     row.metrics["relmse_vs_reference"] = compute_metric(c, "relmse", final_image, ref, nullptr);
+    // Every ROI's ratio to the path-traced reference at the last frame, so rows without an
+    // accuracy bound (ablations such as probe-volume's per-mitigation rows) still record it;
+    // a roi_ratio threshold below replaces the value with its worst over the evaluated frames.
+    if (c.reference_spp)
+      for (const Roi& roi : c.rois)
+        row.metrics["roi_ratio_vs_reference_" + roi.name] = compute_metric(c, "roi_ratio", final_image, ref, &roi);
   }
   MetricSeries series{r.curve.empty() ? nullptr : &r.curve, r.last_frames.size() < 2 ? nullptr : &r.last_frames,
                       r.scanned ? &r.stability : nullptr, r.nan_pixels.empty() ? nullptr : &r.nan_pixels};

@@ -10,6 +10,7 @@
 #include "harness/case_render.h"
 #include "harness/goldens.h"
 #include "metrics/flip.h"
+#include "metrics/image_metrics.h"
 #include "renderer/techniques/technique.h"
 
 namespace fs = std::filesystem;
@@ -69,6 +70,10 @@ std::string sweep_svg(const std::string& case_name, const std::vector<SweepPoint
 }
 
 int cmd_sweep(const SuiteOptions& o) {
+  for (const std::string& t : o.techniques) find_technique(t);  // an unknown name is an error, before any GPU work
+  auto selected = [&](const std::string& t) {
+    return o.techniques.empty() || std::find(o.techniques.begin(), o.techniques.end(), t) != o.techniques.end();
+  };
   std::vector<Case> cases = select_cases(o);
   auto gpu = Gpu::create({o.device, o.validate});
   std::string cls = device_class(gpu->info().driver_name, gpu->info().name);
@@ -76,6 +81,8 @@ int cmd_sweep(const SuiteOptions& o) {
     GoldenStore store(o.goldens_dir, c.name);
     std::vector<SweepPoint> pts;
     for (auto& run : c.techniques) {
+      if (!selected(run.technique)) continue;
+      const std::string row = run.label.empty() ? run.technique : run.technique + "+" + run.label;
       std::string aov = run.compare_aov.empty() ? c.output : run.compare_aov;
       std::string ref_path = store.find(GoldenStore::reference_stem(aov, c.output), cls);
       if (ref_path.empty())
@@ -91,10 +98,19 @@ int cmd_sweep(const SuiteOptions& o) {
         // technique: the median of its timed frames (scan-free, after the case's; render_case).
         const bool whole = run.technique == "reference";
         double ms = whole ? r.gpu_ms_total : r.frame_median_ms;
-        pts.push_back({run.technique, preset, ms, flip(ref, r.image, fo).mean, false,
-                       uint32_t(whole ? r.frames : r.timing.frames.size()), r.timing.scan_free()});
-        fmt::print("{:<12} {:<8} {:>10.3f} ms  FLIP {:.4f}  ({} {} frames)\n", run.technique, preset, ms,
-                   pts.back().flip, whole ? "sum of" : "median of", pts.back().timed_frames);
+        SweepPoint pt{row, preset, ms, flip(ref, r.image, fo).mean};
+        pt.timed_frames = uint32_t(whole ? r.frames : r.timing.frames.size());
+        pt.scan_free = r.timing.scan_free();
+        std::string rois;
+        for (const Roi& roi : c.rois) {
+          const metrics::Roi box{roi.x0, roi.y0, roi.x1, roi.y1};
+          const double want = metrics::roi_mean_luminance(ref, box);
+          pt.roi_ratios.emplace_back(roi.name, want > 0 ? metrics::roi_mean_luminance(r.image, box) / want : 0.0);
+          rois += fmt::format("  {} {:.3f}", roi.name, pt.roi_ratios.back().second);
+        }
+        pts.push_back(std::move(pt));
+        fmt::print("{:<28} {:<8} {:>10.3f} ms  FLIP {:.4f}{}  ({} {} frames)\n", row, preset, ms, pts.back().flip, rois,
+                   whole ? "sum of" : "median of", pts.back().timed_frames);
       }
     }
     mark_pareto(pts);
@@ -105,8 +121,11 @@ int cmd_sweep(const SuiteOptions& o) {
     nlohmann::json j = nlohmann::json::array();
     for (auto& p : pts) {
       csv << fmt::format("{},{},{:.6f},{:.6f},{}\n", p.technique, p.preset, p.gpu_ms, p.flip, p.pareto ? 1 : 0);
+      nlohmann::json rois = nlohmann::json::object();
+      for (auto& [name, ratio] : p.roi_ratios) rois[name] = ratio;
       j.push_back({{"technique", p.technique}, {"preset", p.preset}, {"gpu_ms", p.gpu_ms}, {"flip", p.flip},
-                   {"pareto", p.pareto}, {"timed_frames", p.timed_frames}, {"scan_free", p.scan_free}});
+                   {"pareto", p.pareto}, {"timed_frames", p.timed_frames}, {"scan_free", p.scan_free},
+                   {"roi_ratio", rois}});
     }
     std::ofstream(dir / "sweep.json") << j.dump(2) << "\n";
     std::ofstream(dir / "sweep.svg") << sweep_svg(c.name, pts);

@@ -10,8 +10,10 @@
 namespace gib {
 
 struct SweepPoint {
-  std::string technique, preset;
+  std::string technique, preset;  // technique: the case row's name, TECHNIQUE or TECHNIQUE+LABEL
   double gpu_ms = 0, flip = 0;
+  // The case's ROIs: mean luminance of the row's image / the reference's (1: no leak, no lost light).
+  std::vector<std::pair<std::string, double>> roi_ratios;
   bool pareto = false;
   uint32_t timed_frames = 0;  // frames gpu_ms comes from (CaseRender::timing; a reference: its sum)
   bool scan_free = false;

@@ -375,6 +375,52 @@ TEST(SceneAnimation, CameraKeys) {
   expect_near(s.camera_at(9.0f).position, {10, 0, 0});
 }
 
+TEST(SceneAnimation, SunKeys) {
+  Scene s = minimal_scene();
+  s.sun.enabled = true;
+  s.sun.direction = {0, 1, 0};
+  s.sun.irradiance = {2, 2, 2};
+  EXPECT_FALSE(s.lighting_changes());
+  // Elevation 60 degrees -> 30 degrees in the x-y plane over one second, irradiance 2 -> 1.
+  const float d60 = 60.0f * 3.14159265f / 180.0f, d30 = 30.0f * 3.14159265f / 180.0f;
+  s.sun.animation = {SunKey{0.0f, {std::cos(d60), std::sin(d60), 0}, {2, 2, 2}},
+                     SunKey{1.0f, {std::cos(d30), std::sin(d30), 0}, {1, 1, 1}}};
+  EXPECT_TRUE(s.lighting_changes());
+  EXPECT_TRUE(s.time_varying());
+  EXPECT_FALSE(s.features().has(Feature::motion));  // lighting, not geometry
+  // Slerp: a quarter of the way the sun is at 52.5 degrees, exactly (a lerp of the vectors would not be).
+  Sun q = s.sun_at(0.25f);
+  const float d525 = 52.5f * 3.14159265f / 180.0f;
+  expect_near(q.direction, Vec3{std::cos(d525), std::sin(d525), 0}, 1e-5f);
+  expect_near(q.irradiance, Vec3{1.75f, 1.75f, 1.75f});
+  EXPECT_TRUE(q.animation.empty());
+  expect_near(s.sun_at(-3.0f).direction, Vec3{std::cos(d60), std::sin(d60), 0}, 1e-6f);
+  expect_near(s.sun_at(5.0f).irradiance, Vec3{1, 1, 1});
+  expect_near(s.sun_at(std::nanf("")).direction, Vec3{std::cos(d60), std::sin(d60), 0}, 1e-6f);
+  // Equal keys hold still; a disabled sun changes nothing.
+  s.sun.animation[1] = s.sun.animation[0];
+  EXPECT_FALSE(s.lighting_changes());
+  s.sun.animation[1].irradiance = {0, 0, 0};
+  EXPECT_TRUE(s.lighting_changes());
+  s.sun.enabled = false;
+  EXPECT_FALSE(s.lighting_changes());
+}
+
+TEST(SceneAnimation, SunKeysLoaded) {
+  Scene s = parse_scene(nlohmann::json::parse(R"({"materials": {"m": {}}, "objects": [{"primitive": {"type": "box"}, "material": "m"}],
+    "sun": {"direction": [0, 1, 0], "irradiance": [1, 1, 1],
+            "animation": [{"time": 0}, {"time": 2, "direction": [1, 1, 0]}, {"time": 3, "irradiance": [0, 0, 0]}]}})"),
+                              "sun.json");
+  ASSERT_EQ(s.sun.animation.size(), 3u);
+  expect_near(s.sun.animation[0].direction, {0, 1, 0});  // missing fields take the static values
+  expect_near(s.sun.animation[1].direction, Vec3{std::sqrt(0.5f), std::sqrt(0.5f), 0}, 1e-6f);  // normalised
+  expect_near(s.sun.animation[1].irradiance, {1, 1, 1});
+  expect_near(s.sun.animation[2].irradiance, {0, 0, 0});
+  expect_near(s.sun.animation[2].direction, {0, 1, 0});
+  EXPECT_TRUE(s.lighting_changes());
+  EXPECT_TRUE(s.features().has(Feature::sun));
+}
+
 // ---------------------------------------------------------------- flatten
 
 TEST(SceneFlatten, TransformsPositionsAndNormals) {
@@ -642,6 +688,22 @@ const BadCase kBadCases[] = {
     {"lights not an array", [](json& d) { d["lights"] = json::object(); }, "/lights", "expected array, got empty object"},
     {"sun direction zero", [](json& d) { d["sun"] = json::parse(R"({"direction": [0, 0, 0], "irradiance": [1, 1, 1]})"); },
      "/sun/direction", "expected non-zero direction vector, got [0, 0, 0]"},
+    {"sun keys out of order",
+     [](json& d) {
+       d["sun"] = json::parse(R"({"direction": [0, 1, 0], "irradiance": [1, 1, 1], "animation": [{"time": 1}, {"time": 1}]})");
+     },
+     "/sun/animation/1/time", "expected time > 1 (the previous key's), got 1"},
+    {"sun key opposite the previous",
+     [](json& d) {
+       d["sun"] = json::parse(
+           R"({"direction": [0, 1, 0], "irradiance": [1, 1, 1], "animation": [{"time": 0}, {"time": 1, "direction": [0, -1, 0]}]})");
+     },
+     "/sun/animation/1/direction", "expected a direction less than 177 degrees from the previous key's"},
+    {"sun key typo",
+     [](json& d) {
+       d["sun"] = json::parse(R"({"direction": [0, 1, 0], "irradiance": [1, 1, 1], "animation": [{"time": 0, "irradiaance": 1}]})");
+     },
+     "/sun/animation/0/irradiaance", "expected one of the keys time, direction, irradiance"},
     {"gradient sky without horizon", [](json& d) { d["sky"] = json::parse(R"({"type": "gradient", "radiance": [1, 1, 1]})"); },
      "/sky/horizon", "got missing key"},
     {"camera far before near", [](json& d) { d["camera"] = json::parse(R"({"near": 1, "far": 0.5})"); }, "/camera/far",

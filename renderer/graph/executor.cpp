@@ -374,7 +374,7 @@ void Executor::upload_frame_constants(float time) {
   std::memcpy(f.prev_view_proj.m, frame_ ? prev_view_proj_ : &vp.m[0][0], 64);
   std::memcpy(prev_view_proj_, vp.m, 64);
   f.camera_pos = {cam.position.x, cam.position.y, cam.position.z, std::tan(fov * 0.5f)};
-  const Sun& sun = scene_.sun;
+  const Sun sun = scene_.sun_at(time);
   Vec3 sd = normalize(sun.direction);
   f.sun_dir = {sd.x, sd.y, sd.z, std::cos(sun.angular_radius_deg * 3.14159265f / 180.0f)};
   f.sun_irradiance = {sun.irradiance.x, sun.irradiance.y, sun.irradiance.z, sun.enabled ? 1.0f : 0.0f};

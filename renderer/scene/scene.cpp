@@ -104,7 +104,9 @@ GpuMaterial material_to_gpu(const Material& m) {
 
 SceneFeatures Scene::features() const {
   SceneFeatures f;
-  if (sun.enabled && any_positive(sun.irradiance)) f |= Feature::sun;
+  const bool sun_keys_lit = std::any_of(sun.animation.begin(), sun.animation.end(),
+                                        [](const SunKey& k) { return any_positive(k.irradiance); });
+  if (sun.enabled && (any_positive(sun.irradiance) || sun_keys_lit)) f |= Feature::sun;
   bool sky_lit = sky.kind == SkyKind::constant
                      ? any_positive(sky.radiance)
                      : any_positive(sky.radiance) || any_positive(sky.horizon) || any_positive(sky.ground);
@@ -170,6 +172,37 @@ Camera Scene::camera_at(float time) const {
   c.target = lerp(a.target, b.target, w);
   c.fov_y_deg = a.fov_y_deg + (b.fov_y_deg - a.fov_y_deg) * w;
   return c;
+}
+
+Sun Scene::sun_at(float time) const {
+  Sun s = sun;
+  s.animation.clear();
+  if (sun.animation.empty()) return s;
+  size_t i0, i1;
+  float w;
+  bracket(sun.animation, time, i0, i1, w);
+  const SunKey& a = sun.animation[i0];
+  const SunKey& b = sun.animation[i1];
+  // Directions turn at a constant rate between keys (slerp); nearly equal ones lerp, and keys
+  // pointing opposite ways (no defined arc) are refused by the loader.
+  const float c = std::clamp(dot(a.direction, b.direction), -1.0f, 1.0f);
+  const float angle = std::acos(c);
+  if (angle < 1e-4f) {
+    s.direction = normalize(lerp(a.direction, b.direction, w));
+  } else {
+    const float sa = std::sin(angle);
+    s.direction = normalize(a.direction * (std::sin((1.0f - w) * angle) / sa) + b.direction * (std::sin(w * angle) / sa));
+  }
+  s.irradiance = lerp(a.irradiance, b.irradiance, w);
+  return s;
+}
+
+bool Scene::lighting_changes() const {
+  for (size_t i = 1; i < sun.animation.size(); ++i)
+    if (!(sun.animation[i].direction == sun.animation[0].direction) ||
+        !(sun.animation[i].irradiance == sun.animation[0].irradiance))
+      return sun.enabled;
+  return false;
 }
 
 FlatScene flatten(const Scene& scene, float time, Vec3 world_offset, const std::vector<float>* average_opacity) {

@@ -95,11 +95,19 @@ struct LocalLight {
   float outer_cone_deg = 30.0f;
 };
 
+// A sun keyframe: a time-of-day change (direction slerped, irradiance linear between keys).
+struct SunKey {
+  float time = 0;
+  Vec3 direction{0, 1, 0};
+  Vec3 irradiance{0, 0, 0};
+};
+
 struct Sun {
   bool enabled = false;
   Vec3 direction{0, 1, 0};   // towards the sun, normalised
   Vec3 irradiance{0, 0, 0};  // W/m^2 on a surface facing the sun
   float angular_radius_deg = 0.27f;
+  std::vector<SunKey> animation;  // empty: static
 };
 
 enum class SkyKind : uint32_t { none = 0, constant = 1, gradient = 2, analytic = 3 };
@@ -144,6 +152,11 @@ struct Scene {
   SceneFeatures features() const;  // derived, never typed by hand
   Mat4 instance_transform(uint32_t instance, float time) const;
   Camera camera_at(float time) const;  // animation resolved
+  Sun sun_at(float time) const;        // animation resolved
+  // Anything changes with time: motion (camera, objects) or lighting (sun keys that differ).
+  // Cases evaluated at several frames of such a scene get a reference per frame.
+  bool lighting_changes() const;
+  bool time_varying() const { return features().has(Feature::motion) || lighting_changes(); }
 };
 
 // ---- GPU layout (std430), mirrored in renderer/shaders/include/scene.glsl ----

@@ -471,12 +471,29 @@ LocalLight parse_light(const Node& n) {
 }
 
 Sun parse_sun(const Node& n) {
-  check_object(n, {"enabled", "direction", "irradiance", "angular_radius_deg"});
+  check_object(n, {"enabled", "direction", "irradiance", "angular_radius_deg", "animation"});
   Sun s;
   s.enabled = get_bool(n["enabled"], true);
   s.direction = get_direction(n["direction"], std::nullopt);
   s.irradiance = get_vec3(n["irradiance"], kNonNegative, std::nullopt);
   s.angular_radius_deg = get_float(n["angular_radius_deg"], Range{0.0, 45.0}, s.angular_radius_deg);
+  Node anim = n["animation"];
+  if (anim.present()) {
+    check_array(anim, true);
+    for (size_t k = 0; k < anim.v->size(); ++k) {
+      Node key = anim[k];
+      check_object(key, {"time", "direction", "irradiance"});
+      SunKey sk;
+      sk.time = get_key_time(key["time"], k, k ? s.animation.back().time : 0.0f);
+      sk.direction = get_direction(key["direction"], s.direction);
+      sk.irradiance = get_vec3(key["irradiance"], kNonNegative, s.irradiance);
+      // Between keys the direction turns along the shorter arc; opposite directions have none.
+      if (k && dot(sk.direction, s.animation.back().direction) < -0.999f)
+        key["direction"].fail("a direction less than 177 degrees from the previous key's (the sun turns along the shorter arc)",
+                              fmt::format("[{}, {}, {}]", sk.direction.x, sk.direction.y, sk.direction.z));
+      s.animation.push_back(sk);
+    }
+  }
   return s;
 }
 
