@@ -31,6 +31,17 @@ void bracket(const std::vector<Key>& keys, float time, size_t& i0, size_t& i1, f
   w = span > 0 ? (time - keys[i0].time) / span : 0.0f;
 }
 
+// The keys around `time` and the weight of the second: false for an empty animation.
+template <class Key>
+bool keys_at(const std::vector<Key>& keys, float time, const Key*& a, const Key*& b, float& w) {
+  if (keys.empty()) return false;
+  size_t i0, i1;
+  bracket(keys, time, i0, i1, w);
+  a = &keys[i0];
+  b = &keys[i1];
+  return true;
+}
+
 // Upper-left 3x3 cofactor matrix times sign(det) == det-scaled inverse-transpose with the
 // right orientation. Unlike inverse().transpose() it stays finite for zero scale, so a
 // collapsed instance gets (renormalised or zero) normals instead of NaN.
@@ -162,27 +173,23 @@ Mat4 Scene::instance_transform(uint32_t instance, float time) const {
 Camera Scene::camera_at(float time) const {
   Camera c = camera;
   c.animation.clear();
-  if (camera.animation.empty()) return c;
-  size_t i0, i1;
+  const CameraKey *a, *b;
   float w;
-  bracket(camera.animation, time, i0, i1, w);
-  const CameraKey& a = camera.animation[i0];
-  const CameraKey& b = camera.animation[i1];
-  c.position = lerp(a.position, b.position, w);
-  c.target = lerp(a.target, b.target, w);
-  c.fov_y_deg = a.fov_y_deg + (b.fov_y_deg - a.fov_y_deg) * w;
+  if (!keys_at(camera.animation, time, a, b, w)) return c;
+  c.position = lerp(a->position, b->position, w);
+  c.target = lerp(a->target, b->target, w);
+  c.fov_y_deg = a->fov_y_deg + (b->fov_y_deg - a->fov_y_deg) * w;
   return c;
 }
 
 Sun Scene::sun_at(float time) const {
   Sun s = sun;
   s.animation.clear();
-  if (sun.animation.empty()) return s;
-  size_t i0, i1;
+  const SunKey *k0, *k1;
   float w;
-  bracket(sun.animation, time, i0, i1, w);
-  const SunKey& a = sun.animation[i0];
-  const SunKey& b = sun.animation[i1];
+  if (!keys_at(sun.animation, time, k0, k1, w)) return s;
+  const SunKey& a = *k0;
+  const SunKey& b = *k1;
   // Directions turn at a constant rate between keys (slerp); nearly equal ones lerp, and keys
   // pointing opposite ways (no defined arc) are refused by the loader.
   const float c = std::clamp(dot(a.direction, b.direction), -1.0f, 1.0f);
