@@ -20,6 +20,11 @@ GIB_CONST(uint, kPvIrradianceSide, 7)
 GIB_CONST(uint, kPvIrradianceTexels, 49)
 // A G-buffer texel whose ray missed stores this half-float depth (+Inf).
 GIB_CONST(uint, kPvMissDepthBits, 0x7c00)
+// A stored depth (a half float: 11 significant bits, rounded to nearest) is within depth x 2^-11
+// of the hit. Points rebuilt from it are pulled back along the ray by depth x 2^-10, so they stay
+// in front of the surface and their shadow rays do not start behind it (with the exact depth
+// about half the far texels shadowed themselves from local lights: interior-point-light).
+GIB_CONST(float, kPvDepthPullback, 1.0 / 1024.0)
 
 // Per-probe buffers, probe index p = cascade * probes_per_cascade + slot (toroidal: slot
 // x + X * (z + Z * y) of the cell's grid coordinate modulo the grid, so a probe keeps its slot

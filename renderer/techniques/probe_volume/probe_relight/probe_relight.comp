@@ -96,7 +96,7 @@ void light_hit() {
   vec4 albedo_t = pv_unpack_albedo(gb_material[g]);
   uint nw = gb_normal[g];
   vec3 n = pv_unpack_normal(nw);
-  vec3 x = o + d * depth;
+  vec3 x = o + d * (depth * (1.0 - kPvDepthPullback));  // in front of the surface (kPvDepthPullback)
   vec3 local = pv_local_lights(x, n, albedo_t.a);
   vec3 light = pv_sun(n, albedo_t.a, pv_unpack_shadow(nw)) + local;
   vec3 radiance = albedo_t.rgb * light / GIB_PI;
