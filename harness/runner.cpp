@@ -33,6 +33,10 @@ bool glob_match(const std::string& pattern, const std::string& text) {
   return fnmatch(pattern.c_str(), text.c_str(), 0) == 0;
 }
 
+bool technique_selected(const std::vector<std::string>& techniques, const std::string& technique) {
+  return techniques.empty() || std::find(techniques.begin(), techniques.end(), technique) != techniques.end();
+}
+
 std::vector<Case> select_cases(const SuiteOptions& o) {
   std::vector<Case> all = load_cases(o.cases_dir);
   if (o.case_globs.empty()) return all;
@@ -547,9 +551,7 @@ int cmd_run(const SuiteOptions& o) {
   }
   auto is_ours = [&](const Case& c, const std::string& kind, const std::string& technique, const std::string& preset,
                      const std::string& control) { return ours.count(row_key(c.name, kind, technique, preset, control)) > 0; };
-  auto selected = [&](const std::string& technique) {
-    return o.techniques.empty() || std::find(o.techniques.begin(), o.techniques.end(), technique) != o.techniques.end();
-  };
+  auto selected = [&](const std::string& technique) { return technique_selected(o.techniques, technique); };
   for (const Case& c : cases) {
     if (!our_cases.count(c.name)) continue;
     const bool any = std::any_of(c.techniques.begin(), c.techniques.end(), [&](auto& r) { return selected(r.technique); }) ||

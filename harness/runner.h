@@ -111,6 +111,8 @@ int cmd_update_goldens(const UpdateOptions& o);
 
 bool glob_match(const std::string& pattern, const std::string& text);
 std::vector<Case> select_cases(const SuiteOptions& o);
+// Whether rows of `technique` are in a --technique list (empty: every technique).
+bool technique_selected(const std::vector<std::string>& techniques, const std::string& technique);
 
 // What the per-run metrics read beyond one image: the convergence curve (ROI mean luminance
 // per frame, conv_*) and the last frames (flicker).

@@ -10,7 +10,6 @@
 #include "harness/case_render.h"
 #include "harness/goldens.h"
 #include "metrics/flip.h"
-#include "metrics/image_metrics.h"
 #include "renderer/techniques/technique.h"
 
 namespace fs = std::filesystem;
@@ -71,9 +70,6 @@ std::string sweep_svg(const std::string& case_name, const std::vector<SweepPoint
 
 int cmd_sweep(const SuiteOptions& o) {
   for (const std::string& t : o.techniques) find_technique(t);  // an unknown name is an error, before any GPU work
-  auto selected = [&](const std::string& t) {
-    return o.techniques.empty() || std::find(o.techniques.begin(), o.techniques.end(), t) != o.techniques.end();
-  };
   std::vector<Case> cases = select_cases(o);
   auto gpu = Gpu::create({o.device, o.validate});
   std::string cls = device_class(gpu->info().driver_name, gpu->info().name);
@@ -81,7 +77,7 @@ int cmd_sweep(const SuiteOptions& o) {
     GoldenStore store(o.goldens_dir, c.name);
     std::vector<SweepPoint> pts;
     for (auto& run : c.techniques) {
-      if (!selected(run.technique)) continue;
+      if (!technique_selected(o.techniques, run.technique)) continue;
       const std::string row = run.label.empty() ? run.technique : run.technique + "+" + run.label;
       std::string aov = run.compare_aov.empty() ? c.output : run.compare_aov;
       std::string ref_path = store.find(GoldenStore::reference_stem(aov, c.output), cls);
@@ -103,9 +99,7 @@ int cmd_sweep(const SuiteOptions& o) {
         pt.scan_free = r.timing.scan_free();
         std::string rois;
         for (const Roi& roi : c.rois) {
-          const metrics::Roi box{roi.x0, roi.y0, roi.x1, roi.y1};
-          const double want = metrics::roi_mean_luminance(ref, box);
-          pt.roi_ratios.emplace_back(roi.name, want > 0 ? metrics::roi_mean_luminance(r.image, box) / want : 0.0);
+          pt.roi_ratios.emplace_back(roi.name, compute_metric(c, "roi_ratio", r.image, &ref, &roi));  // as `run` reports it
           rois += fmt::format("  {} {:.3f}", roi.name, pt.roi_ratios.back().second);
         }
         pts.push_back(std::move(pt));

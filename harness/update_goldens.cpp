@@ -116,9 +116,7 @@ int cmd_update_goldens(const UpdateOptions& o) {
     }
     for (auto& run : c.techniques) {
       if (o.only_reference) break;
-      if (!o.techniques.empty() &&
-          std::find(o.techniques.begin(), o.techniques.end(), run.technique) == o.techniques.end())
-        continue;
+      if (!technique_selected(o.techniques, run.technique)) continue;
       for (auto& preset : run.presets) {
         CaseRender r = render_case(*gpu, c, run, preset);
         replace(store, meta, GoldenStore::technique_stem(run.name(), preset), cls, r.image,

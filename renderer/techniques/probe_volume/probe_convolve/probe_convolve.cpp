@@ -29,15 +29,7 @@ class ProbeConvolvePass final : public Pass {
 
   void record(RecordContext& ctx) override {
     using namespace glsl;
-    const Buffer* irradiance = &ctx.buffer("probe_irradiance");
-    if (ctx.frame == 0 || irradiance != zeroed_) {
-      ctx.cmd.barrier(kStageCompute, kStageTransfer);
-      ctx.cmd.fill(*irradiance, 0);
-      ctx.cmd.fill(ctx.buffer("probe_radiance"), 0);
-      ctx.cmd.fill(ctx.buffer("probe_visibility"), 0);
-      ctx.cmd.barrier(kStageTransfer, kStageCompute);
-      zeroed_ = irradiance;
-    }
+    // The probe buffers are persistent: the executor zeroes them when it creates them.
     PvConvolvePush push{make_pv_params(ctx.settings, ctx.frame)};
     record_compute(ctx, {.shader = "probe_convolve.comp",
                          .push = &push,
@@ -55,9 +47,6 @@ class ProbeConvolvePass final : public Pass {
                          .indirect = "probe_selection",
                          .indirect_offset = offsetof(PvSelection, all_args)});
   }
-
- private:
-  const Buffer* zeroed_ = nullptr;
 };
 
 }  // namespace

@@ -25,22 +25,13 @@ class ProbeSelectPass final : public Pass {
 
   void record(RecordContext& ctx) override {
     using namespace glsl;
-    const Buffer* state = &ctx.buffer("probe_state");
-    if (ctx.frame == 0 || state != zeroed_) {
-      ctx.cmd.barrier(kStageCompute, kStageTransfer);
-      ctx.cmd.fill(*state, 0);
-      ctx.cmd.barrier(kStageTransfer, kStageCompute);
-      zeroed_ = state;
-    }
+    // probe_state is persistent: the executor zeroes it when it creates it.
     PvSelectPush push{make_pv_params(ctx.settings, ctx.frame)};
     record_compute(ctx, {.shader = "probe_select.comp",
                          .push = &push,
                          .push_bytes = sizeof(push),
                          .buffers = {{kPvSelectBindState, "probe_state"}, {kPvSelectBindSelection, "probe_selection"}}});
   }
-
- private:
-  const Buffer* zeroed_ = nullptr;
 };
 
 }  // namespace

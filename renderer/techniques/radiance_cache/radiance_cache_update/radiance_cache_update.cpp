@@ -39,15 +39,11 @@ class RadianceCacheUpdatePass final : public Pass {
   void record(RecordContext& ctx) override {
     using namespace glsl;
     RcUpdatePush push{make_rc_params(ctx.settings, ctx.frame), {active_capacity(ctx.settings), 0, 0, 0}};
-    // Last frame's shade read rc_counters (indirect args) and rc_cells: order the fills after it.
+    // Last frame's shade read rc_counters (indirect args): order the fill after it. (rc_cells is
+    // persistent: the executor zeroes it when it creates it.)
     ctx.cmd.barrier(kStageCompute, kStageTransfer);
     ctx.cmd.begin_label("radiance_cache_update/reset");
     ctx.cmd.fill(ctx.buffer("rc_counters"), 0);
-    const Buffer* cells = &ctx.buffer("rc_cells");
-    if (ctx.frame == 0 || cells != zeroed_cells_) {
-      ctx.cmd.fill(*cells, 0);
-      zeroed_cells_ = cells;
-    }
     ctx.cmd.end_label();
     ctx.cmd.barrier(kStageTransfer, kStageCompute);
 
@@ -91,9 +87,6 @@ class RadianceCacheUpdatePass final : public Pass {
                          .buffers = buffers});
     ctx.cmd.end_label();
   }
-
- private:
-  const Buffer* zeroed_cells_ = nullptr;
 };
 
 }  // namespace
