@@ -83,13 +83,15 @@ struct TechniqueRun {
   // tracks it). A failing run is reported as "known_failure" and does not fail the suite; a
   // run that passes fails it ("remove known_failure"), so the mark cannot go stale. Keyed by
   // device class (harness/goldens.h device_class), "*" for every class: a defect may show on
-  // one class of device only (a precision-dependent leak, a driver's rounding).
+  // one class of device only (a precision-dependent leak, a driver's rounding); CLASS@TIER and
+  // *@TIER (ci, gpu) for one tier only.
   std::map<std::string, std::string> known_failure;
-  // The known failure that applies on `device_class` ("" if none).
-  std::string known_failure_on(const std::string& device_class) const {
-    auto it = known_failure.find(device_class);
-    if (it == known_failure.end()) it = known_failure.find("*");
-    return it == known_failure.end() ? "" : it->second;
+  // The known failure that applies on `device_class` at `tier` ("" if none): the first of the
+  // keys CLASS@TIER, *@TIER, CLASS, * present.
+  std::string known_failure_on(const std::string& device_class, const std::string& tier = "ci") const {
+    for (const std::string& k : {device_class + "@" + tier, "*@" + tier, device_class, std::string("*")})
+      if (auto it = known_failure.find(k); it != known_failure.end()) return it->second;
+    return "";
   }
   // A reference (path tracer) row's samples per pixel, split over frames like a committed
   // reference's; independent of Case::reference_spp (the committed reference's budget, often
@@ -123,7 +125,13 @@ struct Case {
   std::string description;
   Scene scene;              // inline, or loaded from "scene": "scenes/cornell.json" (relative to the case file)
   std::string scene_file;   // "" when inline
+  // What the scene was read from: the scene file's bytes, or the inline scene's JSON (the GPU
+  // tier's reference cache key, harness/tier.h).
+  std::string scene_text;
+  // The CI tier's size (lavapipe, CI: small), and the GPU tier's (harness/tier.h: chosen on GPU
+  // devices; 640x360 by default, the size Falcor's image tests use).
   uint32_t width = 256, height = 144;
+  uint32_t gpu_width = 640, gpu_height = 360;
   uint32_t frames = 1;      // frames rendered for non-reference techniques (the last is compared)
   // 1-based frames at which thresholds are evaluated (the worst value counts); empty = the
   // last frame. In a scene with motion, each has its own reference rendered at that frame's

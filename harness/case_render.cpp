@@ -28,7 +28,7 @@ namespace {
 // `budget`: a path tracer's samples per pixel, split over frames (0: the case's frames at the
 // preset's samples per frame, like any technique).
 CaseRender render(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::string& preset, uint32_t seed_offset,
-                  uint32_t at_frame, bool scan, uint32_t budget) {
+                  uint32_t at_frame, bool scan, uint32_t budget, const FrameProgress& progress = {}) {
   const Technique& t = find_technique(run.technique);
   Settings s;
   s.width = c.width;
@@ -83,6 +83,7 @@ CaseRender render(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::s
   const uint32_t keep_last = spp_budget ? 0 : c.flicker_frames;
   for (uint32_t f = 1; f <= frames; ++f) {
     results.push_back(ex.run_frame());
+    if (progress) progress(f, frames);
     bool eval_here = std::find(eval.begin(), eval.end(), f) != eval.end();
     bool keep = keep_last && f + keep_last > frames;
     const bool track_nan = c.track_nan;  // the reference too: its accumulation is temporal
@@ -158,12 +159,13 @@ CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const s
   return render(gpu, c, run, preset, seed_offset, at_frame, scan, run.technique == "reference" ? run.spp : 0);
 }
 
-CaseRender render_reference(Gpu& gpu, const Case& c, uint32_t seed_offset, uint32_t at_frame) {
+CaseRender render_reference(Gpu& gpu, const Case& c, uint32_t seed_offset, uint32_t at_frame,
+                            const FrameProgress& progress) {
   if (c.reference_spp == 0) throw std::runtime_error(fmt::format("{}: the case has no reference (reference_spp 0)", c.name));
   TechniqueRun ref_run;
   ref_run.technique = "reference";
   ref_run.presets = {"ultra"};
-  return render(gpu, c, ref_run, "ultra", seed_offset, at_frame, false, c.reference_spp);
+  return render(gpu, c, ref_run, "ultra", seed_offset, at_frame, false, c.reference_spp, progress);
 }
 
 }  // namespace gib

@@ -1,6 +1,7 @@
 // Rendering one case x technique x preset (x options) on a Gpu: shared by run,
 // update-goldens, the noise floor and sweep.
 #pragma once
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -48,7 +49,10 @@ CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const s
 // at_frame (1-based) renders the scene as it is at that frame of a technique run (a per-frame
 // reference of an animated scene; 0 = the scene's first frame, time 0). Every contract AOV is
 // in CaseRender::aovs.
-CaseRender render_reference(Gpu& gpu, const Case& c, uint32_t seed_offset = 0, uint32_t at_frame = 0);
+// `progress` (may be empty) is called after each frame with (frames done, frames in all).
+using FrameProgress = std::function<void(uint32_t done, uint32_t total)>;
+CaseRender render_reference(Gpu& gpu, const Case& c, uint32_t seed_offset = 0, uint32_t at_frame = 0,
+                            const FrameProgress& progress = {});
 
 // The 1-based frames a technique run is evaluated at: Case::eval_frames, or {frames}.
 std::vector<uint32_t> evaluation_frames(const Case& c);

@@ -36,6 +36,9 @@ std::string device_class(const std::string& driver, const std::string& name) {
 GoldenStore::GoldenStore(std::string root, std::string case_name)
     : root_(std::move(root)), case_(std::move(case_name)), dir_((fs::path(root_) / case_).string()) {}
 
+GoldenStore::GoldenStore(std::string root, std::string case_name, const std::string& sub)
+    : root_(std::move(root)), case_(std::move(case_name)), dir_((fs::path(root_) / case_ / sub).string()) {}
+
 std::string GoldenStore::reference_stem(const std::string& aov, const std::string& default_aov, uint32_t frame) {
   std::string stem = aov.empty() || aov == default_aov ? "reference" : "reference." + aov;
   return frame ? fmt::format("{}.f{:03}", stem, frame) : stem;
@@ -58,9 +61,9 @@ std::string GoldenStore::find(const std::string& stem, const std::string& cls) c
   return "";
 }
 
-FloatImage GoldenStore::read(const std::string& path) const {
+FloatImage GoldenStore::read(const std::string& path, bool* half) const {
   try {
-    return read_image(path);
+    return read_image(path, half);
   } catch (const std::exception& e) {
     throw GoldenError(fmt::format("{}: expected a readable EXR golden, got: {}", path, e.what()));
   }
@@ -81,7 +84,7 @@ std::string GoldenStore::write(const std::string& stem, const std::string& cls, 
   // move the old one to history, then rename the new into place: at no point is the golden
   // missing or partial.
   fs::path staged = fs::path(dir_) / fmt::format(".staged.{}.{}.exr", getpid(), stem);
-  write_exr(staged.string(), image);
+  write_exr(staged.string(), image, write_half_ && fits_half(image));
   try {
     if (fs::exists(target)) {
       fs::create_directories(fs::path(dir_) / "history");
@@ -129,11 +132,12 @@ void GoldenStore::write_metadata(const nlohmann::json& j) {
   fs::rename(tmp, p);
 }
 
-nlohmann::json measure_noise_floor(Gpu& gpu, const Case& c, const CaseRender* first) {
+nlohmann::json measure_noise_floor(Gpu& gpu, const Case& c, const CaseRender* first,
+                                   const std::function<void(uint32_t, uint32_t)>& progress) {
   uint32_t at = per_frame_references(c) ? evaluation_frames(c).back() : 0;
   std::optional<CaseRender> a;
-  if (!first) first = &a.emplace(render_reference(gpu, c, 0, at));
-  CaseRender b = render_reference(gpu, c, 1000, at);
+  if (!first) first = &a.emplace(render_reference(gpu, c, 0, at, progress));
+  CaseRender b = render_reference(gpu, c, 1000, at, progress);
   FlipOptions fo;
   fo.ppd = c.ppd;
   fo.mode = c.flip_mode == "ldr" ? FlipOptions::Mode::ldr : FlipOptions::Mode::hdr;

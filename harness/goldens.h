@@ -3,6 +3,7 @@
 // goldens/<case>/golden.json. Writes are atomic (temporary file + rename); a replaced file
 // moves to goldens/<case>/history/ first, so a bad update can be undone by moving it back.
 #pragma once
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -26,6 +27,11 @@ std::string device_class(const std::string& driver_name, const std::string& devi
 class GoldenStore {
  public:
   GoldenStore(std::string root, std::string case_name);
+  // A store in <root>/<case>/<sub> (the GPU tier's goldens, a reference cache entry).
+  GoldenStore(std::string root, std::string case_name, const std::string& sub);
+  // New files are written as half-float EXR (float when a finite value would not fit in
+  // half): the GPU tier's committed goldens. Readers take either.
+  void set_write_half(bool on) { write_half_ = on; }
   const std::string& dir() const { return dir_; }
   // File stems: "reference", "reference.direct", "reference.direct.f010" (the reference of
   // frame 10 of an animated case), "direct.medium".
@@ -34,7 +40,8 @@ class GoldenStore {
   // The golden to compare with on `device_class`: "<stem>.<class>.exr" if present, else
   // "<stem>.exr". Empty when neither exists.
   std::string find(const std::string& stem, const std::string& device_class) const;
-  FloatImage read(const std::string& path) const;  // GoldenError naming the file when corrupt
+  // GoldenError naming the file when corrupt; *half (if given): stored as half floats.
+  FloatImage read(const std::string& path, bool* half = nullptr) const;
   // Writes atomically; moves an existing file to history/<stem>.<utc timestamp>.exr and
   // returns that history path ("" when nothing was replaced).
   std::string write(const std::string& stem, const std::string& device_class, const FloatImage& image);
@@ -48,6 +55,7 @@ class GoldenStore {
 
  private:
   std::string root_, case_, dir_;
+  bool write_half_ = false;
 };
 
 // The reference noise floor: FLIP (the case's flip_mode and ppd) between the reference rendered
@@ -57,7 +65,9 @@ class GoldenStore {
 // {"flip", "aov", "aovs": {aov: flip}, "spp", "seeds", "device_class", "device", "driver",
 // "date"[, "at_frame"]}. `first`: the reference_seed render already made (update-goldens), or
 // null to render both here (run --noise-floor).
-nlohmann::json measure_noise_floor(Gpu& gpu, const Case& c, const CaseRender* first = nullptr);
+// `progress` (may be empty) sees the frames of each render it makes.
+nlohmann::json measure_noise_floor(Gpu& gpu, const Case& c, const CaseRender* first = nullptr,
+                                   const std::function<void(uint32_t, uint32_t)>& progress = {});
 // Stores a measured floor in golden.json: the top-level "noise_floor" (what the check below
 // reads) and, on every path-traced reference file's entry (one with an "aov"), "noise_floor"
 // {"flip" (of that file's AOV), "aov", "spp", "seeds"}.

@@ -1,5 +1,7 @@
 #include "harness/image_io.h"
 
+#include "renderer/codecs/half.h"
+
 #include <fmt/format.h>
 
 #include <OpenImageIO/imageio.h>
@@ -32,13 +34,30 @@ void write_atomic(const std::string& path, const OIIO::ImageSpec& spec, const vo
 
 }  // namespace
 
-void write_exr(const std::string& path, const FloatImage& img) {
-  OIIO::ImageSpec spec(int(img.width), int(img.height), int(img.channels), OIIO::TypeDesc::FLOAT);
+void write_exr(const std::string& path, const FloatImage& img, bool half) {
+  OIIO::ImageSpec spec(int(img.width), int(img.height), int(img.channels),
+                       half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
   static const char* kNames[] = {"R", "G", "B", "A"};
   spec.channelnames.assign(kNames, kNames + img.channels);
   spec.alpha_channel = img.channels == 4 ? 3 : -1;
   spec.attribute("compression", "zip");
-  write_atomic(path, spec, img.pixels.data());
+  if (!half) return write_atomic(path, spec, img.pixels.data());
+  // Our own rounding (the GPU codecs' CPU mirror), not the library's, so round_to_half is exact.
+  std::vector<uint16_t> bits(img.pixels.size());
+  for (size_t i = 0; i < bits.size(); ++i) bits[i] = codecs::float_to_half(img.pixels[i]);
+  write_atomic(path, spec, bits.data());
+}
+
+bool fits_half(const FloatImage& img) {
+  for (float v : img.pixels)
+    if (std::isfinite(v) && std::abs(v) >= 65520.0f) return false;
+  return true;
+}
+
+FloatImage round_to_half(const FloatImage& img) {
+  FloatImage out = img;
+  for (float& v : out.pixels) v = codecs::half_to_float(codecs::float_to_half(v));
+  return out;
 }
 
 void write_png_preview(const std::string& path, const FloatImage& img) {
@@ -55,10 +74,11 @@ void write_png_preview(const std::string& path, const FloatImage& img) {
   write_atomic(path, spec, rgb.data());
 }
 
-FloatImage read_image(const std::string& path) {
+FloatImage read_image(const std::string& path, bool* half) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw std::runtime_error(fmt::format("{}: cannot read image: {}", path, OIIO::geterror()));
   const auto& spec = in->spec();
+  if (half) *half = spec.format == OIIO::TypeDesc::HALF;
   FloatImage img;
   img.width = uint32_t(spec.width);
   img.height = uint32_t(spec.height);

@@ -12,6 +12,7 @@
 #include "harness/sweep.h"
 #include "harness/report_check.h"
 #include "harness/timing.h"
+#include "harness/tier.h"
 
 namespace {
 
@@ -22,6 +23,9 @@ void add_suite_options(CLI::App* app, gib::SuiteOptions& o) {
   app->add_option("--out", o.out, "output folder");
   app->add_option("--device", o.device, "device index or name substring");
   app->add_flag("--validate", o.validate, "Vulkan validation on; any message fails the run");
+  app->add_option("--tier", o.tier, "ci | gpu: case sizes, references and goldens (default: ci on lavapipe, gpu elsewhere)");
+  app->add_option("--reference-cache", o.reference_cache,
+                  "GPU tier's reference cache (default $GIBENCH_REFERENCE_CACHE, else ~/.cache/gibench/references)");
 }
 
 }  // namespace
@@ -80,6 +84,9 @@ int main(int argc, char** argv) {
   update->add_flag("--only-reference", up.only_reference,
                    "with --reference: render no technique golden (e.g. references rendered on a GPU for every device)");
   update->add_option("--reason", up.reason, "why: recorded in golden.json")->required();
+  update->add_option("--from-run", up.from_run,
+                     "approve the technique outputs of a finished `gibench run --out DIR` (its device class and tier) "
+                     "instead of rendering them again");
 
   gib::SuiteOptions sweep_opts;
   sweep_opts.out = "out/sweep";
@@ -98,6 +105,14 @@ int main(int argc, char** argv) {
   timing->add_option("--frames", timing_opts.frames, "timed frames per render (default: the case's timing_frames)");
   timing->add_option("--bench-warmup", timing_opts.bench_warmup, "bench's warm-up frames (default: the case's frames)");
   timing->add_option("--json", timing_opts.json, "write every sample as JSON");
+
+  gib::SuiteOptions refs_opts;
+  bool refresh = false, dry_run = false;
+  auto* references = app.add_subcommand(
+      "references", "render the GPU tier's path-traced references into the local cache (those missing, or --refresh all)");
+  add_suite_options(references, refs_opts);
+  references->add_flag("--refresh", refresh, "re-render references already in the cache");
+  references->add_flag("--dry-run", dry_run, "print each case's size, target floor, start spp and cache key; render nothing");
 
   std::string report_dir = "out";
   auto* check_report = app.add_subcommand(
@@ -141,6 +156,7 @@ int main(int argc, char** argv) {
     }
     if (app.got_subcommand("update-goldens")) return gib::cmd_update_goldens(up);
     if (app.got_subcommand("sweep")) return gib::cmd_sweep(sweep_opts);
+    if (app.got_subcommand("references")) return gib::cmd_references(refs_opts, refresh, dry_run);
     if (app.got_subcommand("timing")) return gib::cmd_timing(timing_opts);
     if (app.got_subcommand("check-report")) return gib::cmd_check_report(report_dir);
     if (app.got_subcommand("merge")) return gib::cmd_merge(mo);

@@ -83,7 +83,8 @@ nlohmann::json suite_to_json(const SuiteResult& suite) {
   nlohmann::json j;
   j["device"] = {{"name", suite.device.name}, {"type", suite.device.type}, {"driver", suite.device.driver_name},
                  {"driver_info", suite.device.driver_info}, {"class", suite.device_class},
-                 {"golden_class", suite.golden_class}};
+                 {"golden_class", suite.golden_class}, {"tier", suite.tier}};
+  if (!suite.references.empty()) j["references"] = suite.references;
   j["psnr_definition"] = metrics::psnr_description();
   if (!suite.shard.is_null()) j["shard"] = suite.shard;
   j["case_errors"] = suite.case_errors;

@@ -11,6 +11,7 @@
 #include "harness/case_render.h"
 #include "harness/goldens.h"
 #include "harness/shard.h"
+#include "harness/tier.h"
 
 #include <cstring>
 #include "harness/image_io.h"
@@ -233,7 +234,9 @@ namespace {
 
 struct CaseContext {
   const Case& c;
-  GoldenStore store;
+  GoldenStore store;       // approved technique goldens of the tier
+  GoldenStore refs;        // the references of the tier (committed, or the GPU tier's cache entry)
+  std::string tier;
   std::string cls;         // the device's class: known failures
   std::string golden_cls;  // whose approved technique goldens rows are compared with
   std::map<std::string, FloatImage> references;  // by AOV
@@ -247,12 +250,14 @@ const FloatImage& reference_for(CaseContext& ctx, const std::string& aov, uint32
   std::string stem = GoldenStore::reference_stem(aov, ctx.c.output, per_frame_references(ctx.c) ? frame : 0);
   auto it = ctx.references.find(stem);
   if (it != ctx.references.end()) return it->second;
-  std::string path = ctx.store.find(stem, ctx.cls);
+  std::string path = ctx.refs.find(stem, "");
   if (path.empty())
-    throw GoldenError(fmt::format(
-        "{}/{}.exr: golden missing; create it with: gibench update-goldens --case {} --reference --reason \"initial reference\"",
-        ctx.store.dir(), stem, ctx.c.name));
-  return ctx.references[stem] = ctx.store.read(path);
+    throw GoldenError(ctx.tier == "gpu"
+        ? fmt::format("{}/{}.exr: reference missing from the cache; render it with: gibench references --case {}",
+                      ctx.refs.dir(), stem, ctx.c.name)
+        : fmt::format("{}/{}.exr: golden missing; create it with: gibench update-goldens --case {} --reference "
+                      "--reason \"initial reference\"", ctx.refs.dir(), stem, ctx.c.name));
+  return ctx.references[stem] = ctx.refs.read(path);
 }
 
 // How far a value lies outside a threshold's bounds (<= 0 inside; NaN counts as infinitely far).
@@ -384,11 +389,12 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
     std::string path = ctx.store.find(stem, ctx.golden_cls);
     if (path.empty()) {
       row.messages.push_back(fmt::format(
-          "{}/{}.exr: golden missing; create it with: gibench update-goldens --case {} --technique {} --reason \"initial golden\"",
-          ctx.store.dir(), stem, c.name, run.technique));
+          "{}/{}.exr: golden missing; create it with: gibench update-goldens --case {} --technique {}{} --reason \"initial golden\"",
+          ctx.store.dir(), stem, c.name, run.technique, ctx.tier == "gpu" ? " --tier gpu" : ""));
       failed = true;
     } else {
-      golden = ctx.store.read(path);
+      bool half = false;
+      golden = ctx.store.read(path, &half);
       row.golden_class =
           fs::path(path).filename() == ctx.store.file_name(stem, ctx.golden_cls) ? ctx.golden_cls : "lavapipe";
       if (row.golden_class != ctx.golden_cls)
@@ -396,21 +402,24 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
             "compared with the {} golden ({}): no {} golden is approved for this run; approve one on a device of that class with: "
             "gibench update-goldens --case {} --technique {} --reason \"...\"",
             row.golden_class, fs::path(path).filename().string(), ctx.golden_cls, c.name, run.technique));
+      // A half-float golden (the GPU tier's) stores the output rounded to half: compare the
+      // output rounded the same way, so an unchanged technique differs in no value.
+      const FloatImage out = half ? round_to_half(r.image) : r.image;
       Threshold gt{"flip", "golden", "", c.golden_flip_max, std::nullopt};
-      CheckResult cr = check_value(gt, compute_metric(c, "flip", r.image, &*golden, nullptr), 0);
+      CheckResult cr = check_value(gt, compute_metric(c, "flip", out, &*golden, nullptr), 0);
       row.metrics["flip_vs_golden"] = cr.value;
       // Determinism (every technique is bit-identical run to run on one device and driver):
       // how many floats differ from the approved golden, and by how much at most.
       size_t differ = 0;
       double worst = 0;
-      if (golden->pixels.size() == r.image.pixels.size())
-        for (size_t i = 0; i < r.image.pixels.size(); ++i)
-          if (std::memcmp(&golden->pixels[i], &r.image.pixels[i], sizeof(float)) != 0) {
+      if (golden->pixels.size() == out.pixels.size())
+        for (size_t i = 0; i < out.pixels.size(); ++i)
+          if (std::memcmp(&golden->pixels[i], &out.pixels[i], sizeof(float)) != 0) {
             ++differ;
-            worst = std::max(worst, std::abs(double(golden->pixels[i]) - double(r.image.pixels[i])));
+            worst = std::max(worst, std::abs(double(golden->pixels[i]) - double(out.pixels[i])));
           }
       row.metrics["golden_differing_values"] =
-          golden->pixels.size() == r.image.pixels.size() ? double(differ) : double(r.image.pixels.size());
+          golden->pixels.size() == out.pixels.size() ? double(differ) : double(out.pixels.size());
       row.metrics["golden_max_abs_diff"] = worst;
       row.checks.push_back(cr);
       failed |= !cr.pass;
@@ -489,14 +498,15 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
   }
   row.printouts = r.printouts;
   row.status = failed ? "fail" : "pass";
-  if (std::string known = run.known_failure_on(ctx.cls); !known.empty() && kind == "technique") {
+  if (std::string known = run.known_failure_on(ctx.cls, ctx.tier); !known.empty() && kind == "technique") {
     if (failed) {
       row.status = "known_failure";
       row.messages.insert(row.messages.begin(), "known failure: " + known);
     } else {
       row.status = "fail";
-      row.messages.push_back(fmt::format("marked known_failure on {} but every check passed: remove it from the case ({})",
-                                         ctx.cls, known));
+      row.messages.push_back(fmt::format(
+          "marked known_failure on {} at the {} tier but every check passed: remove it from the case ({})", ctx.cls,
+          ctx.tier, known));
     }
   }
   return row;
@@ -509,17 +519,17 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
 void check_noise_floor(CaseContext& ctx, Gpu& gpu) {
   const Case& c = ctx.c;
   if (c.reference_spp == 0) return;  // no reference, no floor
-  nlohmann::json meta = ctx.store.metadata();
+  nlohmann::json meta = ctx.refs.metadata();
   if (ctx.o.noise_floor) {
     Case at_spp = c;
     at_spp.reference_spp = recorded_reference_spp(c, meta);
     nlohmann::json floor = measure_noise_floor(gpu, at_spp);
     record_noise_floor(meta, floor);
-    ctx.store.write_metadata(meta);
+    ctx.refs.write_metadata(meta);
     fmt::print("{}: noise floor (FLIP between two seeds at {} spp) {:.6f}\n", c.name, floor["spp"].get<uint32_t>(),
                floor["flip"].get<double>());
   }
-  check_noise_floor_bounds(c, meta, (fs::path(ctx.store.dir()) / "golden.json").string());
+  check_noise_floor_bounds(c, meta, (fs::path(ctx.refs.dir()) / "golden.json").string());
 }
 
 }  // namespace
@@ -532,8 +542,13 @@ int cmd_run(const SuiteOptions& o) {
   suite.device = gpu->info();
   suite.device_class = device_class(suite.device.driver_name, suite.device.name);
   suite.golden_class = o.golden_class.empty() ? suite.device_class : o.golden_class;
-  fmt::print("device: {} ({} {}), device class {}, golden class {}\n", suite.device.name, suite.device.driver_name,
-             suite.device.driver_info, suite.device_class, suite.golden_class);
+  const Tier tier = resolve_tier(o.tier, suite.device_class);
+  suite.tier = tier_name(tier);
+  for (Case& c : cases) c = at_tier(c, tier);
+  const std::string cache_root = tier == Tier::gpu ? reference_cache_root(o.reference_cache) : "";
+  fmt::print("device: {} ({} {}), device class {}, golden class {}, tier {}{}\n", suite.device.name,
+             suite.device.driver_name, suite.device.driver_info, suite.device_class, suite.golden_class, suite.tier,
+             tier == Tier::gpu ? fmt::format(" (references cached in {})", cache_root) : "");
   // Sharding: row i of the plan runs in shard i % N; a case none of whose rows is ours is skipped
   // whole (no reference read).
   const Shard shard = o.shard.empty() ? Shard{} : parse_shard(o.shard);
@@ -558,7 +573,23 @@ int cmd_run(const SuiteOptions& o) {
                      std::any_of(c.negative_controls.begin(), c.negative_controls.end(),
                                  [&](auto& nc) { return selected(nc.run.technique); });
     if (!any) continue;
-    CaseContext ctx{c, GoldenStore(o.goldens_dir, c.name), suite.device_class, suite.golden_class, {}, {}, o};
+    // GPU tier: references come from the cache; any missing are rendered first.
+    bool rendered = false;
+    std::optional<ReferenceSource> src;
+    try {
+      src = prepare_references(*gpu, o.goldens_dir, cache_root, c, tier, &rendered);
+    } catch (const std::exception& e) {
+      suite.case_errors.push_back(fmt::format("{}: {}", c.name, e.what()));
+      continue;
+    }
+    if (tier == Tier::gpu && c.reference_spp) {
+      nlohmann::json meta = src->store.metadata();
+      suite.references[c.name] = {{"key", src->key}, {"dir", src->store.dir()}, {"rendered", rendered},
+                                  {"spp", recorded_reference_spp(c, meta)},
+                                  {"noise_floor", meta["noise_floor"].value("worst", 0.0)}};
+    }
+    CaseContext ctx{c, technique_store(o.goldens_dir, c.name, tier), src->store, suite.tier, suite.device_class,
+                    suite.golden_class, {}, {}, o};
     if (c.analytic_value) ctx.analytic = FloatImage(c.width, c.height, 4, float(*c.analytic_value));
     try {
       check_noise_floor(ctx, *gpu);

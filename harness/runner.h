@@ -36,6 +36,10 @@ struct SuiteOptions {
   // run: only rows (and negative controls) of these techniques; empty: every technique. Cases
   // with none are skipped whole.
   std::vector<std::string> techniques;
+  // "ci" | "gpu" | "" (by device: ci on lavapipe, gpu elsewhere; harness/tier.h).
+  std::string tier;
+  // The GPU tier's reference cache (harness/tier.h reference_cache_root; "" = the default).
+  std::string reference_cache;
 };
 
 struct CheckResult {
@@ -87,6 +91,9 @@ struct SuiteResult {
   DeviceInfo device;
   std::string device_class;
   std::string golden_class;  // SuiteOptions::golden_class, or device_class
+  std::string tier;          // "ci" or "gpu" (harness/tier.h)
+  // Per case at the GPU tier: {"key", "dir", "spp", "noise_floor", "rendered": this run made it}.
+  nlohmann::json references = nlohmann::json::object();
   // A sharded run: {"index", "count", "plan" (every row key of the suite, in order), "rows"
   // (this shard's)}; null otherwise.
   nlohmann::json shard;
@@ -106,6 +113,9 @@ struct UpdateOptions {
   bool only_reference = false;          // with reference: no technique golden is rendered
   std::string reason;
   bool yes = true;                      // no interactive confirmation (CI, scripts)
+  // Approve the technique outputs of a finished `gibench run` (its --out folder: results.json and
+  // img/<row>.exr) instead of rendering them again: the device class and tier are the run's.
+  std::string from_run;
 };
 int cmd_update_goldens(const UpdateOptions& o);
 

@@ -85,7 +85,7 @@ int cmd_merge(const MergeOptions& o) {
   std::map<uint32_t, std::string> by_index;
   nlohmann::json plan;
   uint32_t count = 0;
-  std::string device_class;
+  std::string device_class, tier;
   for (const std::string& dir : o.shard_dirs) {
     nlohmann::json j = read_results(dir);
     std::string where = (fs::path(dir) / "results.json").string();
@@ -106,6 +106,11 @@ int cmd_merge(const MergeOptions& o) {
       throw std::runtime_error(fmt::format(
           "{}: device.class: expected {} as in {} (goldens and verdicts are per device class), got {}", where,
           device_class, o.shard_dirs.front(), j["device"].value("class", "")));
+    if (shards.empty()) tier = j["device"].value("tier", "");
+    if (j["device"].value("tier", "") != tier)
+      throw std::runtime_error(fmt::format(
+          "{}: device.tier: expected {} as in {} (sizes, references and goldens are per tier), got {}", where, tier,
+          o.shard_dirs.front(), j["device"].value("tier", "")));
     if (auto [it, fresh] = by_index.emplace(k, dir); !fresh)
       throw std::runtime_error(fmt::format("{}: shard {}/{} given twice (also {})", where, k, n, it->second));
     shards.push_back(std::move(j));

@@ -9,6 +9,7 @@
 
 #include "harness/case_render.h"
 #include "harness/goldens.h"
+#include "harness/tier.h"
 #include "metrics/flip.h"
 #include "renderer/techniques/technique.h"
 
@@ -73,14 +74,18 @@ int cmd_sweep(const SuiteOptions& o) {
   std::vector<Case> cases = select_cases(o);
   auto gpu = Gpu::create({o.device, o.validate});
   std::string cls = device_class(gpu->info().driver_name, gpu->info().name);
-  for (const Case& c : cases) {
-    GoldenStore store(o.goldens_dir, c.name);
+  const Tier tier = resolve_tier(o.tier, cls);
+  const std::string cache_root = tier == Tier::gpu ? reference_cache_root(o.reference_cache) : "";
+  fmt::print("tier {}\n", tier_name(tier));
+  for (const Case& c0 : cases) {
+    const Case c = at_tier(c0, tier);
+    GoldenStore store = prepare_references(*gpu, o.goldens_dir, cache_root, c, tier).store;
     std::vector<SweepPoint> pts;
     for (auto& run : c.techniques) {
       if (!technique_selected(o.techniques, run.technique)) continue;
       const std::string row = run.label.empty() ? run.technique : run.technique + "+" + run.label;
       std::string aov = run.compare_aov.empty() ? c.output : run.compare_aov;
-      std::string ref_path = store.find(GoldenStore::reference_stem(aov, c.output), cls);
+      std::string ref_path = store.find(GoldenStore::reference_stem(aov, c.output), "");
       if (ref_path.empty())
         throw GoldenError(fmt::format("{}: reference golden missing; create it with: gibench update-goldens --case {} "
                                       "--reference --reason \"initial reference\"", store.dir(), c.name));

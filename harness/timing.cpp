@@ -1,5 +1,7 @@
 #include "harness/timing.h"
 
+#include "harness/tier.h"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -99,6 +101,9 @@ int cmd_timing(const TimingOptions& o) {
   const std::string preset = o.preset.empty() ? run->presets.front() : o.preset;
   auto gpu = Gpu::create({o.suite.device, o.suite.validate});
   const DeviceInfo& dev = gpu->info();
+  const Tier tier = resolve_tier(o.suite.tier, device_class(dev.driver_name, dev.name));
+  c = at_tier(c, tier);
+  fmt::print("tier {}: {}x{}\n", tier_name(tier), c.width, c.height);
   fmt::print("device: {} ({} {})\n", dev.name, dev.driver_name, dev.driver_info);
   fmt::print("case {} {} {} at {}x{}: {} case frames, then {} timed frames; {} repeats (run, sweep, bench "
              "interleaved)\n",

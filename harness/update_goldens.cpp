@@ -6,13 +6,18 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <fstream>
+#include <set>
 
 #include "harness/case_render.h"
 #include "harness/goldens.h"
+#include "harness/image_io.h"
 #include "metrics/flip.h"
 #include "harness/runner.h"
+#include "harness/tier.h"
 
 namespace gib {
+namespace fs = std::filesystem;
 namespace {
 
 FlipOptions flip_opts(const Case& c) {
@@ -56,7 +61,70 @@ void replace(GoldenStore& store, nlohmann::json& meta, const std::string& stem, 
 
 }  // namespace
 
+// --from-run DIR: every technique row of DIR/results.json whose case and technique are selected
+// becomes the approved golden of the run's device class and tier, from DIR/img/<row>.exr.
+static int update_from_run(const UpdateOptions& o) {
+  const fs::path dir(o.from_run);
+  nlohmann::json results;
+  {
+    std::ifstream in(dir / "results.json");
+    if (!in) throw std::runtime_error(fmt::format("{}: expected the results.json of a gibench run, got no such file",
+                                                  (dir / "results.json").string()));
+    try {
+      results = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::exception& e) {
+      throw std::runtime_error(fmt::format("{}: expected valid JSON, got: {}", (dir / "results.json").string(), e.what()));
+    }
+  }
+  const nlohmann::json dev = results.value("device", nlohmann::json::object());
+  const std::string cls = dev.value("class", ""), tier_text = dev.value("tier", "ci");
+  if (cls.empty()) throw std::runtime_error(fmt::format("{}: device.class: expected the run's device class, got none",
+                                                        (dir / "results.json").string()));
+  const Tier tier = resolve_tier(tier_text, cls);
+  std::map<std::string, Case> cases;
+  for (Case& c : select_cases(o.suite)) cases.emplace(c.name, at_tier(c, tier));
+  std::map<std::string, nlohmann::json> metas;
+  std::map<std::string, GoldenStore> stores;
+  size_t approved = 0;
+  for (const auto& row : results.value("results", nlohmann::json::array())) {
+    const std::string case_name = row.value("case", ""), technique = row.value("technique", "");
+    if (row.value("kind", "") != "technique" || !cases.count(case_name)) continue;
+    if (!technique_selected(o.techniques, technique.substr(0, technique.find('+')))) continue;
+    const fs::path exr = dir / "img" / (row.value("image", "") + ".exr");
+    if (!fs::exists(exr))
+      throw std::runtime_error(fmt::format("{}: expected the output of row {}/{}.{}, got no such file", exr.string(),
+                                           case_name, technique, row.value("preset", "")));
+    auto [it, fresh] = stores.try_emplace(case_name, technique_store(o.suite.goldens_dir, case_name, tier));
+    if (fresh) {
+      metas[case_name] = it->second.metadata();
+      fmt::print("{}:\n", case_name);
+    }
+    FloatImage img = read_image(exr.string());
+    nlohmann::json rec = {{"device", dev.value("name", "")}, {"driver", dev.value("driver", "") + " " + dev.value("driver_info", "")},
+                          {"revision", renderer_revision()}, {"date", utc_now_iso()}, {"reason", o.reason},
+                          {"technique", technique}, {"preset", row.value("preset", "")}, {"tier", tier_name(tier)},
+                          {"size", {img.width, img.height}}, {"from_run", fs::absolute(dir).string()},
+                          {"run_status", row.value("status", "")}};
+    if (tier == Tier::gpu) rec["storage"] = fits_half(img) ? "half" : "float (a value exceeds half's range)";
+    const Case& c = cases.at(case_name);
+    if (img.width != c.width || img.height != c.height)
+      throw std::runtime_error(fmt::format("{}: expected {}x{} ({} at the {} tier), got {}x{}", exr.string(), c.width,
+                                           c.height, case_name, tier_name(tier), img.width, img.height));
+    replace(it->second, metas[case_name], GoldenStore::technique_stem(technique, row.value("preset", "")), cls, img, rec, c);
+    ++approved;
+  }
+  for (auto& [name, store] : stores) store.write_metadata(metas[name]);
+  fmt::print("approved {} technique goldens from {} (device class {}, tier {})\n", approved, dir.string(), cls,
+             tier_name(tier));
+  return 0;
+}
+
 int cmd_update_goldens(const UpdateOptions& o) {
+  if (!o.from_run.empty()) {
+    if (o.reason.empty()) throw std::invalid_argument("--reason: expected why the goldens change (recorded in golden.json)");
+    if (o.reference) throw std::invalid_argument("--from-run: expected without --reference (a run's outputs are technique goldens)");
+    return update_from_run(o);
+  }
   if (o.reason.empty()) throw std::invalid_argument("--reason: expected why the goldens change (recorded in golden.json)");
   if ((o.spp || o.noise_floor || o.only_reference) && !o.reference)
     throw std::invalid_argument(
@@ -64,8 +132,14 @@ int cmd_update_goldens(const UpdateOptions& o) {
   std::vector<Case> cases = select_cases(o.suite);
   auto gpu = Gpu::create({o.suite.device, o.suite.validate});
   std::string cls = device_class(gpu->info().driver_name, gpu->info().name);
-  for (const Case& c : cases) {
-    GoldenStore store(o.suite.goldens_dir, c.name);
+  const Tier tier = resolve_tier(o.suite.tier, cls);
+  if (tier == Tier::gpu && o.reference)
+    throw std::invalid_argument("--reference: expected at the CI tier (--tier ci); GPU-tier references are not committed: "
+                                "gibench references renders them into the local cache");
+  fmt::print("tier {}\n", tier_name(tier));
+  for (const Case& c0 : cases) {
+    const Case c = at_tier(c0, tier);
+    GoldenStore store = technique_store(o.suite.goldens_dir, c.name, tier);
     nlohmann::json meta = store.metadata();
     fmt::print("{}:\n", c.name);
     if (o.reference && c.reference_spp == 0) fmt::print("  no reference (reference_spp 0)\n");
@@ -119,8 +193,11 @@ int cmd_update_goldens(const UpdateOptions& o) {
       if (!technique_selected(o.techniques, run.technique)) continue;
       for (auto& preset : run.presets) {
         CaseRender r = render_case(*gpu, c, run, preset);
-        replace(store, meta, GoldenStore::technique_stem(run.name(), preset), cls, r.image,
-                file_record(*gpu, r, o.reason), c);
+        nlohmann::json rec = file_record(*gpu, r, o.reason);
+        rec["tier"] = tier_name(tier);
+        rec["size"] = {c.width, c.height};
+        if (tier == Tier::gpu) rec["storage"] = fits_half(r.image) ? "half" : "float (a value exceeds half's range)";
+        replace(store, meta, GoldenStore::technique_stem(run.name(), preset), cls, r.image, rec, c);
       }
     }
     store.write_metadata(meta);

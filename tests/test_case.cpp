@@ -325,6 +325,16 @@ TEST(CaseLoad, KnownFailureEverywhereOrPerDeviceClass) {
   c = load_case(dir.write("kf.json", d.dump()));
   EXPECT_EQ(c.techniques[0].known_failure_on("nvidia"), "leaks on NVIDIA only");
   EXPECT_EQ(c.techniques[0].known_failure_on("lavapipe"), "") << "not marked on the other classes";
+  // Per tier: CLASS@TIER, then *@TIER, then CLASS, then *.
+  d["techniques"][0]["known_failure"] = {{"nvidia@gpu", "a 640x360 ROI"}, {"*@ci", "a 128x72 ROI"}, {"nvidia", "NVIDIA"}};
+  c = load_case(dir.write("kf.json", d.dump()));
+  EXPECT_EQ(c.techniques[0].known_failure_on("nvidia", "gpu"), "a 640x360 ROI");
+  EXPECT_EQ(c.techniques[0].known_failure_on("nvidia", "ci"), "a 128x72 ROI");
+  EXPECT_EQ(c.techniques[0].known_failure_on("lavapipe", "ci"), "a 128x72 ROI");
+  EXPECT_EQ(c.techniques[0].known_failure_on("lavapipe", "gpu"), "");
+  EXPECT_EQ(c.techniques[0].known_failure_on("amd", "ci"), "a 128x72 ROI");
+  d["techniques"][0]["known_failure"] = {{"nvidia@big", "typo"}};
+  expect_error(dir, d, "/techniques/0/known_failure/nvidia@big", "nvidia@gpu");
 
   d["techniques"][0]["known_failure"] = "";
   expect_error(dir, d, "/techniques/0/known_failure", "non-empty string, or an object of device class");

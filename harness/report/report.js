@@ -601,7 +601,8 @@
           h('div', { class: 'dev-name' }, dev.name || 'unknown device'),
           h('div', { class: 'dev-sub' }, [dev.type, dev.driver, dev.driver_info].filter(Boolean).join(' \u00b7 ') +
             (dev['class'] ? ' \u00b7 device class ' + dev['class'] : '') +
-            (dev.golden_class || dev['class'] ? ' \u00b7 golden class ' + (dev.golden_class || dev['class']) : '')),
+            (dev.golden_class || dev['class'] ? ' \u00b7 golden class ' + (dev.golden_class || dev['class']) : '') +
+            (dev.tier ? ' \u00b7 tier ' + dev.tier : '')),
           R.merged ? h('div', { class: 'dev-sub', title: (R.merged.devices || []).map(function (d) {
             return 'shard ' + d.shard + ': ' + d.name; }).join('\n') }, 'merged from ' + R.merged.shards + ' shards') : null,
           R.shard ? h('div', { class: 'dev-sub' }, 'shard ' + R.shard.index + '/' + R.shard.count + ': ' +

@@ -1,0 +1,287 @@
+#include "harness/tier.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+#include <tuple>
+#include <unistd.h>
+
+#include "harness/case_render.h"
+#include "harness/runner.h"
+#include "renderer/techniques/reference/reference.h"
+#include "renderer/techniques/technique.h"
+#include "renderer/vk/gpu.h"
+
+namespace fs = std::filesystem;
+
+namespace gib {
+
+Tier resolve_tier(const std::string& requested, const std::string& device_class) {
+  if (requested == "ci") return Tier::ci;
+  if (requested == "gpu") return Tier::gpu;
+  if (!requested.empty())
+    throw std::invalid_argument(fmt::format("--tier: expected ci or gpu, got '{}'", requested));
+  return device_class == "lavapipe" ? Tier::ci : Tier::gpu;
+}
+
+const char* tier_name(Tier t) { return t == Tier::ci ? "ci" : "gpu"; }
+
+Case at_tier(const Case& c, Tier t) {
+  Case out = c;
+  if (t == Tier::gpu) {
+    out.width = c.gpu_width;
+    out.height = c.gpu_height;
+  }
+  return out;
+}
+
+GoldenStore technique_store(const std::string& goldens_dir, const std::string& case_name, Tier t) {
+  if (t == Tier::ci) return GoldenStore(goldens_dir, case_name);
+  GoldenStore s(goldens_dir, case_name, "gpu");
+  s.set_write_half(true);
+  return s;
+}
+
+std::string reference_cache_root(const std::string& requested) {
+  if (!requested.empty()) return requested;
+  if (const char* e = std::getenv("GIBENCH_REFERENCE_CACHE"); e && *e) return e;
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return (fs::path(x) / "gibench" / "references").string();
+  if (const char* h = std::getenv("HOME"); h && *h) return (fs::path(h) / ".cache" / "gibench" / "references").string();
+  throw std::runtime_error(
+      "reference cache: expected --reference-cache DIR, GIBENCH_REFERENCE_CACHE, XDG_CACHE_HOME or HOME, got none set");
+}
+
+std::string path_tracer_revision() {
+  const Technique& t = find_technique("reference");
+  std::string text = fmt::format("cpu {};", kPathTracerCpuRevision);
+  const auto& registry = shader_registry();
+  for (const PassEntry& p : t.passes)
+    for (auto& [name, words] : registry)
+      if (name.rfind(p.name + ".", 0) == 0)
+        text += name + ":" +
+                std::string(reinterpret_cast<const char*>(words.data()), words.size() * sizeof(uint32_t)) + ";";
+  Settings s = apply_preset(t, "ultra", Settings{});
+  text += fmt::format("max_bounces {};", s.params<ReferenceSettings>().max_bounces);
+  return fnv1a_hex(text);
+}
+
+namespace {
+
+// The AOVs the case's runs and controls compare with (the output first).
+std::vector<std::string> compared_aovs(const Case& c) {
+  std::vector<std::string> aovs{c.output};
+  auto add = [&](const TechniqueRun& r) {
+    std::string aov = r.compare_aov.empty() ? c.output : r.compare_aov;
+    if (std::find(aovs.begin(), aovs.end(), aov) == aovs.end()) aovs.push_back(aov);
+  };
+  for (auto& r : c.techniques) add(r);
+  for (auto& nc : c.negative_controls) add(nc.run);
+  return aovs;
+}
+
+// The worst floor of a measured noise floor record ({"flip", "aovs": {...}}) over the AOVs the
+// case compares with (an AOV nothing compares with does not decide convergence), and that AOV.
+std::pair<double, std::string> worst_floor(const Case& c, const nlohmann::json& floor) {
+  std::pair<double, std::string> w{floor.value("flip", 0.0), c.output};
+  if (floor.contains("aovs"))
+    for (auto& aov : compared_aovs(c))
+      if (floor["aovs"].contains(aov) && floor["aovs"][aov].get<double>() > w.first) w = {floor["aovs"][aov].get<double>(), aov};
+  return w;
+}
+
+// Every reference file the case's runs compare with at the tier's evaluation frames.
+std::vector<std::string> needed_stems(const Case& c) {
+  std::vector<uint32_t> frames = per_frame_references(c) ? evaluation_frames(c) : std::vector<uint32_t>{0};
+  std::vector<std::string> stems;
+  for (uint32_t f : frames)
+    for (auto& aov : compared_aovs(c)) stems.push_back(GoldenStore::reference_stem(aov, c.output, f));
+  return stems;
+}
+
+}  // namespace
+
+ReferenceRequest reference_request(const Case& c, const nlohmann::json& committed_meta) {
+  ReferenceRequest req;
+  for (auto& run : c.techniques)
+    for (auto& t : run.thresholds)
+      if (t.metric == "flip" && t.against == "reference" && t.roi.empty() && t.max)
+        req.target_floor = std::min(req.target_floor, *t.max / kNoiseFloorFactor);
+  double floor = 0;
+  uint32_t spp = 0, committed_spp = recorded_reference_spp(c, committed_meta);
+  if (committed_meta.contains("noise_floor")) {
+    floor = worst_floor(c, committed_meta["noise_floor"]).first;
+    spp = committed_meta["noise_floor"].value("spp", committed_spp);
+  }
+  if (floor > 0 && spp > 0) {
+    // FLIP of the noise ~ 1/sqrt(spp): the spp that reaches 0.8 x the target, to a power of 2.
+    double want = double(spp) * std::pow(floor / (0.8 * req.target_floor), 2.0);
+    uint32_t p = 256;
+    while (p < want && p < kReferenceSppMax) p *= 2;
+    req.start_spp = p;
+  } else {
+    req.start_spp = std::max<uint32_t>(committed_spp, 256);
+  }
+  return req;
+}
+
+nlohmann::json reference_key_inputs(const Case& c, const ReferenceRequest& req) {
+  nlohmann::json frames = nlohmann::json::array();
+  if (per_frame_references(c))
+    for (uint32_t f : evaluation_frames(c)) frames.push_back(f);
+  return {{"scene", fnv1a_hex(c.scene_text)},
+          {"scene_file", c.scene_file.empty() ? std::string("inline") : c.scene_file},
+          {"size", {c.width, c.height}},
+          {"seed", c.reference_seed},
+          {"frames", frames},
+          {"files", needed_stems(c)},
+          {"target_floor", req.target_floor},
+          {"start_spp", req.start_spp},
+          {"path_tracer", path_tracer_revision()}};
+}
+
+std::string reference_key(const nlohmann::json& inputs) {
+  nlohmann::json k = inputs;
+  k.erase("scene_file");  // where the scene lives is not what it is
+  return fnv1a_hex(k.dump());
+}
+
+ReferenceSource reference_source(const std::string& goldens_dir, const std::string& cache_root, const Case& c, Tier t) {
+  if (t == Tier::ci) return {GoldenStore(goldens_dir, c.name), "", {}, {}};
+  ReferenceRequest req = reference_request(c, GoldenStore(goldens_dir, c.name).metadata());
+  nlohmann::json inputs = reference_key_inputs(c, req);
+  std::string key = reference_key(inputs);
+  return {GoldenStore(cache_root, c.name, key), key, inputs, req};
+}
+
+bool references_present(const Case& c, const ReferenceSource& src) {
+  if (c.reference_spp == 0) return true;
+  for (auto& stem : needed_stems(c))
+    if (!fs::exists(fs::path(src.store.dir()) / (stem + ".exr"))) return false;
+  return src.store.metadata().contains("noise_floor");
+}
+
+std::string render_references(Gpu& gpu, const Case& c, ReferenceSource& src, const RenderProgress& progress) {
+  if (c.reference_spp == 0) return fmt::format("{}: no reference (reference_spp 0)", c.name);
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<uint32_t> frames =
+      per_frame_references(c) ? evaluation_frames(c) : std::vector<uint32_t>{0};
+  const DeviceInfo& d = gpu.info();
+  uint32_t spp = src.request.start_spp;
+  const std::vector<std::string> aovs = compared_aovs(c);
+  auto compared = [&](const std::string& aov) { return std::find(aovs.begin(), aovs.end(), aov) != aovs.end(); };
+  nlohmann::json meta, floor;
+  double worst = 0;
+  std::string worst_aov;
+  for (;;) {
+    Case rc = c;
+    rc.reference_spp = spp;
+    meta = {{"reference_cache", src.inputs}, {"key", src.key}, {"files", nlohmann::json::object()}};
+    std::map<std::string, FloatImage> images;
+    std::optional<CaseRender> last;
+    for (uint32_t f : frames) {
+      std::string what = fmt::format("{} {}x{} {}{} spp", c.name, c.width, c.height, f ? fmt::format("f{} ", f) : "", spp);
+      CaseRender r = render_reference(gpu, rc, 0, f, [&](uint32_t a, uint32_t b) { if (progress) progress(what, a, b); });
+      for (auto& [aov, img] : r.aovs) {
+        std::string stem = GoldenStore::reference_stem(aov, c.output, f);
+        if (!compared(aov)) continue;  // nothing compares with it: not kept
+        meta["files"][src.store.file_name(stem, "")] = {
+            {"aov", aov}, {"spp", r.spp}, {"seed", c.reference_seed}, {"frames", r.frames},
+            {"device", d.name}, {"driver", d.driver_name + " " + d.driver_info}, {"date", utc_now_iso()},
+            {"gpu_ms", r.gpu_ms_total}};
+        if (f) meta["files"][src.store.file_name(stem, "")]["at_frame"] = f;
+        images[stem] = img;
+      }
+      if (f == frames.back()) last = std::move(r);
+    }
+    std::string what = fmt::format("{} {}x{} noise floor (seed {}) {} spp", c.name, c.width, c.height,
+                                   c.reference_seed + 1000, spp);
+    floor = measure_noise_floor(gpu, rc, &*last, [&](uint32_t a, uint32_t b) { if (progress) progress(what, a, b); });
+    std::tie(worst, worst_aov) = worst_floor(c, floor);
+    if (worst <= src.request.target_floor || spp * 4ull > kReferenceSppMax) {
+      for (auto& [stem, img] : images) src.store.write(stem, "", img);
+      break;
+    }
+    spp *= 4;
+  }
+  record_noise_floor(meta, floor);
+  meta["noise_floor"]["worst"] = worst;
+  meta["noise_floor"]["worst_aov"] = worst_aov;
+  meta["noise_floor"]["target"] = src.request.target_floor;
+  src.store.write_metadata(meta);
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::string line = fmt::format("{}: reference {}x{} at {} spp, noise floor {:.4f} ({}; target {:.4f}), {:.1f} s -> {}",
+                                 c.name, c.width, c.height, spp, worst, worst_aov, src.request.target_floor, secs,
+                                 src.store.dir());
+  if (worst > src.request.target_floor)
+    line += fmt::format(" (NOT CONVERGED: {} spp is the most gibench renders)", spp);
+  return line;
+}
+
+ReferenceSource prepare_references(Gpu& gpu, const std::string& goldens_dir, const std::string& cache_root,
+                                   const Case& c, Tier t, bool* rendered) {
+  ReferenceSource src = reference_source(goldens_dir, cache_root, c, t);
+  const bool render = t == Tier::gpu && !references_present(c, src);
+  if (render) fmt::print("{}\n", render_references(gpu, c, src, terminal_progress("")));
+  if (rendered) *rendered = render;
+  return src;
+}
+
+RenderProgress terminal_progress(const std::string& label) {
+  if (!isatty(STDERR_FILENO)) return {};
+  return [label](const std::string& what, uint32_t done, uint32_t total) {
+    const int width = 30;
+    int filled = total ? int(double(done) / total * width) : width;
+    fmt::print(stderr, "\r{}{} [{}{}] {:3.0f}%\x1b[K", label, what, std::string(size_t(filled), '#'),
+               std::string(size_t(width - filled), '-'), total ? 100.0 * done / total : 100.0);
+    if (done == total) fmt::print(stderr, "\r\x1b[K");
+  };
+}
+
+int cmd_references(const SuiteOptions& o, bool refresh, bool dry_run) {
+  if (!o.tier.empty() && o.tier != "gpu")
+    throw std::invalid_argument(fmt::format(
+        "--tier: expected gpu (the CI tier's references are committed: gibench update-goldens --reference), got '{}'",
+        o.tier));
+  std::vector<Case> cases = select_cases(o);
+  const std::string root = reference_cache_root(o.reference_cache);
+  if (dry_run) {
+    for (const Case& c0 : cases) {
+      const Case c = at_tier(c0, Tier::gpu);
+      if (c.reference_spp == 0) continue;
+      ReferenceSource src = reference_source(o.goldens_dir, root, c, Tier::gpu);
+      fmt::print("{:<28} {}x{}  target floor {:.4f}  start {:>7} spp  key {}  {}\n", c.name, c.width, c.height,
+                 src.request.target_floor, src.request.start_spp, src.key,
+                 references_present(c, src) ? "cached" : "to render");
+    }
+    return 0;
+  }
+  auto gpu = Gpu::create({o.device, o.validate});
+  fmt::print("device: {}; GPU-tier references in {}\n", gpu->info().name, root);
+  int status = 0;
+  for (const Case& c0 : cases) {
+    const Case c = at_tier(c0, Tier::gpu);
+    if (c.reference_spp == 0) {
+      fmt::print("{}: no reference (reference_spp 0)\n", c.name);
+      continue;
+    }
+    ReferenceSource src = reference_source(o.goldens_dir, root, c, Tier::gpu);
+    nlohmann::json meta;
+    if (refresh || !references_present(c, src)) {
+      fmt::print("{}\n", render_references(*gpu, c, src, terminal_progress("")));
+      meta = src.store.metadata();
+    } else {
+      meta = src.store.metadata();
+      fmt::print("{}: cached ({} spp, noise floor {:.4f}, key {})\n", c.name, recorded_reference_spp(c, meta),
+                 meta["noise_floor"].value("worst", 0.0), src.key);
+    }
+    if (meta["noise_floor"].value("worst", 0.0) > src.request.target_floor) status = 1;
+  }
+  return status;
+}
+
+}  // namespace gib

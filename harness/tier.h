@@ -1,0 +1,96 @@
+// The suite's two tiers.
+//   ci:  each case's width x height (small: 128x72 for most), its committed path-traced
+//        references (goldens/<case>/reference*.exr) and technique goldens; the default on
+//        lavapipe, and CI's smoke test.
+//   gpu: each case's gpu_width x gpu_height (640x360 unless the case says), the default on
+//        every other device. References are not committed at this size: they are path traced
+//        on the GPU on demand, to the noise-floor rule (cases/README.md), and kept in a local
+//        cache keyed by everything that changes them; approved technique goldens live in
+//        goldens/<case>/gpu/ as half-float EXR (float where a value exceeds half's range).
+#pragma once
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "harness/case.h"
+#include "harness/goldens.h"
+
+namespace gib {
+
+class Gpu;
+
+enum class Tier { ci, gpu };
+
+// `requested`: "ci", "gpu" or "" (by device: ci on lavapipe, gpu elsewhere). Anything else is
+// an error naming --tier.
+Tier resolve_tier(const std::string& requested, const std::string& device_class);
+const char* tier_name(Tier t);
+// The case as rendered at the tier (the GPU tier's size; nothing else changes).
+Case at_tier(const Case& c, Tier t);
+// Where the approved technique goldens of the tier live: goldens/<case> or goldens/<case>/gpu.
+GoldenStore technique_store(const std::string& goldens_dir, const std::string& case_name, Tier t);
+
+// The reference cache's root: `requested` (--reference-cache), else $GIBENCH_REFERENCE_CACHE,
+// else $XDG_CACHE_HOME/gibench/references, else $HOME/.cache/gibench/references.
+std::string reference_cache_root(const std::string& requested);
+// Changes whenever what the path tracer renders for a given scene and seed may change: the
+// SPIR-V of the reference technique's passes, its ultra preset and kPathTracerCpuRevision.
+std::string path_tracer_revision();
+
+// How a GPU-tier reference is rendered: the noise floor it must reach (the case's limit,
+// kReferenceNoiseFloorMax, and a third of its tightest whole-image flip bound against the
+// reference: kNoiseFloorFactor) and the spp it starts at (predicted from the committed CI-tier
+// reference's recorded spp and floor: noise per pixel does not depend on the image size, and
+// FLIP of noise falls about as 1/sqrt(spp)); while the measured floor is above the target the
+// spp is multiplied by 4, up to kReferenceSppMax.
+struct ReferenceRequest {
+  double target_floor = kReferenceNoiseFloorMax;
+  uint32_t start_spp = 0;
+};
+inline constexpr uint32_t kReferenceSppMax = 1048576;
+ReferenceRequest reference_request(const Case& c_at_tier, const nlohmann::json& committed_meta);
+
+// Everything that changes a GPU-tier reference (scene contents, size, seed, frames rendered,
+// AOVs, the request above, the path tracer revision), and its hash: the cache entry's name.
+nlohmann::json reference_key_inputs(const Case& c_at_tier, const ReferenceRequest& req);
+std::string reference_key(const nlohmann::json& inputs);
+
+// The store a case's references are read from at the tier: the committed goldens/<case> (ci),
+// or the cache entry <cache root>/<case>/<key> (gpu).
+struct ReferenceSource {
+  GoldenStore store;
+  std::string key;  // gpu: the cache key ("" at ci)
+  nlohmann::json inputs;
+  ReferenceRequest request;
+};
+ReferenceSource reference_source(const std::string& goldens_dir, const std::string& cache_root, const Case& c_at_tier,
+                                 Tier t);
+
+// True when the entry holds every reference file the case compares with, and a noise floor.
+bool references_present(const Case& c_at_tier, const ReferenceSource& src);
+
+// Renders the case's GPU-tier references into its cache entry: at the request's start spp,
+// measures the floor (FLIP between seeds reference_seed and +1000, the worst AOV), and while it
+// is above the target renders again at 4x the spp (kReferenceSppMax at most; above it the entry
+// is written with the floor it reached and a warning is returned). Writes golden.json with the
+// key inputs, spp, floor, device and driver. `progress` (may be empty) sees each render's frames.
+// Returns a one-line summary.
+using RenderProgress = std::function<void(const std::string& what, uint32_t done, uint32_t total)>;
+std::string render_references(Gpu& gpu, const Case& c_at_tier, ReferenceSource& src, const RenderProgress& progress);
+
+// The case's references at the tier, ready to read: at the GPU tier, those the cache lacks are
+// rendered first (render_references, its line printed). *rendered (if given): whether they were.
+ReferenceSource prepare_references(Gpu& gpu, const std::string& goldens_dir, const std::string& cache_root,
+                                   const Case& c_at_tier, Tier t, bool* rendered = nullptr);
+
+// `gibench references`: for each selected case, the GPU-tier references' cache entry: present
+// (key, spp, floor) or rendered now; `refresh` re-renders present ones. Exit 1 when a reference
+// did not reach its target floor. `dry_run`: print each case's size, target floor, start spp,
+// key and whether it is cached; render nothing.
+struct SuiteOptions;
+int cmd_references(const SuiteOptions& o, bool refresh, bool dry_run);
+
+// A progress bar on stderr when it is a terminal (one line redrawn), else nothing.
+RenderProgress terminal_progress(const std::string& label);
+
+}  // namespace gib
