@@ -112,6 +112,11 @@ int main(int argc, char** argv) {
       "references", "render the GPU tier's path-traced references into the local cache (those missing, or --refresh all)");
   add_suite_options(references, refs_opts);
   references->add_flag("--refresh", refresh, "re-render references already in the cache");
+  uint32_t max_spp = 1048576;
+  references->add_option("--max-spp", max_spp,
+                         "budget: render at most this many spp (a reference short of its floor is kept, marked not "
+                         "converged; a later larger budget refines it)")
+      ->check(CLI::Range(1u, 1048576u));
   references->add_flag("--dry-run", dry_run, "print each case's size, target floor, start spp and cache key; render nothing");
 
   std::string report_dir = "out";
@@ -156,7 +161,7 @@ int main(int argc, char** argv) {
     }
     if (app.got_subcommand("update-goldens")) return gib::cmd_update_goldens(up);
     if (app.got_subcommand("sweep")) return gib::cmd_sweep(sweep_opts);
-    if (app.got_subcommand("references")) return gib::cmd_references(refs_opts, refresh, dry_run);
+    if (app.got_subcommand("references")) return gib::cmd_references(refs_opts, refresh, dry_run, max_spp);
     if (app.got_subcommand("timing")) return gib::cmd_timing(timing_opts);
     if (app.got_subcommand("check-report")) return gib::cmd_check_report(report_dir);
     if (app.got_subcommand("merge")) return gib::cmd_merge(mo);

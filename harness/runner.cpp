@@ -586,7 +586,9 @@ int cmd_run(const SuiteOptions& o) {
       nlohmann::json meta = src->store.metadata();
       suite.references[c.name] = {{"key", src->key}, {"dir", src->store.dir()}, {"rendered", rendered},
                                   {"spp", recorded_reference_spp(c, meta)},
-                                  {"noise_floor", meta["noise_floor"].value("worst", 0.0)}};
+                                  {"noise_floor", meta["noise_floor"].value("worst", 0.0)},
+                                  {"target", meta["noise_floor"].value("target", 0.0)},
+                                  {"converged", references_converged(*src)}};
     }
     CaseContext ctx{c, technique_store(o.goldens_dir, c.name, tier), src->store, suite.tier, suite.device_class,
                     suite.golden_class, {}, {}, o};
@@ -626,6 +628,16 @@ int cmd_run(const SuiteOptions& o) {
       }
     } catch (const std::exception& e) {
       suite.case_errors.push_back(fmt::format("{}: {}", c.name, e.what()));
+    }
+    // A reference short of its floor (a budgeted `gibench references --max-spp`) is said on every
+    // row compared with it, never silently.
+    if (suite.references.contains(c.name) && !suite.references[c.name]["converged"].get<bool>()) {
+      const auto& r = suite.references[c.name];
+      for (ResultRow& row : suite.rows)
+        if (row.case_name == c.name)
+          row.messages.push_back(fmt::format(
+              "reference not converged: noise floor {:.4f} > {:.4f} at {} spp (refine it: gibench references --case {})",
+              r["noise_floor"].get<double>(), r["target"].get<double>(), r["spp"].get<uint32_t>(), c.name));
     }
     // Report previews of the references each row links (per-frame cases: the last frame's).
     {

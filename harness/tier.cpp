@@ -158,6 +158,11 @@ ReferenceSource reference_source(const std::string& goldens_dir, const std::stri
   return {GoldenStore(cache_root, c.name, key), key, inputs, req};
 }
 
+bool references_converged(const ReferenceSource& src) {
+  nlohmann::json meta = src.store.metadata();
+  return meta.contains("noise_floor") && meta["noise_floor"].value("converged", false);
+}
+
 bool references_present(const Case& c, const ReferenceSource& src) {
   if (c.reference_spp == 0) return true;
   for (auto& stem : needed_stems(c))
@@ -171,7 +176,7 @@ std::string render_references(Gpu& gpu, const Case& c, ReferenceSource& src, con
   const std::vector<uint32_t> frames =
       per_frame_references(c) ? evaluation_frames(c) : std::vector<uint32_t>{0};
   const DeviceInfo& d = gpu.info();
-  uint32_t spp = src.request.start_spp;
+  uint32_t spp = std::min(src.request.start_spp, src.request.max_spp);
   const std::vector<std::string> aovs = compared_aovs(c);
   auto compared = [&](const std::string& aov) { return std::find(aovs.begin(), aovs.end(), aov) != aovs.end(); };
   nlohmann::json meta, floor;
@@ -202,7 +207,7 @@ std::string render_references(Gpu& gpu, const Case& c, ReferenceSource& src, con
                                    c.reference_seed + 1000, spp);
     floor = measure_noise_floor(gpu, rc, &*last, [&](uint32_t a, uint32_t b) { if (progress) progress(what, a, b); });
     std::tie(worst, worst_aov) = worst_floor(c, floor);
-    if (worst <= src.request.target_floor || spp * 4ull > kReferenceSppMax) {
+    if (worst <= src.request.target_floor || spp * 4ull > src.request.max_spp) {
       for (auto& [stem, img] : images) src.store.write(stem, "", img);
       break;
     }
@@ -212,13 +217,14 @@ std::string render_references(Gpu& gpu, const Case& c, ReferenceSource& src, con
   meta["noise_floor"]["worst"] = worst;
   meta["noise_floor"]["worst_aov"] = worst_aov;
   meta["noise_floor"]["target"] = src.request.target_floor;
+  meta["noise_floor"]["converged"] = worst <= src.request.target_floor;
   src.store.write_metadata(meta);
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::string line = fmt::format("{}: reference {}x{} at {} spp, noise floor {:.4f} ({}; target {:.4f}), {:.1f} s -> {}",
                                  c.name, c.width, c.height, spp, worst, worst_aov, src.request.target_floor, secs,
                                  src.store.dir());
   if (worst > src.request.target_floor)
-    line += fmt::format(" (NOT CONVERGED: {} spp is the most gibench renders)", spp);
+    line += fmt::format(" (NOT CONVERGED: the budget stops at {} spp; runs report it)", src.request.max_spp);
   return line;
 }
 
@@ -226,7 +232,10 @@ ReferenceSource prepare_references(Gpu& gpu, const std::string& goldens_dir, con
                                    const Case& c, Tier t, bool* rendered) {
   ReferenceSource src = reference_source(goldens_dir, cache_root, c, t);
   const bool render = t == Tier::gpu && !references_present(c, src);
-  if (render) fmt::print("{}\n", render_references(gpu, c, src, terminal_progress("")));
+  if (render) {
+    fmt::print("{}\n", render_references(gpu, c, src, terminal_progress("")));
+    std::fflush(stdout);
+  }
   if (rendered) *rendered = render;
   return src;
 }
@@ -242,7 +251,7 @@ RenderProgress terminal_progress(const std::string& label) {
   };
 }
 
-int cmd_references(const SuiteOptions& o, bool refresh, bool dry_run) {
+int cmd_references(const SuiteOptions& o, bool refresh, bool dry_run, uint32_t max_spp) {
   if (!o.tier.empty() && o.tier != "gpu")
     throw std::invalid_argument(fmt::format(
         "--tier: expected gpu (the CI tier's references are committed: gibench update-goldens --reference), got '{}'",
@@ -270,15 +279,21 @@ int cmd_references(const SuiteOptions& o, bool refresh, bool dry_run) {
       continue;
     }
     ReferenceSource src = reference_source(o.goldens_dir, root, c, Tier::gpu);
-    nlohmann::json meta;
-    if (refresh || !references_present(c, src)) {
+    src.request.max_spp = max_spp;
+    nlohmann::json meta = src.store.metadata();
+    const bool present = references_present(c, src);
+    const uint32_t held = present ? recorded_reference_spp(c, meta) : 0;
+    // An entry short of its target is refined from 4x what it holds when the budget allows more.
+    const bool refine = present && !references_converged(src) && held * 4ull <= max_spp;
+    if (refine) src.request.start_spp = std::max(src.request.start_spp, held * 4);
+    if (refresh || !present || refine) {
       fmt::print("{}\n", render_references(*gpu, c, src, terminal_progress("")));
       meta = src.store.metadata();
     } else {
-      meta = src.store.metadata();
-      fmt::print("{}: cached ({} spp, noise floor {:.4f}, key {})\n", c.name, recorded_reference_spp(c, meta),
-                 meta["noise_floor"].value("worst", 0.0), src.key);
+      fmt::print("{}: cached ({} spp, noise floor {:.4f}{}, key {})\n", c.name, held,
+                 meta["noise_floor"].value("worst", 0.0), references_converged(src) ? "" : ", NOT CONVERGED", src.key);
     }
+    std::fflush(stdout);
     if (meta["noise_floor"].value("worst", 0.0) > src.request.target_floor) status = 1;
   }
   return status;

@@ -43,11 +43,15 @@ std::string path_tracer_revision();
 // reference's recorded spp and floor: noise per pixel does not depend on the image size, and
 // FLIP of noise falls about as 1/sqrt(spp)); while the measured floor is above the target the
 // spp is multiplied by 4, up to kReferenceSppMax.
+inline constexpr uint32_t kReferenceSppMax = 1048576;
 struct ReferenceRequest {
   double target_floor = kReferenceNoiseFloorMax;
   uint32_t start_spp = 0;
+  // The most spp this request renders (`gibench references --max-spp`, a budget): a reference
+  // that stops short of its target is kept, recorded as not converged and reported so by every
+  // run that uses it. Not part of the key: a later request with a larger budget refines it.
+  uint32_t max_spp = kReferenceSppMax;
 };
-inline constexpr uint32_t kReferenceSppMax = 1048576;
 ReferenceRequest reference_request(const Case& c_at_tier, const nlohmann::json& committed_meta);
 
 // Everything that changes a GPU-tier reference (scene contents, size, seed, frames rendered,
@@ -68,6 +72,8 @@ ReferenceSource reference_source(const std::string& goldens_dir, const std::stri
 
 // True when the entry holds every reference file the case compares with, and a noise floor.
 bool references_present(const Case& c_at_tier, const ReferenceSource& src);
+// Whether a present entry reached its target floor, and the spp it holds.
+bool references_converged(const ReferenceSource& src);
 
 // Renders the case's GPU-tier references into its cache entry: at the request's start spp,
 // measures the floor (FLIP between seeds reference_seed and +1000, the worst AOV), and while it
@@ -88,7 +94,9 @@ ReferenceSource prepare_references(Gpu& gpu, const std::string& goldens_dir, con
 // did not reach its target floor. `dry_run`: print each case's size, target floor, start spp,
 // key and whether it is cached; render nothing.
 struct SuiteOptions;
-int cmd_references(const SuiteOptions& o, bool refresh, bool dry_run);
+// `max_spp`: the budget (ReferenceRequest::max_spp); an entry short of its target is refined
+// when the budget allows more than it holds.
+int cmd_references(const SuiteOptions& o, bool refresh, bool dry_run, uint32_t max_spp = kReferenceSppMax);
 
 // A progress bar on stderr when it is a terminal (one line redrawn), else nothing.
 RenderProgress terminal_progress(const std::string& label);

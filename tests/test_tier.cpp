@@ -198,3 +198,42 @@ TEST(Tier, GpuTierRendersReferencesOnceApprovesFromARunAndMatchesItsGoldens) {
 
 }  // namespace
 }  // namespace gib
+
+namespace gib {
+namespace {
+
+// A budget (--max-spp) short of the floor keeps the reference, marked not converged; a run says
+// so on its rows; a larger budget refines the entry from 4x what it holds.
+TEST(Tier, BudgetedReferencesAreMarkedNotConvergedAndRefinedLater) {
+  test::TempDir dir("gib_tier_budget_");
+  fs::path cases = dir.path() / "cases";
+  fs::create_directories(cases);
+  json c = {{"description", "a noisy tiny Cornell box"},
+            {"scene", std::string(GIB_SOURCE_DIR) + "/cases/scenes/cornell.json"},
+            {"width", 16}, {"height", 9}, {"gpu_width", 16}, {"gpu_height", 9}, {"reference_spp", 4},
+            {"techniques", {{{"technique", "direct"}, {"presets", {"low"}}}}}};
+  std::ofstream(cases / "noisy.json") << c.dump(2);
+  SuiteOptions o;
+  o.cases_dir = cases.string();
+  o.goldens_dir = (dir.path() / "goldens").string();
+  o.reference_cache = (dir.path() / "cache").string();
+  o.tier = "gpu";
+  o.stability_scan = false;
+  EXPECT_EQ(cmd_references(o, false, false, 4), 1) << "4 spp cannot reach a floor of 0.01";
+  ReferenceSource src = reference_source(o.goldens_dir, o.reference_cache, at_tier(load_case((cases / "noisy.json").string()), Tier::gpu), Tier::gpu);
+  ASSERT_TRUE(references_present(at_tier(load_case((cases / "noisy.json").string()), Tier::gpu), src));
+  EXPECT_FALSE(references_converged(src));
+  EXPECT_EQ(src.store.metadata()["noise_floor"]["spp"], 4);
+  o.out = (dir.path() / "out").string();
+  cmd_run(o);  // fails: no golden approved; the rows say the reference is short
+  json r = json::parse(std::ifstream(dir.path() / "out" / "results.json"));
+  EXPECT_EQ(r["references"]["noisy"]["converged"], false);
+  bool said = false;
+  for (auto& m : r["results"][0]["messages"]) said |= m.get<std::string>().find("reference not converged") == 0;
+  EXPECT_TRUE(said) << r["results"][0]["messages"].dump();
+  EXPECT_EQ(cmd_references(o, false, false, 16), 1);
+  EXPECT_EQ(src.store.metadata()["noise_floor"]["spp"], 16) << "refined from 4x what it held";
+}
+
+}  // namespace
+}  // namespace gib
