@@ -9,6 +9,7 @@ PKGS=(
   libvulkan-dev vulkan-tools mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libopenimageio-dev openimageio-tools
   nlohmann-json3-dev libcli11-dev libfmt-dev
+  libtinygltf-dev libstb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   chromium
 )

@@ -15,6 +15,7 @@
 #include <optional>
 #include <utility>
 
+#include "renderer/scene/gltf_import.h"
 #include "renderer/scene/primitives.h"
 
 namespace gib {
@@ -400,7 +401,7 @@ float get_key_time(const Node& n, size_t index, float previous) {
 
 Instance parse_object(const Node& n, size_t index, const std::map<std::string, uint32_t>& material_index,
                       std::map<std::string, uint32_t>& mesh_index, std::vector<Mesh>& meshes) {
-  check_object(n, {"name", "primitive", "material", "transform", "animation"});
+  check_object(n, {"type", "name", "primitive", "material", "transform", "animation"});
   Instance inst;
   inst.name = get_string(n["name"], "object" + std::to_string(index));
 
@@ -446,6 +447,49 @@ Instance parse_object(const Node& n, size_t index, const std::map<std::string, u
     }
   }
   return inst;
+}
+
+// What the "gltf" objects of one scene file share: where relative paths start, and whether the
+// scene file sets the camera and the sun itself (then the glTF files' are not taken).
+struct GltfObjects {
+  std::filesystem::path base_dir;
+  bool scene_camera = false, scene_sun = false;
+  bool camera_taken = false;  // an earlier glTF object supplied the camera
+};
+
+enum class ObjectType { primitive, gltf };
+
+ObjectType object_type(const Node& n) {
+  if (!n.present() || !n.v->is_object()) n.fail("object");
+  return get_enum<ObjectType>(n["type"], {{"primitive", ObjectType::primitive}, {"gltf", ObjectType::gltf}},
+                              ObjectType::primitive);
+}
+
+// {"type": "gltf", "file": ..., "name", "transform"}: the file's default scene, placed by the
+// transform (cases/scenes/README.md, "glTF objects"). Problems inside the file are SceneErrors
+// naming the glTF file (gltf_import.h); the key's own problems name this scene file.
+void import_gltf_object(const Node& n, size_t index, Scene& scene, GltfObjects& shared) {
+  check_object(n, {"type", "name", "file", "transform"});
+  const std::string name = get_string(n["name"], "object" + std::to_string(index));
+  Node file = n["file"];
+  const std::string rel = get_string(file, std::nullopt);
+  const std::filesystem::path path = std::filesystem::path(rel).is_absolute() ? std::filesystem::path(rel) : shared.base_dir / rel;
+  std::error_code ec;
+  if (rel.empty() || !std::filesystem::is_regular_file(path, ec))
+    file.fail("a .gltf or .glb file (relative to the scene file)",
+              fmt::format("{} ({})", describe(*file.v), rel.empty() ? "empty" : "no such file: " + path.string()));
+  Trs trs;
+  Node tr = n["transform"];
+  if (tr.present()) {
+    check_object(tr, {"translate", "rotate_deg", "scale"});
+    trs = parse_trs(tr, trs);
+  }
+  GltfImportOptions options;
+  options.instance_prefix = name + "/";
+  options.take_camera = !shared.scene_camera && !shared.camera_taken;
+  options.take_sun = !shared.scene_sun;
+  const GltfImportReport report = import_gltf(scene, path.string(), Mat4::trs(trs.t, trs.r, trs.s), options);
+  shared.camera_taken = shared.camera_taken || report.camera;
 }
 
 LocalLight parse_light(const Node& n) {
@@ -581,8 +625,13 @@ Scene parse_document(const json& doc, const std::string& source_name) {
   Node objects = root["objects"];
   check_array(objects, true);
   std::map<std::string, uint32_t> mesh_index;
-  for (size_t i = 0; i < objects.v->size(); ++i)
-    scene.instances.push_back(parse_object(objects[i], i, material_index, mesh_index, scene.meshes));
+  GltfObjects gltf{std::filesystem::path(source_name).parent_path(), root["camera"].present(), root["sun"].present()};
+  for (size_t i = 0; i < objects.v->size(); ++i) {
+    if (object_type(objects[i]) == ObjectType::gltf)
+      import_gltf_object(objects[i], i, scene, gltf);
+    else
+      scene.instances.push_back(parse_object(objects[i], i, material_index, mesh_index, scene.meshes));
+  }
 
   Node lights = root["lights"];
   if (lights.present()) {

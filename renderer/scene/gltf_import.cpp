@@ -1,0 +1,297 @@
+#include "renderer/scene/gltf_import.h"
+
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <optional>
+
+#include "renderer/scene/gltf_importer.h"
+#include "renderer/scene/scene_loader.h"
+
+namespace gib {
+
+namespace gltf {
+
+namespace {
+
+constexpr size_t kMaxPrimitiveVertices = size_t{1} << 24;  // as the JSON mesh primitive
+const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
+
+std::string mode_name(int mode) {
+  static const char* names[] = {"POINTS", "LINES", "LINE_LOOP", "LINE_STRIP", "TRIANGLES", "TRIANGLE_STRIP", "TRIANGLE_FAN"};
+  return mode >= 0 && mode <= 6 ? fmt::format("{} ({})", mode, names[mode]) : std::to_string(mode);
+}
+
+}  // namespace
+
+void Importer::run(const Mat4& transform) {
+  check_asset();
+  for (const Material& mat : scene_.materials) names_.insert(mat.name);
+  report_.first_material = static_cast<uint32_t>(scene_.materials.size());
+  report_.first_mesh = static_cast<uint32_t>(scene_.meshes.size());
+  report_.first_instance = static_cast<uint32_t>(scene_.instances.size());
+  for (size_t i = 0; i < m_.materials.size(); ++i) add_material(convert_material(i), info_of(m_.materials[i]));
+  visit_scene(transform);
+  check_textures();
+  if (ignored_suns_) report_.notes.push_back(fmt::format("{} directional light(s) ignored: the scene sets its sun", ignored_suns_));
+  for (const std::string& a : ignored_attributes_) report_.notes.push_back("attribute " + a + " ignored");
+}
+
+void Importer::check_asset() {
+  const tg::Asset& a = m_.asset;
+  if (a.version.rfind("2.", 0) != 0) w_.fail("/asset/version", "\"2.0\" (glTF 2)", quoted(a.version));
+  if (!a.minVersion.empty() && a.minVersion != "2.0") w_.fail("/asset/minVersion", "\"2.0\" or none", quoted(a.minVersion));
+  for (size_t i = 0; i < m_.extensionsRequired.size(); ++i)
+    if (!kSupportedExtensions.count(m_.extensionsRequired[i]))
+      w_.fail(fmt::format("/extensionsRequired/{}", i),
+              "a required extension gibench supports (KHR_lights_punctual, KHR_materials_emissive_strength)",
+              quoted(m_.extensionsRequired[i]));
+  for (const std::string& e : m_.extensionsUsed)
+    if (!kSupportedExtensions.count(e)) report_.notes.push_back("extension " + e + " (optional) ignored");
+  if (!m_.skins.empty()) report_.notes.push_back(fmt::format("{} skin(s) ignored: meshes stay in bind pose", m_.skins.size()));
+  if (!m_.animations.empty()) report_.notes.push_back(fmt::format("{} animation(s) ignored", m_.animations.size()));
+}
+
+Vec3 Importer::factors3(const std::vector<double>& v, const std::string& p, double hi) {
+  if (v.size() != 3) w_.fail(p, "array of 3 numbers", fmt::format("array of {} numbers", v.size()));
+  return {w_.number(p + "/0", v[0], 0, hi), w_.number(p + "/1", v[1], 0, hi), w_.number(p + "/2", v[2], 0, hi)};
+}
+
+Material Importer::convert_material(size_t i) {
+  const tg::Material& g = m_.materials[i];
+  const std::string p = "/materials/" + std::to_string(i), pp = p + "/pbrMetallicRoughness";
+  Material mat;
+  mat.name = g.name.empty() ? "material" + std::to_string(i) : g.name;
+  const std::vector<double>& bc = g.pbrMetallicRoughness.baseColorFactor;
+  if (bc.size() != 4) w_.fail(pp + "/baseColorFactor", "array of 4 numbers", fmt::format("array of {} numbers", bc.size()));
+  std::vector<double> base(bc.begin(), bc.end() - 1);
+  mat.albedo = factors3(base, pp + "/baseColorFactor", 1);
+  const float alpha = w_.number(pp + "/baseColorFactor/3", bc[3], 0, 1);
+  mat.metalness = w_.number(pp + "/metallicFactor", g.pbrMetallicRoughness.metallicFactor, 0, 1);
+  mat.roughness = w_.number(pp + "/roughnessFactor", g.pbrMetallicRoughness.roughnessFactor, 0, 1);
+
+  double strength = 1.0;
+  if (auto it = g.extensions.find("KHR_materials_emissive_strength"); it != g.extensions.end()) {
+    const std::string ep = p + "/extensions/KHR_materials_emissive_strength";
+    if (!it->second.IsObject()) w_.fail(ep, "object", "a non-object");
+    if (it->second.Has("emissiveStrength")) {
+      const tg::Value& s = it->second.Get("emissiveStrength");
+      if (!s.IsNumber()) w_.fail(ep + "/emissiveStrength", "number >= 0", "a non-number");
+      strength = w_.number(ep + "/emissiveStrength", s.GetNumberAsDouble(), 0, kInf);
+    }
+  }
+  const std::vector<double> ef = g.emissiveFactor.empty() ? std::vector<double>(3, 0.0) : g.emissiveFactor;
+  factors3(ef, p + "/emissiveFactor", 1);
+  // The product in double, rounded once: an exported factor/strength pair comes back exact.
+  for (int k = 0; k < 3; ++k)
+    mat.emissive[k] = w_.number(fmt::format("{}/emissiveFactor/{}", p, k), ef[k] * strength, 0, kInf);
+
+  if (g.alphaMode == "MASK") {
+    // Without texture sampling the mask is the constant base colour alpha: covered (alpha >=
+    // cutoff) is opaque, uncovered is invisible (stochastic opacity 0).
+    mat.alpha_cutoff = w_.number(p + "/alphaCutoff", g.alphaCutoff, 0, kInf);
+    if (alpha < mat.alpha_cutoff) {
+      mat.alpha = AlphaKind::opacity;
+      mat.opacity = 0.0f;
+    }
+  } else if (g.alphaMode == "BLEND") {
+    mat.alpha = AlphaKind::opacity;  // blending becomes stochastic coverage
+    mat.opacity = alpha;
+  } else if (g.alphaMode != "OPAQUE") {
+    w_.fail(p + "/alphaMode", "one of \"OPAQUE\", \"MASK\", \"BLEND\"", quoted(g.alphaMode));
+  }
+  return mat;
+}
+
+GltfMaterialInfo Importer::info_of(const tg::Material& g) {
+  GltfMaterialInfo info;
+  info.double_sided = g.doubleSided;
+  info.textures.base_color = g.pbrMetallicRoughness.baseColorTexture.index;
+  info.textures.metallic_roughness = g.pbrMetallicRoughness.metallicRoughnessTexture.index;
+  info.textures.emissive = g.emissiveTexture.index;
+  info.textures.normal = g.normalTexture.index;
+  info.textures.occlusion = g.occlusionTexture.index;
+  return info;
+}
+
+uint32_t Importer::add_material(Material mat, GltfMaterialInfo info) {
+  const std::string base = opt_.material_prefix + mat.name;
+  std::string name = base;
+  for (int& k = suffixes_.try_emplace(base, 2).first->second; names_.count(name); ++k) name = fmt::format("{}#{}", base, k);
+  names_.insert(name);
+  mat.name = name;
+  info.scene_material = static_cast<uint32_t>(scene_.materials.size());
+  scene_.materials.push_back(std::move(mat));
+  report_.materials.push_back(info);
+  ++report_.material_count;
+  return info.scene_material;
+}
+
+// glTF's default material (a primitive without one): base colour 1, metallic 1, roughness 1.
+uint32_t Importer::material_for(int index, const std::string& ref) {
+  if (index != -1) return report_.first_material + static_cast<uint32_t>(w_.index(ref, index, m_.materials.size(), "material"));
+  if (default_material_ < 0) {
+    Material d;
+    d.name = "default";
+    d.albedo = {1, 1, 1};
+    d.metalness = d.roughness = 1.0f;
+    default_material_ = add_material(d, {});
+  }
+  return static_cast<uint32_t>(default_material_);
+}
+
+uint32_t Importer::mesh_for(size_t mi, size_t pj) {
+  auto [it, inserted] = meshes_.try_emplace({mi, pj}, static_cast<uint32_t>(scene_.meshes.size()));
+  if (!inserted) return it->second;
+  const tg::Primitive& pr = m_.meshes[mi].primitives[pj];
+  const std::string pp = fmt::format("/meshes/{}/primitives/{}", mi, pj), ap = pp + "/attributes/";
+  if (pr.mode != TINYGLTF_MODE_TRIANGLES)
+    w_.fail(pp + "/mode", "4 (TRIANGLES; other primitive modes are not supported)", mode_name(pr.mode));
+  auto attribute = [&](const char* name) {
+    auto a = pr.attributes.find(name);
+    return a == pr.attributes.end() ? std::nullopt : std::optional<int>(a->second);
+  };
+  const std::optional<int> position = attribute("POSITION");
+  if (!position) w_.fail(pp + "/attributes", "a POSITION attribute", "none");
+  Mesh mesh;
+  const AccessorData pa =
+      accessor(m_, *position, w_, ap + "POSITION", TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT}, "POSITION");
+  if (pa.count > kMaxPrimitiveVertices)
+    w_.fail(pa.pointer + "/count", fmt::format("at most {} vertices in a primitive", kMaxPrimitiveVertices), std::to_string(pa.count));
+  mesh.positions = read_vec3(pa, true, w_);
+  const size_t n = pa.count;
+  auto same_count = [&](const AccessorData& a, const std::string& ref) {
+    if (a.count != n) w_.fail(ref, fmt::format("an accessor of {} elements (the POSITION count)", n), fmt::format("{} elements in {}", a.count, a.pointer));
+  };
+  if (const std::optional<int> normal = attribute("NORMAL")) {
+    const AccessorData na =
+        accessor(m_, *normal, w_, ap + "NORMAL", TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT}, "NORMAL");
+    same_count(na, ap + "NORMAL");
+    mesh.normals = read_vec3(na, false, w_);  // non-finite normals pass on, as the JSON mesh's null
+  }  // else none: zero normals, which shading replaces by the face normal (glTF's flat normals)
+  if (const std::optional<int> uv = attribute("TEXCOORD_0")) {
+    const AccessorData ta = accessor(
+        m_, *uv, w_, ap + "TEXCOORD_0", TINYGLTF_TYPE_VEC2,
+        {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}, "TEXCOORD_0");
+    if (ta.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !ta.normalized)
+      w_.fail(ta.pointer + "/normalized", "true for an integer TEXCOORD_0", "false");
+    same_count(ta, ap + "TEXCOORD_0");
+    mesh.uvs = read_vec2(ta, w_);
+  }
+  for (const auto& [name, index] : pr.attributes)
+    if (name != "POSITION" && name != "NORMAL" && name != "TEXCOORD_0") ignored_attributes_.insert(name);
+  if (pr.indices != -1) {
+    const AccessorData ia = accessor(
+        m_, pr.indices, w_, pp + "/indices", TINYGLTF_TYPE_SCALAR,
+        {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT}, "indices");
+    if (ia.count % 3) w_.fail(pp + "/indices", "a multiple of 3 indices (TRIANGLES)", fmt::format("{} in {}", ia.count, ia.pointer));
+    mesh.indices = read_indices(ia, n, w_, pp + "/indices");
+  } else {
+    if (n % 3) w_.fail(ap + "POSITION", "a multiple of 3 vertices (TRIANGLES without indices)", std::to_string(n));
+    mesh.indices.resize(n);
+    for (size_t i = 0; i < n; ++i) mesh.indices[i] = static_cast<uint32_t>(i);
+  }
+  if (!pr.targets.empty()) report_.notes.push_back(fmt::format("{}: morph targets ignored", pp));
+  const std::string& mesh_name = m_.meshes[mi].name;
+  mesh.name = opt_.instance_prefix + (mesh_name.empty() ? "mesh" + std::to_string(mi) : mesh_name) +
+              (m_.meshes[mi].primitives.size() > 1 ? "/" + std::to_string(pj) : "");
+  scene_.meshes.push_back(std::move(mesh));
+  ++report_.mesh_count;
+  return it->second;
+}
+
+// Textures are not sampled yet; what materials reference must still exist and decode.
+void Importer::check_textures() {
+  std::set<size_t> checked;
+  size_t refs = 0;
+  for (size_t i = 0; i < m_.materials.size(); ++i) {
+    const GltfTextureRefs& t = report_.materials[i].textures;
+    const std::string p = "/materials/" + std::to_string(i);
+    const std::pair<int, std::string> uses[] = {
+        {t.base_color, p + "/pbrMetallicRoughness/baseColorTexture/index"},
+        {t.metallic_roughness, p + "/pbrMetallicRoughness/metallicRoughnessTexture/index"},
+        {t.emissive, p + "/emissiveTexture/index"}, {t.normal, p + "/normalTexture/index"},
+        {t.occlusion, p + "/occlusionTexture/index"}};
+    for (const auto& [index, ref] : uses) {
+      if (index == -1) continue;
+      ++refs;
+      const size_t ti = w_.index(ref, index, m_.textures.size(), "texture");
+      const std::string sp = fmt::format("/textures/{}/source", ti);
+      if (m_.textures[ti].source == -1) w_.fail(sp, "an image index (no supported extension supplies one)", "none");
+      const size_t ii = w_.index(sp, m_.textures[ti].source, m_.images.size(), "image");
+      if (checked.insert(ii).second) check_image(ii);
+    }
+  }
+  if (refs) report_.notes.push_back(fmt::format("{} texture reference(s) recorded, not sampled (phase 1)", refs));
+}
+
+void Importer::check_image(size_t ii) {
+  const tg::Image& img = m_.images[ii];
+  const std::string ip = "/images/" + std::to_string(ii);
+  ImageLog::Entry e;
+  if (img.bufferView != -1) {
+    const size_t vi = w_.index(ip + "/bufferView", img.bufferView, m_.bufferViews.size(), "bufferView");
+    e = inspect_image(buffer_view_bytes(m_, vi, w_), m_.bufferViews[vi].byteLength);
+  } else if (auto it = images_.by_uri.find(static_cast<int>(ii)); it != images_.by_uri.end()) {
+    e = it->second;
+  } else {
+    w_.fail(ip + "/uri", "a readable image file (relative to the glTF file)", quoted(img.uri));
+  }
+  if (!e.decodable) w_.fail(ip, "an image stb_image can decode (PNG, JPEG, BMP, TGA, ...)", e.reason);
+}
+
+}  // namespace gltf
+
+GltfImportReport import_gltf_bytes(Scene& scene, const std::vector<uint8_t>& bytes, const std::string& name,
+                                   const std::string& base_dir, const Mat4& transform, const GltfImportOptions& options) {
+  const gltf::Where w{name};
+  GltfImportOptions opt = options;
+  const std::string stem = std::filesystem::path(name).stem().string() + "/";
+  if (opt.material_prefix.empty()) opt.material_prefix = stem;
+  if (opt.instance_prefix.empty()) opt.instance_prefix = stem;
+  GltfImportReport report;
+  report.path = name;
+  // Nothing of a failed import stays in the scene.
+  const size_t materials = scene.materials.size(), meshes = scene.meshes.size(), instances = scene.instances.size(),
+               lights = scene.lights.size();
+  const Sun sun = scene.sun;
+  const Camera camera = scene.camera;
+  auto roll_back = [&] {
+    scene.materials.resize(materials);
+    scene.meshes.resize(meshes);
+    scene.instances.resize(instances);
+    scene.lights.resize(lights);
+    scene.sun = sun;
+    scene.camera = camera;
+  };
+  try {
+    gltf::ImageLog images;
+    const tinygltf::Model model = gltf::load_model(bytes, w, base_dir, images);
+    gltf::Importer(scene, model, w, opt, images, report).run(transform);
+  } catch (const SceneError&) {
+    roll_back();
+    throw;
+  } catch (const std::exception& e) {  // std::bad_alloc and the like: still one line naming the file
+    roll_back();
+    w.fail_file("a glTF file that can be imported", json_messages::ascii_line(e.what()));
+  }
+  return report;
+}
+
+GltfImportReport import_gltf(Scene& scene, const std::string& path, const Mat4& transform, const GltfImportOptions& options) {
+  const gltf::Where w{path};
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) w.fail_file("a glTF file", "a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) w.fail_file("a readable file", std::strerror(errno));
+  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) w.fail_file("a readable file", "a read error");
+  std::string base = std::filesystem::path(path).parent_path().string();
+  return import_gltf_bytes(scene, bytes, path, base.empty() ? "." : base, transform, options);
+}
+
+}  // namespace gib
