@@ -383,7 +383,8 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
   auto nf = metrics::count_non_finite(r.image);
   row.metrics["nan_count"] = double(nf.nan);
   row.metrics["inf_count"] = double(nf.inf);
-  std::optional<FloatImage> golden;
+  std::optional<FloatImage> golden, rounded_output;  // rounded_output: the output as a half golden stores it
+  bool golden_half = false;
   if (kind == "technique") {
     std::string stem = GoldenStore::technique_stem(run.name(), preset);
     std::string path = ctx.store.find(stem, ctx.golden_cls);
@@ -393,8 +394,7 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
           ctx.store.dir(), stem, c.name, run.technique, ctx.tier == "gpu" ? " --tier gpu" : ""));
       failed = true;
     } else {
-      bool half = false;
-      golden = ctx.store.read(path, &half);
+      golden = ctx.store.read(path, &golden_half);
       row.golden_class =
           fs::path(path).filename() == ctx.store.file_name(stem, ctx.golden_cls) ? ctx.golden_cls : "lavapipe";
       if (row.golden_class != ctx.golden_cls)
@@ -404,7 +404,8 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
             row.golden_class, fs::path(path).filename().string(), ctx.golden_cls, c.name, run.technique));
       // A half-float golden (the GPU tier's) stores the output rounded to half: compare the
       // output rounded the same way, so an unchanged technique differs in no value.
-      const FloatImage out = half ? round_to_half(r.image) : r.image;
+      if (golden_half) rounded_output = round_to_half(r.image);
+      const FloatImage& out = golden_half ? *rounded_output : r.image;
       Threshold gt{"flip", "golden", "", c.golden_flip_max, std::nullopt};
       CheckResult cr = check_value(gt, compute_metric(c, "flip", out, &*golden, nullptr), 0);
       row.metrics["flip_vs_golden"] = cr.value;
@@ -453,6 +454,13 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
       failed |= !cr.pass;
       continue;
     }
+    if (t.against == "golden" && !golden) {  // the row has failed on the missing golden already
+      CheckResult missing{t.metric, t.against, t.roi, std::numeric_limits<double>::quiet_NaN(), t.max, t.min, false, false,
+                          fmt::format("{} vs golden: no approved golden to compare with", t.metric)};
+      row.checks.push_back(std::move(missing));
+      failed = true;
+      continue;
+    }
     const Roi* roi = t.roi.empty() ? nullptr : find_roi(c, t.roi);
     // Series metrics and the golden are measured once; image metrics at every evaluation frame.
     bool once = t.metric == "flicker" || t.metric.rfind("conv_", 0) == 0 || t.metric.rfind("scan_", 0) == 0 ||
@@ -463,13 +471,13 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
     CheckResult worst;
     double worst_violation = -std::numeric_limits<double>::infinity();
     for (uint32_t f : at) {
-      const FloatImage& out = image_at(r, f, c);
+      const FloatImage* out = &image_at(r, f, c);
       const FloatImage* against = nullptr;
       if (t.against == "reference") against = &reference_for(ctx, aov, f);
-      else if (t.against == "golden") against = golden ? &*golden : nullptr;
+      else if (t.against == "golden") against = &*golden, out = golden_half ? &*rounded_output : out;
       else if (t.against == "analytic") against = ctx.analytic ? &*ctx.analytic : nullptr;
       else if (t.against.rfind("variant:", 0) == 0) against = &image_at(variant(t.against.substr(8)), f, c);
-      double v = compute_metric(c, t.metric, out, against, roi, series);
+      double v = compute_metric(c, t.metric, *out, against, roi, series);
       if (at.size() > 1) row.metrics[fmt::format("{}@f{}", key, f)] = v;
       double viol = violation(t, v);
       if (viol > worst_violation || f == at.front()) {

@@ -31,11 +31,34 @@ Tier resolve_tier(const std::string& requested, const std::string& device_class)
 
 const char* tier_name(Tier t) { return t == Tier::ci ? "ci" : "gpu"; }
 
+namespace {
+
+// Options that are pixel coordinates (TechniqueOption::pixel) name the same point of the image
+// at w x h as at the case's CI size: the centre of the old pixel, in the new grid.
+void scale_pixel_options(TechniqueRun& run, const Case& from, uint32_t w, uint32_t h) {
+  const Technique& t = find_technique(run.technique);
+  auto scale = [&](std::map<std::string, double>& options) {
+    for (auto& [name, v] : options)
+      for (const TechniqueOption& o : t.options) {
+        if (o.name != name || o.pixel == TechniqueOption::Pixel::no) continue;
+        const bool col = o.pixel == TechniqueOption::Pixel::column;
+        const double size = col ? w : h, was = col ? from.width : from.height;
+        v = std::min(size - 1, std::floor((v + 0.5) * size / was));
+      }
+  };
+  scale(run.options);
+  for (auto& [name, options] : run.variants) scale(options);
+}
+
+}  // namespace
+
 Case at_tier(const Case& c, Tier t) {
   Case out = c;
   if (t == Tier::gpu) {
     out.width = c.gpu_width;
     out.height = c.gpu_height;
+    for (TechniqueRun& r : out.techniques) scale_pixel_options(r, c, out.width, out.height);
+    for (NegativeControl& nc : out.negative_controls) scale_pixel_options(nc.run, c, out.width, out.height);
   }
   return out;
 }
@@ -103,7 +126,60 @@ std::vector<std::string> needed_stems(const Case& c) {
   return stems;
 }
 
+// What the renderer draws, beyond the scene file's text: the geometry, instances, materials and
+// lights the loader produced, so content a scene file pulls in (glTF objects and their buffers)
+// changes the key when it changes.
+std::string scene_content_hash(const Scene& s) {
+  std::string bytes;
+  auto raw = [&](const void* p, size_t n) { bytes.append(static_cast<const char*>(p), n); };
+  auto vec = [&](const auto& v) {
+    uint64_t n = v.size();
+    raw(&n, sizeof n);
+    if (n) raw(v.data(), n * sizeof(v[0]));
+  };
+  for (const Mesh& m : s.meshes) {
+    vec(m.positions);
+    vec(m.normals);
+    vec(m.uvs);
+    vec(m.indices);
+  }
+  for (const Instance& i : s.instances) {
+    raw(&i.mesh, sizeof i.mesh);
+    raw(&i.material, sizeof i.material);
+    raw(&i.transform, sizeof i.transform);
+    vec(i.animation);
+  }
+  for (const Material& m : s.materials) {
+    bytes += m.name;
+    raw(&m.albedo, sizeof m.albedo);
+    raw(&m.roughness, sizeof(float) * 2);  // roughness, metalness
+    raw(&m.emissive, sizeof m.emissive);
+    raw(&m.translucency, sizeof m.translucency);
+    raw(&m.alpha, sizeof m.alpha);
+    raw(&m.alpha_cutoff, sizeof(float) * 2);  // alpha_cutoff, opacity
+    raw(&m.texture, sizeof m.texture);
+    raw(&m.albedo2, sizeof m.albedo2);
+    raw(&m.texture_scale, sizeof m.texture_scale);
+    raw(&m.brdf, sizeof m.brdf);
+    raw(&m.sheen, sizeof m.sheen);
+  }
+  vec(s.lights);
+  return fnv1a_hex(bytes);
+}
+
 }  // namespace
+
+uint32_t pilot_spp(uint32_t start_spp) {
+  return start_spp <= kReferencePilotMin * 4 ? start_spp : std::max(kReferencePilotMin, start_spp / 64);
+}
+
+uint32_t next_spp(uint32_t spp, double floor, const ReferenceRequest& req) {
+  // FLIP of the noise ~ 1/sqrt(spp): the spp that puts the floor at 0.9 x the target, rounded up
+  // to a multiple of 4096; at least twice what was rendered, at most the budget.
+  const double want = double(spp) * std::pow(floor / (0.9 * req.target_floor), 2.0);
+  const uint64_t rounded = (uint64_t(std::ceil(want)) + 4095) / 4096 * 4096;
+  return uint32_t(std::min<uint64_t>(std::max<uint64_t>(rounded, uint64_t(spp) * 2), req.max_spp));
+}
 
 ReferenceRequest reference_request(const Case& c, const nlohmann::json& committed_meta) {
   ReferenceRequest req;
@@ -134,6 +210,7 @@ nlohmann::json reference_key_inputs(const Case& c, const ReferenceRequest& req) 
   if (per_frame_references(c))
     for (uint32_t f : evaluation_frames(c)) frames.push_back(f);
   return {{"scene", fnv1a_hex(c.scene_text)},
+          {"scene_content", scene_content_hash(c.scene)},
           {"scene_file", c.scene_file.empty() ? std::string("inline") : c.scene_file},
           {"size", {c.width, c.height}},
           {"seed", c.reference_seed},
@@ -176,7 +253,8 @@ std::string render_references(Gpu& gpu, const Case& c, ReferenceSource& src, con
   const std::vector<uint32_t> frames =
       per_frame_references(c) ? evaluation_frames(c) : std::vector<uint32_t>{0};
   const DeviceInfo& d = gpu.info();
-  uint32_t spp = std::min(src.request.start_spp, src.request.max_spp);
+  uint32_t spp = std::min(src.request.first_spp ? src.request.first_spp : pilot_spp(src.request.start_spp),
+                          src.request.max_spp);
   const std::vector<std::string> aovs = compared_aovs(c);
   auto compared = [&](const std::string& aov) { return std::find(aovs.begin(), aovs.end(), aov) != aovs.end(); };
   nlohmann::json meta, floor;
@@ -207,11 +285,11 @@ std::string render_references(Gpu& gpu, const Case& c, ReferenceSource& src, con
                                    c.reference_seed + 1000, spp);
     floor = measure_noise_floor(gpu, rc, &*last, [&](uint32_t a, uint32_t b) { if (progress) progress(what, a, b); });
     std::tie(worst, worst_aov) = worst_floor(c, floor);
-    if (worst <= src.request.target_floor || spp * 4ull > src.request.max_spp) {
+    if (worst <= src.request.target_floor || spp >= src.request.max_spp) {
       for (auto& [stem, img] : images) src.store.write(stem, "", img);
       break;
     }
-    spp *= 4;
+    spp = next_spp(spp, worst, src.request);
   }
   record_noise_floor(meta, floor);
   meta["noise_floor"]["worst"] = worst;
@@ -283,9 +361,9 @@ int cmd_references(const SuiteOptions& o, bool refresh, bool dry_run, uint32_t m
     nlohmann::json meta = src.store.metadata();
     const bool present = references_present(c, src);
     const uint32_t held = present ? recorded_reference_spp(c, meta) : 0;
-    // An entry short of its target is refined from 4x what it holds when the budget allows more.
-    const bool refine = present && !references_converged(src) && held * 4ull <= max_spp;
-    if (refine) src.request.start_spp = std::max(src.request.start_spp, held * 4);
+    // An entry short of its target is refined (at the spp its floor predicts) when the budget allows more.
+    const bool refine = present && !references_converged(src) && held < max_spp;
+    if (refine) src.request.first_spp = next_spp(held, meta["noise_floor"].value("worst", 1.0), src.request);
     if (refresh || !present || refine) {
       fmt::print("{}\n", render_references(*gpu, c, src, terminal_progress("")));
       meta = src.store.metadata();

@@ -39,10 +39,12 @@ std::string path_tracer_revision();
 
 // How a GPU-tier reference is rendered: the noise floor it must reach (the case's limit,
 // kReferenceNoiseFloorMax, and a third of its tightest whole-image flip bound against the
-// reference: kNoiseFloorFactor) and the spp it starts at (predicted from the committed CI-tier
-// reference's recorded spp and floor: noise per pixel does not depend on the image size, and
-// FLIP of noise falls about as 1/sqrt(spp)); while the measured floor is above the target the
-// spp is multiplied by 4, up to kReferenceSppMax.
+// reference: kNoiseFloorFactor) and the spp predicted from the committed CI-tier reference's
+// recorded spp and floor (noise per pixel does not depend on the image size; FLIP of noise
+// falls about as 1/sqrt(spp)). The prediction overshoots at 640x360 (measured on an H100: the
+// same spp gives a floor about 2x lower than at 128x72), so rendering starts with a pilot at
+// 1/64 of it (pilot_spp) and, while the measured floor is above the target, renders again at the
+// spp the pilot's floor predicts (next_spp), up to the budget.
 inline constexpr uint32_t kReferenceSppMax = 1048576;
 struct ReferenceRequest {
   double target_floor = kReferenceNoiseFloorMax;
@@ -51,8 +53,17 @@ struct ReferenceRequest {
   // that stops short of its target is kept, recorded as not converged and reported so by every
   // run that uses it. Not part of the key: a later request with a larger budget refines it.
   uint32_t max_spp = kReferenceSppMax;
+  // The first render's spp (0: pilot_spp(start_spp)); refining an entry short of its target
+  // starts where its measured floor points (next_spp). Not part of the key.
+  uint32_t first_spp = 0;
 };
 ReferenceRequest reference_request(const Case& c_at_tier, const nlohmann::json& committed_meta);
+inline constexpr uint32_t kReferencePilotMin = 1024;
+// The first render: start_spp / 64 (kReferencePilotMin at least); start_spp itself when small.
+uint32_t pilot_spp(uint32_t start_spp);
+// After a render at `spp` measured `floor` above the target: the spp that puts it at 0.9 x the
+// target (1/sqrt law), a multiple of 4096, at least 2 x spp, at most req.max_spp.
+uint32_t next_spp(uint32_t spp, double floor, const ReferenceRequest& req);
 
 // Everything that changes a GPU-tier reference (scene contents, size, seed, frames rendered,
 // AOVs, the request above, the path tracer revision), and its hash: the cache entry's name.

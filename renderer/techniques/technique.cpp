@@ -100,8 +100,10 @@ std::vector<TechniqueOption> with_common_options(std::vector<TechniqueOption> op
                                true, [](Settings& s, double v) { s.debug.inject_frame = uint32_t(v); }));
   opts.push_back(common_option("inject_x", "debug: pixel column of the NaN injection", 0, 65535, true,
                                [](Settings& s, double v) { s.debug.inject_x = uint32_t(v); }));
+  opts.back().pixel = TechniqueOption::Pixel::column;
   opts.push_back(common_option("inject_y", "debug: pixel row of the NaN injection", 0, 65535, true,
                                [](Settings& s, double v) { s.debug.inject_y = uint32_t(v); }));
+  opts.back().pixel = TechniqueOption::Pixel::row;
   // Another sample of the same estimator: a variant with seed_offset 1000 measures a technique's own
   // seed-to-seed noise, the scale "comparable image quality" is judged against (vrcs-parity).
   opts.push_back(common_option("seed_offset", "added to the run's random seed (another sample of the same estimator)", 0,

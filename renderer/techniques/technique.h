@@ -29,6 +29,9 @@ struct TechniqueOption {
   std::function<void(Settings&, double)> apply;
   std::function<double(const Settings&)> read;  // the value `s` holds (empty for options without a field)
   std::vector<double> allowed;  // when not empty, the only valid values (e.g. the NaN targets a technique has)
+  // A pixel coordinate (column or row) of the render: a case rendered at another size (the GPU
+  // tier, harness/tier.h) scales it so it names the same point of the image.
+  enum class Pixel { no, column, row } pixel = Pixel::no;
 };
 
 // A pass the technique runs: its name (== folder == file stem == timer == bench key) and factory.
