@@ -197,6 +197,25 @@ json parse_json(const std::string& text, const std::string& file) {
 
 // ---------------------------------------------------------------- case parts
 
+// known_failure / not_caught_on: a string (every device class and tier: key "*") or an object
+// whose keys are a device class, or CLASS@TIER / *@TIER for what shows at one tier only
+// (harness/tier.h: a few pixels of the CI tier's 128x72 decide an ROI that 640x360 does not).
+std::map<std::string, std::string> read_device_keyed(const Node& kf) {
+  std::map<std::string, std::string> out;
+  if (kf.v->is_object()) {
+    std::vector<std::string> classes = {"lavapipe", "nvidia", "amd", "intel", "other"};
+    for (const std::string cls : {"lavapipe", "nvidia", "amd", "intel", "other", "*"})
+      for (const char* tier : {"ci", "gpu"}) classes.push_back(cls + "@" + tier);
+    require_object(kf, classes);
+    if (kf.v->empty()) kf.fail("a string, or an object of device class -> string with at least one key");
+    for (auto it = kf.v->begin(); it != kf.v->end(); ++it) out[it.key()] = read_nonempty_string(kf[it.key()]);
+  } else {
+    out["*"] = read_string(kf, "a non-empty string, or an object of device class -> string");
+    if (out["*"].empty()) kf.fail("a non-empty string, or an object of device class -> string");
+  }
+  return out;
+}
+
 // Inline scenes are parsed with the case file as their source, so the scene loader's message
 // is "<file>: <pointer inside the scene>: ..."; re-root the pointer under /scene.
 [[noreturn]] void rethrow_inline_scene_error(const SceneError& e, const std::string& file) {
@@ -418,19 +437,7 @@ TechniqueRun read_run(const Node& n, const Case& c, bool negative) {
   }
   if (Node kf = n["known_failure"]; kf.present()) {
     if (negative) kf.fail("no \"known_failure\" in a negative control (it must fail anyway)");
-    if (kf.v->is_object()) {
-      // Keys: a device class, or CLASS@TIER / *@TIER for a defect that shows at one tier only
-      // (harness/tier.h: a few pixels of the CI tier's 128x72 decide an ROI that 640x360 does not).
-      std::vector<std::string> classes = {"lavapipe", "nvidia", "amd", "intel", "other"};
-      for (const std::string cls : {"lavapipe", "nvidia", "amd", "intel", "other", "*"})
-        for (const char* tier : {"ci", "gpu"}) classes.push_back(cls + "@" + tier);
-      require_object(kf, classes);
-      if (kf.v->empty()) kf.fail("a string, or an object of device class -> string with at least one key");
-      for (auto it = kf.v->begin(); it != kf.v->end(); ++it) run.known_failure[it.key()] = read_nonempty_string(kf[it.key()]);
-    } else {
-      run.known_failure["*"] = read_string(kf, "a non-empty string, or an object of device class -> string");
-      if (run.known_failure["*"].empty()) kf.fail("a non-empty string, or an object of device class -> string");
-    }
+    run.known_failure = read_device_keyed(kf);
   }
   if (Node aov = n["compare_aov"]; aov.present())
     run.compare_aov = read_choice(aov, reference_outputs(), "one of the reference outputs");
@@ -537,7 +544,7 @@ Case parse_case(const json& doc, const std::string& file) {
 
   if (Node ncs = root["negative_controls"]; ncs.present()) {
     require_array(ncs, false);
-    std::vector<std::string> keys = {"name", "why"};
+    std::vector<std::string> keys = {"name", "why", "not_caught_on"};
     keys.insert(keys.end(), kRunKeys.begin(), kRunKeys.end());
     for (size_t i = 0; i < ncs.v->size(); ++i) {
       Node n = ncs[i];
@@ -548,6 +555,7 @@ Case parse_case(const json& doc, const std::string& file) {
       for (const NegativeControl& o : c.negative_controls)
         if (o.name == nc.name) name.fail("a negative control name not used before", json_quoted(nc.name) + " again");
       nc.why = read_nonempty_string(n["why"]);
+      if (Node m = n["not_caught_on"]; m.present()) nc.not_caught_on = read_device_keyed(m);
       nc.run = read_run(n, c, true);
       c.negative_controls.push_back(std::move(nc));
     }

@@ -17,6 +17,15 @@ struct CaseError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The value a map keyed by device class and tier (known_failure, not_caught_on) gives on
+// `device_class` at `tier`: the first of the keys CLASS@TIER, *@TIER, CLASS, * present ("" if none).
+inline std::string device_keyed(const std::map<std::string, std::string>& m, const std::string& device_class,
+                                const std::string& tier) {
+  for (const std::string& k : {device_class + "@" + tier, "*@" + tier, device_class, std::string("*")})
+    if (auto it = m.find(k); it != m.end()) return it->second;
+  return "";
+}
+
 // A rectangle in normalised image coordinates ([0,1]^2, origin top-left), so a case works
 // at any render size.
 struct Roi {
@@ -89,9 +98,7 @@ struct TechniqueRun {
   // The known failure that applies on `device_class` at `tier` ("" if none): the first of the
   // keys CLASS@TIER, *@TIER, CLASS, * present.
   std::string known_failure_on(const std::string& device_class, const std::string& tier = "ci") const {
-    for (const std::string& k : {device_class + "@" + tier, "*@" + tier, device_class, std::string("*")})
-      if (auto it = known_failure.find(k); it != known_failure.end()) return it->second;
-    return "";
+    return device_keyed(known_failure, device_class, tier);
   }
   // A reference (path tracer) row's samples per pixel, split over frames like a committed
   // reference's; independent of Case::reference_spp (the committed reference's budget, often
@@ -117,6 +124,14 @@ struct NegativeControl {
   std::string name;
   std::string why;  // what it breaks, in words
   TechniqueRun run; // presets: exactly one
+  // Device classes / tiers (known_failure's keys) where the break is measured not to show, with
+  // the measurement in words: there an uncaught control is reported "skipped" with the words
+  // instead of failing the suite, and a caught one fails ("remove not_caught_on"), so the mark
+  // cannot go stale.
+  std::map<std::string, std::string> not_caught_on;
+  std::string not_caught_reason(const std::string& device_class, const std::string& tier) const {
+    return device_keyed(not_caught_on, device_class, tier);
+  }
 };
 
 struct Case {

@@ -619,7 +619,15 @@ int cmd_run(const SuiteOptions& o) {
         for (auto& cr : row.checks)
           if (cr.skipped) skipped.push_back(cr.message);
         row.messages.clear();
-        if (!caught && !skipped.empty()) {  // what could have caught it did not run
+        const std::string not_caught = nc.not_caught_reason(suite.device_class, suite.tier);
+        if (!not_caught.empty()) {  // measured not to show here: an uncaught control is expected
+          row.status = caught ? "fail" : "skipped";
+          row.messages.push_back(caught ? fmt::format("negative control '{}' is marked not_caught_on {} at the {} tier "
+                                                      "but was caught: remove the mark ({})",
+                                                      nc.name, suite.device_class, suite.tier, not_caught)
+                                        : fmt::format("not caught on {} at the {} tier, as the case records: {}",
+                                                      suite.device_class, suite.tier, not_caught));
+        } else if (!caught && !skipped.empty()) {  // what could have caught it did not run
           row.status = "skipped";
           row.messages = skipped;
         } else if (caught) {

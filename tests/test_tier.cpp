@@ -269,3 +269,59 @@ TEST(Tier, BudgetedReferencesAreMarkedNotConvergedAndRefinedLater) {
 
 }  // namespace
 }  // namespace gib
+
+namespace gib {
+namespace {
+
+// not_caught_on: where a control's break is measured not to show, an uncaught control is
+// "skipped" with the case's words; a caught one fails so the mark cannot go stale; elsewhere the
+// usual rule holds.
+TEST(Tier, NotCaughtOnMarksAControlPerClassAndTierAndCannotGoStale) {
+  test::TempDir dir("gib_tier_nc_");
+  fs::path cases = dir.path() / "cases";
+  fs::create_directories(cases);
+  json c = {{"description", "tiny case for not_caught_on"},
+            {"scene", std::string(GIB_SOURCE_DIR) + "/cases/scenes/cornell.json"},
+            {"width", 16}, {"height", 9}, {"reference_spp", 0}, {"analytic_value", 0.5},
+            {"techniques", {{{"technique", "direct"}, {"presets", {"low"}},
+                             {"thresholds", {{{"metric", "nan_count"}, {"max", 0}}}}}}},
+            {"negative_controls",
+             {{{"name", "uncaught"}, {"why", "passes everything"}, {"technique", "direct"}, {"presets", {"low"}},
+               {"not_caught_on", {{"lavapipe@ci", "measured: no break here"}}},
+               {"thresholds", {{{"metric", "nan_count"}, {"max", 0}}}}},
+              {{"name", "caught"}, {"why", "fails its bound"}, {"technique", "direct"}, {"presets", {"low"}},
+               {"not_caught_on", {{"lavapipe@ci", "stale mark"}}},
+               {"thresholds", {{{"metric", "max_abs_error"}, {"against", "analytic"}, {"max", 0}}}}},
+              {{"name", "elsewhere"}, {"why", "marked for another tier only"}, {"technique", "direct"},
+               {"presets", {"low"}}, {"not_caught_on", {{"*@gpu", "only at the GPU tier"}}},
+               {"thresholds", {{{"metric", "nan_count"}, {"max", 0}}}}}}}};
+  std::ofstream(cases / "nc.json") << c.dump(2);
+  Case loaded = load_case((cases / "nc.json").string());
+  EXPECT_EQ(loaded.negative_controls[0].not_caught_reason("lavapipe", "ci"), "measured: no break here");
+  EXPECT_EQ(loaded.negative_controls[0].not_caught_reason("lavapipe", "gpu"), "");
+  SuiteOptions o;
+  o.cases_dir = cases.string();
+  o.goldens_dir = (dir.path() / "goldens").string();
+  o.out = (dir.path() / "out").string();
+  o.tier = "ci";
+  o.stability_scan = false;
+  cmd_run(o);  // the technique row fails (no golden): only the controls are checked here
+  json r = json::parse(std::ifstream(dir.path() / "out" / "results.json"));
+  std::map<std::string, std::string> status;
+  for (auto& row : r["results"])
+    if (row["kind"] == "negative_control") status[row["negative_control"]] = row["status"];
+  EXPECT_EQ(status["uncaught"], "skipped");
+  EXPECT_EQ(status["caught"], "fail") << "a caught control marked not_caught_on is a stale mark";
+  EXPECT_EQ(status["elsewhere"], "fail") << "an uncaught control without a mark for this class and tier fails";
+  c["negative_controls"][0]["not_caught_on"] = {{"nvidia@big", "typo"}};
+  std::ofstream(cases / "nc.json") << c.dump(2);
+  try {
+    load_case((cases / "nc.json").string());
+    ADD_FAILURE() << "accepted";
+  } catch (const CaseError& e) {
+    EXPECT_NE(std::string(e.what()).find("/negative_controls/0/not_caught_on/nvidia@big"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace gib
