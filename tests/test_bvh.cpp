@@ -37,6 +37,7 @@ namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr uint32_t kSceneBufferCount = 7;  // GIB_SCENE_BINDING_COUNT in scene.glsl
+constexpr uint32_t kSceneTexturesOffset = 30;  // GIB_SCENE_BINDING_TEXTURES in scene.glsl
 
 // Small deterministic generator (no dependence on the standard library's distributions).
 struct Rng {
@@ -1171,6 +1172,9 @@ GpuRun run_gpu(Gpu& gpu, const FlatScene& scene, const Bvh& bvh,
     desc.bindings.push_back({BVH_TEST_BINDING_SCENE + i, DescriptorKind::storage_buffer});
     binds.push_back({BVH_TEST_BINDING_SCENE + i, scene_buffers[i]});
   }
+  const auto texture_buf = buffer(scene.textures.data(), bytes_of(scene.textures), "bvh_test.textures");
+  desc.bindings.push_back({BVH_TEST_BINDING_SCENE + kSceneTexturesOffset, DescriptorKind::storage_buffer});
+  binds.push_back({BVH_TEST_BINDING_SCENE + kSceneTexturesOffset, texture_buf.get()});
   desc.bindings.push_back({BVH_TEST_BINDING_RAYS, DescriptorKind::storage_buffer});
   desc.bindings.push_back({BVH_TEST_BINDING_HITS, DescriptorKind::storage_buffer});
   binds.push_back({BVH_TEST_BINDING_RAYS, ray_buf.get()});

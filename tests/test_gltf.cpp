@@ -112,7 +112,7 @@ TEST(GltfImport, MaterialsMapToTheSceneModel) {
   EXPECT_TRUE(feat.has(Feature::alpha_tested));
   EXPECT_TRUE(feat.has(Feature::local_lights));
   EXPECT_TRUE(feat.has(Feature::sun));
-  EXPECT_FALSE(feat.has(Feature::textured));  // texture references are recorded, not sampled yet
+  EXPECT_FALSE(feat.has(Feature::textured));  // the textured material (0) is not used
   EXPECT_EQ(r.materials[0].textures.base_color, 0);
   EXPECT_EQ(r.materials[0].scene_material, 1u);
   EXPECT_EQ(r.materials[1].textures.base_color, -1);

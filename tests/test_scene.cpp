@@ -507,7 +507,7 @@ TEST(SceneFlatten, MaterialsAndLights) {
   EXPECT_NEAR(f.lights[0].cos_inner, 0.5f, 1e-6f);
   EXPECT_NEAR(f.lights[0].cos_outer, 0.0f, 1e-6f);
   EXPECT_NEAR(f.lights[0].direction[1], -1.0f, 1e-6f);
-  static_assert(sizeof(GpuVertex) == 32 && sizeof(GpuMaterial) == 80 && sizeof(GpuLight) == 64);
+  static_assert(sizeof(GpuVertex) == 32 && sizeof(GpuMaterial) == 96 && sizeof(GpuLight) == 64);
 }
 
 TEST(SceneFlatten, AnimatedInstanceUsesTime) {

@@ -47,6 +47,7 @@ std::vector<Bind> SceneGpu::binds() const {
   std::vector<Bind> b;
   b.push_back({glsl::kBindFrame, frame.get(), nullptr});
   for (uint32_t i = 0; i < buffers.size(); ++i) b.push_back({glsl::kBindSceneFirst + i, buffers[i].get(), nullptr});
+  b.push_back({glsl::kBindSceneTextures, textures.get(), nullptr});
   return b;
 }
 
@@ -54,6 +55,7 @@ std::vector<BindingDecl> scene_bindings() {
   std::vector<BindingDecl> b{{glsl::kBindFrame, DescriptorKind::uniform_buffer}};
   for (uint32_t i = 0; i < glsl::kSceneBufferCount; ++i)
     b.push_back({glsl::kBindSceneFirst + i, DescriptorKind::storage_buffer});
+  b.push_back({glsl::kBindSceneTextures, DescriptorKind::storage_buffer});
   return b;
 }
 
@@ -345,6 +347,12 @@ void Executor::upload_scene(float time) {
   put(4, bvh.nodes.data(), bvh.nodes.size() * sizeof(bvh.nodes[0]), "scene_bvh_nodes");
   put(5, bvh.tri_index.data(), bvh.tri_index.size() * sizeof(uint32_t), "scene_bvh_tri_index");
   put(6, flat.lights.data(), flat.lights.size() * sizeof(GpuLight), "scene_lights");
+  if (!scene_gpu_.textures) {  // textures do not change with time: uploaded once
+    const uint64_t bytes = flat.textures.size() * sizeof(uint32_t);
+    scene_gpu_.textures = gpu_.create_buffer(bytes, BufferUsage::storage, "scene_textures");
+    gpu_.upload(*scene_gpu_.textures, flat.textures.data(), bytes);
+    texture_bytes_ = bytes;
+  }
   scene_gpu_.triangle_count = static_cast<uint32_t>(flat.triangles.size());
   scene_gpu_.instance_count = static_cast<uint32_t>(flat.instances.size());
   scene_gpu_.light_count = static_cast<uint32_t>(flat.lights.size());

@@ -36,6 +36,9 @@ class Executor {
   Gpu& gpu() const { return gpu_; }
   FrameResult run_frame();
   uint32_t frames_run() const { return frame_; }
+  // Bytes of the packed image-texture buffer (tables, every texture and mip; 0 before the
+  // first frame uploads it).
+  uint64_t texture_bytes() const { return texture_bytes_; }
   // Stability scan (off by default): from the next frame on, after each running pass, one
   // compute dispatch per resource the pass writes (write / read_write) whose declared value
   // domain is not none reduces it to per-category counts and first offending texel; the
@@ -69,6 +72,7 @@ class Executor {
   SceneGpu scene_gpu_;
   // bake_average_opacity(scene_), once: an animated scene is flattened every frame.
   std::vector<float> average_opacity_;
+  uint64_t texture_bytes_ = 0;
   std::vector<GpuDecal> decals_;  // world space (offset applied), copied into each frame's constants
   std::vector<IndoorVolume> indoor_volumes_;  // carried by the frame constants
   struct Allocation {

@@ -23,10 +23,11 @@ static_assert(kStageCompute == 1u << static_cast<uint32_t>(PassKind::compute) &&
 struct SceneGpu {
   std::shared_ptr<Buffer> frame;  // GpuFrame (uniform)
   std::array<std::shared_ptr<Buffer>, 7> buffers;
+  std::shared_ptr<Buffer> textures;  // packed image textures (kBindSceneTextures), static
   uint32_t triangle_count = 0;
   uint32_t instance_count = 0;
   uint32_t light_count = 0;
-  // Binds for frame + scene buffers (bindings 0..7).
+  // Binds for frame + scene buffers (bindings 0..7) and the textures (kBindSceneTextures).
   std::vector<Bind> binds() const;
 };
 
@@ -71,8 +72,9 @@ class Pass {
   virtual void record(RecordContext& ctx) = 0;
 };
 
-// Descriptor layout of the scene bundle (frame uniform at 0, scene buffers at 1..7); a pass
-// appends its own slots from binding 8 (kBindPassFirst).
+// Descriptor layout of the scene bundle (frame uniform at 0, scene buffers at 1..7, the packed
+// textures at 31, kBindSceneTextures); a pass appends its own slots from binding 8
+// (kBindPassFirst) and stays below 31.
 std::vector<BindingDecl> scene_bindings();
 
 // The common shape of a compute pass: the scene bundle plus storage images bound by slot name,

@@ -1,6 +1,7 @@
 #include "renderer/scene/gltf_export.h"
 
 #include <fmt/format.h>
+#include <stb_image_write.h>
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -71,6 +72,7 @@ class Exporter {
   }
 
   tg::Model build(const std::string& path) {
+    for (const Texture& t : s_.textures) add_texture(t);
     for (const Material& mat : s_.materials) add_material(mat);
     for (uint32_t i = 0; i < s_.instances.size(); ++i) add_instance(i, path);
     for (size_t i = 0; i < s_.lights.size(); ++i) add_light(s_.lights[i], i);
@@ -86,12 +88,37 @@ class Exporter {
   }
 
  private:
+  // Level 0 as a PNG in a bufferView (lossless: the import rebuilds the same mips).
+  void add_texture(const Texture& t) {
+    if (t.mips.empty()) throw SceneError(t.name + ": expected a texture with its level 0, got none");
+    std::vector<uint8_t> rgba(t.mips[0].size() * 4);
+    for (size_t i = 0; i < t.mips[0].size(); ++i)
+      for (int k = 0; k < 4; ++k) rgba[4 * i + size_t(k)] = uint8_t(t.mips[0][i] >> (8 * k));
+    std::vector<uint8_t> png;
+    auto sink = [](void* ctx, void* data, int size) {
+      auto* out = static_cast<std::vector<uint8_t>*>(ctx);
+      out->insert(out->end(), static_cast<uint8_t*>(data), static_cast<uint8_t*>(data) + size);
+    };
+    if (!stbi_write_png_to_func(sink, &png, int(t.width), int(t.height), 4, rgba.data(), int(t.width) * 4))
+      throw SceneError(t.name + ": expected a texture stb_image_write can encode as PNG");
+    tg::Image img;
+    img.name = t.name;
+    img.mimeType = "image/png";
+    img.bufferView = add_view(png.data(), png.size(), 0);
+    while (m_.buffers[0].data.size() % 4) m_.buffers[0].data.push_back(0);  // the next views stay 4-byte aligned
+    m_.images.push_back(std::move(img));
+    tg::Texture tex;
+    tex.source = static_cast<int>(m_.images.size() - 1);
+    m_.textures.push_back(std::move(tex));
+  }
+
   void add_material(const Material& mat) {
     tg::Material g;
     g.name = mat.name;
     const Vec3 a = vmin(vmax(mat.albedo, {0, 0, 0}), {1, 1, 1});
     if (!(a == mat.albedo)) r_.lossy.push_back(mat.name + ": albedo clamped to [0, 1]");
-    const double alpha = mat.alpha == AlphaKind::opacity ? mat.opacity : 1.0;
+    const bool texture_alpha = mat.alpha == AlphaKind::texture_mask || mat.alpha == AlphaKind::texture_opacity;
+    const double alpha = mat.alpha == AlphaKind::opacity || texture_alpha ? mat.opacity : 1.0;
     g.pbrMetallicRoughness.baseColorFactor = {a.x, a.y, a.z, alpha};
     g.pbrMetallicRoughness.metallicFactor = mat.metalness;
     g.pbrMetallicRoughness.roughnessFactor = mat.roughness;
@@ -105,7 +132,12 @@ class Exporter {
     g.doubleSided = true;  // nothing is culled here: every surface is seen from both sides
     switch (mat.alpha) {
       case AlphaKind::none: break;
-      case AlphaKind::opacity: g.alphaMode = "BLEND"; break;
+      case AlphaKind::opacity:
+      case AlphaKind::texture_opacity: g.alphaMode = "BLEND"; break;
+      case AlphaKind::texture_mask:
+        g.alphaMode = "MASK";
+        g.alphaCutoff = mat.alpha_cutoff;
+        break;
       case AlphaKind::leaf_mask:
       case AlphaKind::checker_mask:
         g.alphaMode = "MASK";
@@ -113,7 +145,11 @@ class Exporter {
         r_.lossy.push_back(mat.name + ": procedural alpha mask written as MASK with alpha 1 (imports opaque)");
         break;
     }
-    if (mat.texture != TextureKind::none) r_.lossy.push_back(mat.name + ": procedural texture (albedo2, texture_scale) not exported");
+    auto texture = [&](int32_t t) { return t >= 0 && size_t(t) < s_.textures.size() ? int(t) : -1; };
+    g.pbrMetallicRoughness.baseColorTexture.index = texture(mat.base_color_texture);
+    g.pbrMetallicRoughness.metallicRoughnessTexture.index = texture(mat.metallic_roughness_texture);
+    g.emissiveTexture.index = texture(mat.emissive_texture);
+    if (mat.texture != TextureKind::none && mat.texture != TextureKind::image) r_.lossy.push_back(mat.name + ": procedural texture (albedo2, texture_scale) not exported");
     if (mat.translucency > 0) r_.lossy.push_back(mat.name + ": translucency not exported");
     if (mat.brdf == BrdfKind::cloth) r_.lossy.push_back(mat.name + ": cloth BRDF (sheen) exported as standard");
     m_.materials.push_back(std::move(g));

@@ -9,7 +9,9 @@
 // metallic-roughness factors (albedo, metalness, roughness, emissive with
 // KHR_materials_emissive_strength above 1, AlphaKind::opacity as BLEND with the opacity as
 // base colour alpha), point and spot lights and the sun (KHR_lights_punctual, one to one
-// units as the import), and the camera (perspective).
+// units as the import), the camera (perspective), and image textures (Scene::textures, level 0
+// as PNG in the binary buffer, lossless: base colour, emissive and metallic-roughness
+// references, texture masks as MASK and texture opacity as BLEND with the factor alpha).
 // What it cannot carry is listed in GltfExportReport::lossy: procedural textures (checker,
 // value noise: albedo2, texture_scale), procedural alpha masks (written as MASK with base
 // alpha 1, which imports opaque), translucency, the cloth BRDF and its sheen, every

@@ -36,7 +36,7 @@ void Importer::run(const Mat4& transform) {
   report_.first_instance = static_cast<uint32_t>(scene_.instances.size());
   for (size_t i = 0; i < m_.materials.size(); ++i) add_material(convert_material(i), info_of(m_.materials[i]));
   visit_scene(transform);
-  check_textures();
+  load_textures();
   if (ignored_suns_) report_.notes.push_back(fmt::format("{} directional light(s) ignored: the scene sets its sun", ignored_suns_));
   for (const std::string& a : ignored_attributes_) report_.notes.push_back("attribute " + a + " ignored");
 }
@@ -204,44 +204,101 @@ uint32_t Importer::mesh_for(size_t mi, size_t pj) {
   return it->second;
 }
 
-// Textures are not sampled yet; what materials reference must still exist and decode.
-void Importer::check_textures() {
-  std::set<size_t> checked;
-  size_t refs = 0;
+// The textures materials reference: base colour, emissive and metallic-roughness images are
+// decoded into Scene::textures (once per image and colour space); normal and occlusion images
+// must exist and decode but are not sampled.
+void Importer::load_textures() {
+  report_.first_texture = static_cast<uint32_t>(scene_.textures.size());
+  size_t unsampled = 0;
   for (size_t i = 0; i < m_.materials.size(); ++i) {
+    const tg::Material& g = m_.materials[i];
     const GltfTextureRefs& t = report_.materials[i].textures;
-    const std::string p = "/materials/" + std::to_string(i);
-    const std::pair<int, std::string> uses[] = {
-        {t.base_color, p + "/pbrMetallicRoughness/baseColorTexture/index"},
-        {t.metallic_roughness, p + "/pbrMetallicRoughness/metallicRoughnessTexture/index"},
-        {t.emissive, p + "/emissiveTexture/index"}, {t.normal, p + "/normalTexture/index"},
-        {t.occlusion, p + "/occlusionTexture/index"}};
-    for (const auto& [index, ref] : uses) {
-      if (index == -1) continue;
-      ++refs;
-      const size_t ti = w_.index(ref, index, m_.textures.size(), "texture");
-      const std::string sp = fmt::format("/textures/{}/source", ti);
-      if (m_.textures[ti].source == -1) w_.fail(sp, "an image index (no supported extension supplies one)", "none");
-      const size_t ii = w_.index(sp, m_.textures[ti].source, m_.images.size(), "image");
-      if (checked.insert(ii).second) check_image(ii);
+    const std::string p = "/materials/" + std::to_string(i), pp = p + "/pbrMetallicRoughness";
+    Material& mat = scene_.materials[report_.materials[i].scene_material];
+    mat.base_color_texture = texture_for(t.base_color, pp + "/baseColorTexture/index", true);
+    mat.emissive_texture = texture_for(t.emissive, p + "/emissiveTexture/index", true);
+    mat.metallic_roughness_texture = texture_for(t.metallic_roughness, pp + "/metallicRoughnessTexture/index", false);
+    for (const auto& [index, ref] : {std::pair{t.normal, p + "/normalTexture/index"},
+                                     std::pair{t.occlusion, p + "/occlusionTexture/index"}})
+      if (index != -1) {
+        texture_for(index, ref, false);  // checked (and decoded) like the others
+        ++unsampled;
+      }
+    for (const auto& [info, ref] : {std::pair{g.pbrMetallicRoughness.baseColorTexture, pp + "/baseColorTexture"},
+                                    std::pair{g.emissiveTexture, p + "/emissiveTexture"},
+                                    std::pair{g.pbrMetallicRoughness.metallicRoughnessTexture,
+                                              pp + "/metallicRoughnessTexture"}})
+      if (info.index != -1 && info.texCoord != 0)
+        report_.notes.push_back(ref + ": TEXCOORD_" + std::to_string(info.texCoord) + " read as TEXCOORD_0");
+    if (mat.base_color_texture < 0) continue;
+    mat.texture = TextureKind::image;
+    const float alpha = static_cast<float>(g.pbrMetallicRoughness.baseColorFactor[3]);  // checked
+    if (g.alphaMode == "MASK") {
+      mat.alpha = AlphaKind::texture_mask;
+      mat.opacity = alpha;
+    } else if (g.alphaMode == "BLEND") {
+      mat.alpha = AlphaKind::texture_opacity;
+      mat.opacity = alpha;
     }
   }
-  if (refs) report_.notes.push_back(fmt::format("{} texture reference(s) recorded, not sampled (phase 1)", refs));
+  // Textures the scene will not use, the trailing ones of an unreferenced material, stay (they
+  // cost memory only).
+  if (unsampled) report_.notes.push_back(fmt::format("{} normal/occlusion texture reference(s) not sampled", unsampled));
+  report_.texture_count = static_cast<uint32_t>(scene_.textures.size()) - report_.first_texture;
+  for (size_t i = report_.first_texture; i < scene_.textures.size(); ++i) report_.texture_bytes += scene_.textures[i].bytes();
 }
 
-void Importer::check_image(size_t ii) {
+// The bytes of image ii (a checked bufferView, or its URI file's).
+const ImageLog::Entry& Importer::image_bytes(size_t ii, ImageLog::Entry& scratch, const uint8_t*& data, size_t& size) {
   const tg::Image& img = m_.images[ii];
   const std::string ip = "/images/" + std::to_string(ii);
-  ImageLog::Entry e;
   if (img.bufferView != -1) {
     const size_t vi = w_.index(ip + "/bufferView", img.bufferView, m_.bufferViews.size(), "bufferView");
-    e = inspect_image(buffer_view_bytes(m_, vi, w_), m_.bufferViews[vi].byteLength);
-  } else if (auto it = images_.by_uri.find(static_cast<int>(ii)); it != images_.by_uri.end()) {
-    e = it->second;
-  } else {
-    w_.fail(ip + "/uri", "a readable image file (relative to the glTF file)", quoted(img.uri));
+    data = buffer_view_bytes(m_, vi, w_);
+    size = m_.bufferViews[vi].byteLength;
+    scratch = inspect_image(data, size);
+    return scratch;
   }
+  auto it = images_.by_uri.find(static_cast<int>(ii));
+  if (it == images_.by_uri.end())
+    w_.fail(ip + "/uri", "a readable image file (relative to the glTF file)", quoted(img.uri));
+  data = it->second.bytes.data();
+  size = it->second.bytes.size();
+  return it->second;
+}
+
+int32_t Importer::texture_for(int index, const std::string& ref, bool srgb) {
+  if (index == -1) return -1;
+  const size_t ti = w_.index(ref, index, m_.textures.size(), "texture");
+  const std::string sp = fmt::format("/textures/{}/source", ti);
+  if (m_.textures[ti].source == -1) w_.fail(sp, "an image index (no supported extension supplies one)", "none");
+  const size_t ii = w_.index(sp, m_.textures[ti].source, m_.images.size(), "image");
+  if (auto it = textures_.find({ii, srgb}); it != textures_.end()) return it->second;
+  if (const int si = m_.textures[ti].sampler; si >= 0 && static_cast<size_t>(si) < m_.samplers.size()) {
+    const tg::Sampler& s = m_.samplers[static_cast<size_t>(si)];
+    if (s.wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT || s.wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT)
+      report_.notes.push_back(fmt::format("/samplers/{}: wrap modes other than REPEAT sampled as REPEAT", si));
+  }
+  const std::string ip = "/images/" + std::to_string(ii);
+  ImageLog::Entry scratch;
+  const uint8_t* data = nullptr;
+  size_t size = 0;
+  const ImageLog::Entry& e = image_bytes(ii, scratch, data, size);
   if (!e.decodable) w_.fail(ip, "an image stb_image can decode (PNG, JPEG, BMP, TGA, ...)", e.reason);
+  if (scene_.textures.size() >= kTextureMaxCount)
+    w_.fail(ip, fmt::format("at most {} textures in a scene", kTextureMaxCount), "one more");
+  const DecodedImage d = decode_image(data, size);
+  if (!d.ok) w_.fail(ip, fmt::format("an image stb_image can decode, at most {} texels a side", kTextureMaxSize), d.reason);
+  Texture t = make_texture(w_.file + ": " + ip, d.width, d.height, d.rgba.data(), srgb);
+  uint64_t bytes = t.bytes();
+  for (const Texture& o : scene_.textures) bytes += o.bytes();
+  if (bytes > kTextureMaxBytes)
+    w_.fail(ip, fmt::format("at most {} MiB of textures and mips in a scene", kTextureMaxBytes >> 20),
+            fmt::format("{} bytes with this one", bytes));
+  scene_.textures.push_back(std::move(t));
+  const int32_t id = static_cast<int32_t>(scene_.textures.size() - 1);
+  textures_[{ii, srgb}] = id;
+  return id;
 }
 
 }  // namespace gltf
@@ -257,7 +314,7 @@ GltfImportReport import_gltf_bytes(Scene& scene, const std::vector<uint8_t>& byt
   report.path = name;
   // Nothing of a failed import stays in the scene.
   const size_t materials = scene.materials.size(), meshes = scene.meshes.size(), instances = scene.instances.size(),
-               lights = scene.lights.size();
+               lights = scene.lights.size(), textures = scene.textures.size();
   const Sun sun = scene.sun;
   const Camera camera = scene.camera;
   auto roll_back = [&] {
@@ -265,6 +322,7 @@ GltfImportReport import_gltf_bytes(Scene& scene, const std::vector<uint8_t>& byt
     scene.meshes.resize(meshes);
     scene.instances.resize(instances);
     scene.lights.resize(lights);
+    scene.textures.resize(textures);
     scene.sun = sun;
     scene.camera = camera;
   };

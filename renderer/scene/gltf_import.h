@@ -6,8 +6,11 @@
 // the default scene's node tree (matrix or TRS, composed with the object's transform: one
 // Instance per primitive per node); metallic-roughness material factors; KHR_lights_punctual
 // point and spot lights (directional -> the scene's sun); KHR_materials_emissive_strength;
-// the first perspective camera. Not imported (phase 1): texture sampling (references are only
-// recorded in GltfImportReport), skins, morph targets, animations, sparse accessors.
+// the first perspective camera; base colour (sRGB, its alpha for MASK/BLEND), emissive (sRGB)
+// and metallic-roughness (linear) textures, decoded with stb_image into Scene::textures with their
+// mips (one texture per image and colour space). Not imported: normal and occlusion textures
+// (checked to decode, recorded in GltfImportReport), samplers other than REPEAT (sampled as
+// REPEAT), TEXCOORD_n for n > 0, skins, morph targets, animations, sparse accessors.
 //
 // Units: glTF and the scene are both metres, +Y up, right-handed. Photometric glTF values map
 // one to one onto the scene's radiometric ones (see gltf_importer.h, "Units").
@@ -34,7 +37,7 @@ struct GltfImportOptions {
   bool take_sun = true;
 };
 
-// Texture indices a material references (-1: none); phase 1 records them, nothing samples them.
+// Texture indices a material references (-1: none); normal and occlusion are not sampled.
 struct GltfTextureRefs {
   int base_color = -1, metallic_roughness = -1, emissive = -1, normal = -1, occlusion = -1;
 };
@@ -52,6 +55,8 @@ struct GltfImportReport {
   uint32_t first_instance = 0, instance_count = 0;  // Scene::instances added
   uint64_t triangles = 0, vertices = 0;             // instanced (what flatten produces)
   uint32_t lights = 0;                              // LocalLights added
+  uint32_t first_texture = 0, texture_count = 0;    // Scene::textures added
+  uint64_t texture_bytes = 0;                       // theirs, every mip level
   bool camera = false, sun = false;                 // Scene::camera / Scene::sun set
   std::vector<GltfMaterialInfo> materials;          // one per glTF material (then the default one)
   std::vector<std::string> notes;                   // content present but not imported

@@ -51,8 +51,9 @@ class Importer {
   uint32_t add_material(Material mat, GltfMaterialInfo info);
   uint32_t material_for(int index, const std::string& ref);
   uint32_t mesh_for(size_t mi, size_t pj);
-  void check_textures();
-  void check_image(size_t ii);
+  void load_textures();
+  const ImageLog::Entry& image_bytes(size_t ii, ImageLog::Entry& scratch, const uint8_t*& data, size_t& size);
+  int32_t texture_for(int index, const std::string& ref, bool srgb);
   // gltf_import_nodes.cpp
   static Mat4 trs_matrix(Vec3 t, const double q[4], Vec3 s);
   Mat4 local_matrix(const tg::Node& n, const std::string& np);
@@ -74,6 +75,7 @@ class Importer {
   std::map<std::pair<size_t, size_t>, uint32_t> meshes_;    // (glTF mesh, primitive) -> Scene mesh
   std::set<std::string> ignored_attributes_;
   int64_t default_material_ = -1;
+  std::map<std::pair<size_t, bool>, int32_t> textures_;  // (glTF image, sRGB) -> Scene texture
   uint32_t ignored_suns_ = 0;
 };
 

@@ -114,7 +114,9 @@ bool on_image(tinygltf::Image* image, const int index, std::string*, std::string
               const unsigned char* bytes, int size, void* user) {
   if (image->bufferView >= 0) return true;
   auto* log = static_cast<ImageLog*>(user);
-  log->by_uri[index] = inspect_image(bytes, size > 0 ? static_cast<size_t>(size) : 0);
+  ImageLog::Entry& e = log->by_uri[index];
+  e = inspect_image(bytes, size > 0 ? static_cast<size_t>(size) : 0);
+  if (e.decodable) e.bytes.assign(bytes, bytes + size);
   return true;
 }
 

@@ -34,6 +34,7 @@ struct ImageLog {
     bool decodable = false;
     int width = 0, height = 0, channels = 0;
     std::string reason;  // why it cannot be decoded
+    std::vector<uint8_t> bytes;  // the file's bytes (decoded by the import when a material uses it)
   };
   std::map<int, Entry> by_uri;  // image index -> what its bytes are
 };

@@ -51,10 +51,15 @@ float material_checker(Vec2 uv, float scale) {
   return s - 2.0f * std::floor(s * 0.5f);
 }
 
-Vec3 material_albedo(const GpuMaterial& m, Vec2 uv) {
+Vec3 material_albedo(const GpuMaterial& m, Vec2 uv, const std::vector<uint32_t>* textures) {
   const Vec3 a{m.albedo[0], m.albedo[1], m.albedo[2]};
   const Vec3 b{m.albedo2[0], m.albedo2[1], m.albedo2[2]};
   switch (static_cast<TextureKind>(m.texture)) {
+    case TextureKind::image: {
+      if (!textures || m.base_color_texture == kTextureNone) return a;
+      const Vec4 t = texture_bilinear(*textures, m.base_color_texture, 0, uv);
+      return {a.x * t.x, a.y * t.y, a.z * t.z};
+    }
     case TextureKind::checker:
       return material_checker(uv, m.texture_scale) < 0.5f ? a : b;
     case TextureKind::value_noise: {
@@ -66,7 +71,7 @@ Vec3 material_albedo(const GpuMaterial& m, Vec2 uv) {
   }
 }
 
-float material_alpha(const GpuMaterial& m, Vec2 uv, uint32_t /*hash_seed*/) {
+float material_alpha(const GpuMaterial& m, Vec2 uv, uint32_t /*hash_seed*/, const std::vector<uint32_t>* textures) {
   switch (static_cast<AlphaKind>(m.alpha)) {
     case AlphaKind::leaf_mask: {
       const float x = (uv.x - 0.5f) * kLeafInvHalfWidth;
@@ -77,9 +82,20 @@ float material_alpha(const GpuMaterial& m, Vec2 uv, uint32_t /*hash_seed*/) {
       return material_checker(uv, m.texture_scale) < 0.5f ? 1.0f : 0.0f;
     case AlphaKind::opacity:
       return m.opacity;
+    case AlphaKind::texture_mask:
+    case AlphaKind::texture_opacity:
+      if (!textures || m.base_color_texture == kTextureNone) return m.opacity;
+      return m.opacity * texture_bilinear(*textures, m.base_color_texture, 0, uv).w;
     default:
       return 1.0f;
   }
+}
+
+Vec3 material_emissive(const GpuMaterial& m, Vec2 uv, const std::vector<uint32_t>* textures) {
+  const Vec3 e{m.emissive[0], m.emissive[1], m.emissive[2]};
+  if (!textures || m.emissive_texture == kTextureNone) return e;
+  const Vec4 t = texture_bilinear(*textures, m.emissive_texture, 0, uv);
+  return {e.x * t.x, e.y * t.y, e.z * t.z};
 }
 
 Vec2 triangle_uv(const FlatScene& scene, uint32_t triangle, float u, float v) {
@@ -96,8 +112,9 @@ bool alpha_accept_default(const FlatScene& scene, uint32_t triangle, float u, fl
   const GpuMaterial& m =
       scene.materials[scene.instances[scene.triangles[triangle].instance].material];
   if (static_cast<AlphaKind>(m.alpha) == AlphaKind::none) return true;
-  const float a = material_alpha(m, triangle_uv(scene, triangle, u, v), hash_seed);
-  if (static_cast<AlphaKind>(m.alpha) == AlphaKind::opacity) {
+  const float a = material_alpha(m, triangle_uv(scene, triangle, u, v), hash_seed, &scene.textures);
+  if (static_cast<AlphaKind>(m.alpha) == AlphaKind::opacity ||
+      static_cast<AlphaKind>(m.alpha) == AlphaKind::texture_opacity) {
     return material_hash01(material_hash2(hash_seed, triangle)) < a;
   }
   return a >= m.alpha_cutoff;
@@ -137,12 +154,16 @@ std::vector<float> bake_average_opacity(const Scene& scene, uint32_t grid) {
   std::vector<double> sum(scene.materials.size(), 0.0), count(scene.materials.size(), 0.0);
   std::vector<GpuMaterial> gpu(scene.materials.size());
   for (size_t i = 0; i < scene.materials.size(); ++i) gpu[i] = material_to_gpu(scene.materials[i]);
+  const std::vector<uint32_t> textures = scene.textures.empty() ? std::vector<uint32_t>{} : pack_textures(scene.textures);
+  auto masked = [](AlphaKind k) {
+    return k == AlphaKind::leaf_mask || k == AlphaKind::checker_mask || k == AlphaKind::texture_mask ||
+           k == AlphaKind::texture_opacity;
+  };
   // Each (mesh, material) pair once: instances of one mesh share its UVs.
   std::vector<std::pair<uint32_t, uint32_t>> pairs;
   for (const Instance& inst : scene.instances)
     if (inst.mesh < scene.meshes.size() && inst.material < scene.materials.size() &&
-        (scene.materials[inst.material].alpha == AlphaKind::leaf_mask ||
-         scene.materials[inst.material].alpha == AlphaKind::checker_mask))
+        masked(scene.materials[inst.material].alpha))
       pairs.emplace_back(inst.mesh, inst.material);
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
@@ -167,11 +188,11 @@ std::vector<float> bake_average_opacity(const Scene& scene, uint32_t grid) {
             if (e0 < 0 || e1 < 0 || e2 < 0) continue;
             // A centre on an edge is shared with the neighbour across it: half a texel each.
             const double w = (e0 > 0 && e1 > 0 && e2 > 0) ? 1.0 : 0.5;
-            tri_sum += w * material_alpha(gpu[material], {float(x), float(y)}, 0);
+            tri_sum += w * material_alpha(gpu[material], {float(x), float(y)}, 0, &textures);
             tri_count += w;
           }
       if (tri_count == 0) {  // smaller than a texel (or degenerate / huge): its centroid
-        tri_sum = material_alpha(gpu[material], {(a.x + b.x + c.x) / 3.0f, (a.y + b.y + c.y) / 3.0f}, 0);
+        tri_sum = material_alpha(gpu[material], {(a.x + b.x + c.x) / 3.0f, (a.y + b.y + c.y) / 3.0f}, 0, &textures);
         tri_count = 1;
       }
       sum[material] += tri_sum;

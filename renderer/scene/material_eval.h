@@ -17,13 +17,16 @@ float material_hash01(uint32_t h);  // top 24 bits to [0, 1)
 float material_value_noise(Vec2 p);
 float material_checker(Vec2 uv, float scale);  // 0 or 1
 
-Vec3 material_albedo(const GpuMaterial& m, Vec2 uv);
-float material_alpha(const GpuMaterial& m, Vec2 uv, uint32_t hash_seed);
+// Image textures read `textures` (pack_textures' words, FlatScene::textures) at mip level 0, as
+// the shaders' unfiltered functions do; without it (null) an image texture reads as white.
+Vec3 material_albedo(const GpuMaterial& m, Vec2 uv, const std::vector<uint32_t>* textures = nullptr);
+float material_alpha(const GpuMaterial& m, Vec2 uv, uint32_t hash_seed, const std::vector<uint32_t>* textures = nullptr);
+Vec3 material_emissive(const GpuMaterial& m, Vec2 uv, const std::vector<uint32_t>* textures = nullptr);
 
 // Vertex uvs interpolated at barycentrics (u, v) of vertices 1 and 2 (gib_triangle_uv).
 Vec2 triangle_uv(const FlatScene& scene, uint32_t triangle, float u, float v);
-// gib_alpha_accept_default: masks pass at alpha >= alpha_cutoff; opacity passes when the
-// hash of (seed, triangle) is below it.
+// gib_alpha_accept_default: masks pass at alpha >= alpha_cutoff; opacity (and texture opacity)
+// passes when the hash of (seed, triangle) is below it. Image textures: scene.textures.
 bool alpha_accept_default(const FlatScene& scene, uint32_t triangle, float u, float v,
                           uint32_t hash_seed);
 
@@ -41,7 +44,8 @@ bool alpha_strategy_accept(const FlatScene& scene, AlphaRay& ray, uint32_t trian
 // the UV triangles of the meshes that use it: the seed bakes its average opacity "by rasterising
 // each mesh onto its alpha texture", our masks are procedural in UV, so the raster is of UV
 // space. A triangle covering no texel centre counts its UV centroid. 1 for a material without
-// alpha or one no instance uses; its opacity for AlphaKind::opacity. Per material (the seed's is
+// alpha or one no instance uses; its opacity for AlphaKind::opacity. Texture masks and texture
+// opacities average their texture's alpha (level 0, bilinear) at the same centres. Per material (the seed's is
 // per mesh; here every mesh of a material shares its value).
 std::vector<float> bake_average_opacity(const Scene& scene, uint32_t grid = 64);
 

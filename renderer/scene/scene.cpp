@@ -110,6 +110,10 @@ GpuMaterial material_to_gpu(const Material& m) {
   g.opacity = m.opacity;
   g.sheen = m.brdf == BrdfKind::cloth ? m.sheen : 0.0f;
   g.avg_opacity = 1.0f;
+  auto index = [](int32_t t) { return t < 0 ? kTextureNone : uint32_t(t); };
+  g.base_color_texture = index(m.base_color_texture);
+  g.emissive_texture = index(m.emissive_texture);
+  g.metallic_roughness_texture = index(m.metallic_roughness_texture);
   return g;
 }
 
@@ -135,7 +139,9 @@ SceneFeatures Scene::features() const {
     if (any_positive(m.emissive)) f |= Feature::emissive;
     if (m.alpha != AlphaKind::none) f |= Feature::alpha_tested;
     if (m.translucency > 0) f |= Feature::translucent;
-    if (m.texture != TextureKind::none) f |= Feature::textured;
+    if (m.texture != TextureKind::none || m.base_color_texture >= 0 || m.emissive_texture >= 0 ||
+        m.metallic_roughness_texture >= 0)
+      f |= Feature::textured;
     if (m.brdf == BrdfKind::cloth && m.sheen > 0) f |= Feature::cloth;
   }
   if (std::any_of(decals.begin(), decals.end(), [](const Decal& d) { return d.opacity > 0; })) f |= Feature::decals;
@@ -273,6 +279,7 @@ FlatScene flatten(const Scene& scene, float time, Vec3 world_offset, const std::
     out.lights.push_back(g);
   }
   for (const Decal& d : scene.decals) out.decals.push_back(to_gpu(d, world_offset));
+  out.textures = pack_textures(scene.textures);
   for (IndoorVolume v : scene.indoor_volumes) {
     v.min = v.min + world_offset;
     v.max = v.max + world_offset;

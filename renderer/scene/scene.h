@@ -9,11 +9,16 @@
 
 #include "renderer/scene/features.h"
 #include "renderer/scene/math.h"
+#include "renderer/scene/texture.h"
 
 namespace gib {
 
-enum class TextureKind : uint32_t { none = 0, checker = 1, value_noise = 2 };
-enum class AlphaKind : uint32_t { none = 0, leaf_mask = 1, checker_mask = 2, opacity = 3 };
+// image: the base colour is albedo times the base_color_texture (an image, Scene::textures).
+enum class TextureKind : uint32_t { none = 0, checker = 1, value_noise = 2, image = 3 };
+// texture_mask: glTF MASK, coverage = opacity (the base colour factor's alpha) times the base
+// colour texture's alpha, against alpha_cutoff; texture_opacity: glTF BLEND with a texture, the
+// same product as stochastic coverage.
+enum class AlphaKind : uint32_t { none = 0, leaf_mask = 1, checker_mask = 2, opacity = 3, texture_mask = 4, texture_opacity = 5 };
 // BRDF classes: standard (Lambertian, with thin translucency) and cloth (Lambertian plus a
 // Charlie sheen lobe; renderer/shaders/include/brdf.glsl, CPU mirror material_eval.h).
 enum class BrdfKind : uint32_t { standard = 0, cloth = 1 };
@@ -33,6 +38,12 @@ struct Material {
   float texture_scale = 1.0f;      // pattern repeats per UV unit
   BrdfKind brdf = BrdfKind::standard;
   float sheen = 0.0f;  // cloth: sheen lobe strength (grey), > 0; its roughness is `roughness`
+  // Image textures (indices into Scene::textures, -1: none): base colour (sRGB, TextureKind::image
+  // and the texture alphas read it), emissive (sRGB, multiplies `emissive`), metallic-roughness
+  // (linear; recorded: no BRDF here reads metalness, and roughness only shapes cloth sheen).
+  int32_t base_color_texture = -1;
+  int32_t emissive_texture = -1;
+  int32_t metallic_roughness_texture = -1;
 };
 
 // A box-projected decal (the seed's projected decals, blended into the G-buffer albedo): a box
@@ -139,6 +150,7 @@ struct Camera {
 struct Scene {
   std::string source;  // file it came from (for messages)
   std::vector<Material> materials;
+  std::vector<Texture> textures;  // image textures (glTF imports), with their mips
   std::vector<Mesh> meshes;
   std::vector<Instance> instances;
   std::vector<LocalLight> lights;
@@ -174,7 +186,7 @@ struct GpuInstance {  // 16 bytes
   uint32_t triangle_count;
   uint32_t pad;
 };
-struct GpuMaterial {  // 80 bytes
+struct GpuMaterial {  // 96 bytes
   float albedo[3];
   float roughness;
   float emissive[3];
@@ -191,6 +203,11 @@ struct GpuMaterial {  // 80 bytes
   // the dither and opaque-approximation alpha strategies (alpha_strategy.glsl).
   float avg_opacity;
   float pad;
+  // Image textures (indices into the packed texture buffer, kTextureNone: none).
+  uint32_t base_color_texture;
+  uint32_t emissive_texture;
+  uint32_t metallic_roughness_texture;
+  uint32_t pad2;
 };
 struct GpuLight {  // 64 bytes
   float position[3];
@@ -226,6 +243,7 @@ struct FlatScene {
   std::vector<GpuLight> lights;
   std::vector<GpuDecal> decals;
   std::vector<IndoorVolume> indoor_volumes;  // world_offset applied
+  std::vector<uint32_t> textures;  // pack_textures(scene.textures): the tables and every texel
 };
 // world_offset translates every position (vertices and lights) after the instance transform:
 // the far-from-origin stress cases move the whole scene (Settings::world_offset), the camera

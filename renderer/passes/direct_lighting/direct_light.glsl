@@ -93,10 +93,12 @@ vec3 gib_direct_light(ivec2 p, uint sky_rays, bool nan_guards, bool translucent_
       vec3 found = vec3(0.0);
       if (kHasEmissive) {
         GibHit hit;
-        if (!trace_closest(origin, wi, 0.0, kShadowMax, hit))
+        if (!trace_closest(origin, wi, 0.0, kShadowMax, hit)) {
           found = kHasSky ? gib_sky_radiance(wi) : vec3(0.0);
-        else
-          found = gib_materials[gib_surface(hit.triangle, hit.u, hit.v, nan_guards).material].emissive;
+        } else {
+          GibSurface s = gib_surface(hit.triangle, hit.u, hit.v, nan_guards);
+          found = gib_material_emissive(gib_materials[s.material], s.uv);
+        }
       } else if (!trace_any(origin, wi, 0.0, kShadowMax)) {
         found = gib_sky_radiance(wi);
       }

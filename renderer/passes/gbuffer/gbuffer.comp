@@ -74,5 +74,5 @@ void main() {
   imageStore(out_albedo, p, vec4(albedo, m.sheen));
   imageStore(out_normal, p, vec4(n, m.roughness));
   imageStore(out_position, p, vec4(s.position, distance(s.position, o)));
-  imageStore(out_emissive, p, vec4(m.emissive, m.translucency));
+  imageStore(out_emissive, p, vec4(gib_material_emissive_filtered(m, s.uv, duv_dx, duv_dy), m.translucency));
 }

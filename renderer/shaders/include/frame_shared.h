@@ -10,6 +10,7 @@ GIB_CONST(uint, kBindFrame, 0)
 GIB_CONST(uint, kBindSceneFirst, 1)  // vertices, triangles, instances, materials, bvh nodes, bvh tri index, lights
 GIB_CONST(uint, kSceneBufferCount, 7)
 GIB_CONST(uint, kBindPassFirst, 8)   // a pass's own slots start here
+GIB_CONST(uint, kBindSceneTextures, 31)  // packed image textures: kBindSceneFirst + GIB_SCENE_BINDING_TEXTURES
 
 GIB_CONST(uint, kMaxDecals, 16)  // decals a scene may have (scene.h kMaxDecals; loader limit)
 GIB_CONST(uint, kMaxIndoorVolumes, 8)  // indoor volumes a scene may have (scene.h kMaxIndoorVolumes)

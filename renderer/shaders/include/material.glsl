@@ -13,6 +13,12 @@
 //                                    1 / 0 in alternating checker cells; opacity: m.opacity.
 //                                    seed is unused by these kinds (kept so stochastic masks need
 //                                    no new signature).
+//   Image textures (TextureKind image, AlphaKind texture_mask / texture_opacity, emissive
+//   textures: renderer/scene/texture.h) are sampled bilinearly from mip level 0 by the unfiltered
+//   functions (traced rays) and at the footprint's level by the _filtered ones (G-buffers); the
+//   base colour and emissive factors multiply the texel. Left out under GIB_MATERIAL_PURE.
+//   gib_material_emissive(m, uv), gib_material_emissive_filtered(m, uv, duv_dx, duv_dy)
+//                                    m.emissive, times its emissive texture where it has one.
 //   gib_alpha_accept_default(tri, u, v, seed)
 //                                    interpolates the triangle's vertex uvs and decides a hit:
 //                                    masks: alpha >= alpha_cutoff; opacity: a hash of (seed,
@@ -24,6 +30,9 @@
 #define GIB_MATERIAL_GLSL
 
 #include "scene.glsl"
+#ifndef GIB_MATERIAL_PURE
+#include "textures.glsl"
+#endif
 
 // Leaf ellipse: centred in uv, half-width 0.32, half-length 1/2.125 (0.47); reciprocals are
 // exact floats.
@@ -75,6 +84,12 @@ float gib_material_checker(vec2 uv, float scale) {
 }
 
 vec3 gib_material_albedo(GpuMaterial m, vec2 uv) {
+#ifndef GIB_MATERIAL_PURE
+  if (m.texture == GIB_TEXTURE_IMAGE && m.base_color_texture != GIB_TEXTURE_NO_INDEX) {
+    precise vec3 c = m.albedo * gib_texture_bilinear(m.base_color_texture, 0u, uv).rgb;
+    return c;
+  }
+#endif
   if (m.texture == GIB_TEXTURE_CHECKER) {
     return gib_material_checker(uv, m.texture_scale) < 0.5 ? m.albedo : m.albedo2;
   }
@@ -98,13 +113,48 @@ float gib_material_alpha(GpuMaterial m, vec2 uv, uint hash_seed) {
     return gib_material_checker(uv, m.texture_scale) < 0.5 ? 1.0 : 0.0;
   }
   if (m.alpha == GIB_ALPHA_OPACITY) return m.opacity;
+#ifndef GIB_MATERIAL_PURE
+  if (m.alpha == GIB_ALPHA_TEXTURE_MASK || m.alpha == GIB_ALPHA_TEXTURE_OPACITY) {
+    if (m.base_color_texture == GIB_TEXTURE_NO_INDEX) return m.opacity;
+    precise float a = m.opacity * gib_texture_bilinear(m.base_color_texture, 0u, uv).a;
+    return a;
+  }
+#endif
   return 1.0;
+}
+
+vec3 gib_material_emissive(GpuMaterial m, vec2 uv) {
+#ifndef GIB_MATERIAL_PURE
+  if (m.emissive_texture != GIB_TEXTURE_NO_INDEX) {
+    precise vec3 e = m.emissive * gib_texture_bilinear(m.emissive_texture, 0u, uv).rgb;
+    return e;
+  }
+#endif
+  return m.emissive;
+}
+
+vec3 gib_material_emissive_filtered(GpuMaterial m, vec2 uv, vec2 duv_dx, vec2 duv_dy) {
+#ifndef GIB_MATERIAL_PURE
+  if (m.emissive_texture != GIB_TEXTURE_NO_INDEX) {
+    precise vec3 e = m.emissive * gib_texture_sample(m.emissive_texture, uv, duv_dx, duv_dy).rgb;
+    return e;
+  }
+#endif
+  return m.emissive;
 }
 
 // Procedural textures have no mips: average 4x4 samples over the pixel's UV footprint
 // (the parallelogram spanned by the UV derivatives), which removes checker aliasing.
+// Image textures have mips: one bilinear sample at the footprint's level instead.
 vec3 gib_material_albedo_filtered(GpuMaterial m, vec2 uv, vec2 duv_dx, vec2 duv_dy) {
   if (m.texture == GIB_TEXTURE_NONE) return m.albedo;
+#ifndef GIB_MATERIAL_PURE
+  if (m.texture == GIB_TEXTURE_IMAGE) {
+    if (m.base_color_texture == GIB_TEXTURE_NO_INDEX) return m.albedo;
+    precise vec3 c = m.albedo * gib_texture_sample(m.base_color_texture, uv, duv_dx, duv_dy).rgb;
+    return c;
+  }
+#endif
   vec3 sum = vec3(0.0);
   for (int j = 0; j < 4; ++j)
     for (int i = 0; i < 4; ++i) {
@@ -129,7 +179,7 @@ bool gib_alpha_accept_default(uint triangle, float u, float v, uint hash_seed) {
   GpuMaterial m = gib_materials[gib_instances[gib_triangles[triangle].instance].material];
   if (m.alpha == GIB_ALPHA_NONE) return true;
   float a = gib_material_alpha(m, gib_triangle_uv(triangle, u, v), hash_seed);
-  if (m.alpha == GIB_ALPHA_OPACITY) {
+  if (m.alpha == GIB_ALPHA_OPACITY || m.alpha == GIB_ALPHA_TEXTURE_OPACITY) {
     return gib_material_hash01(gib_material_hash2(hash_seed, triangle)) < a;
   }
   return a >= m.alpha_cutoff;

@@ -10,6 +10,7 @@
 //   b + 4  gib_bvh_nodes      GpuBvhNode[]    root at 0
 //   b + 5  gib_bvh_tri_index  uint[]          leaf slot -> original triangle id
 //   b + 6  gib_lights         GpuLight[]
+//   b + 30 gib_textures       uint[]          packed image textures (renderer/scene/texture.h)
 // All are readonly storage buffers. A pass declares them once, before including bvh.glsl or
 // material.glsl's gib_alpha_accept_default.
 #ifndef GIB_SCENE_GLSL
@@ -23,15 +24,21 @@
 #define GIB_SCENE_BINDING_BVH_TRI_INDEX 5
 #define GIB_SCENE_BINDING_LIGHTS 6
 #define GIB_SCENE_BINDING_COUNT 7
+// The packed image textures (renderer/scene/texture.h), far above the pass bindings that start
+// right after the other scene buffers (frame_shared.h kBindSceneTextures = kBindSceneFirst + 30).
+#define GIB_SCENE_BINDING_TEXTURES 30
 
 // TextureKind / AlphaKind / LightKind values.
 #define GIB_TEXTURE_NONE 0u
 #define GIB_TEXTURE_CHECKER 1u
 #define GIB_TEXTURE_VALUE_NOISE 2u
+#define GIB_TEXTURE_IMAGE 3u
 #define GIB_ALPHA_NONE 0u
 #define GIB_ALPHA_LEAF_MASK 1u
 #define GIB_ALPHA_CHECKER_MASK 2u
 #define GIB_ALPHA_OPACITY 3u
+#define GIB_ALPHA_TEXTURE_MASK 4u
+#define GIB_ALPHA_TEXTURE_OPACITY 5u
 #define GIB_LIGHT_POINT 0u
 #define GIB_LIGHT_SPOT 1u
 
@@ -56,7 +63,7 @@ struct GpuInstance {  // 16 bytes
   uint pad;
 };
 
-struct GpuMaterial {  // 80 bytes
+struct GpuMaterial {  // 96 bytes
   vec3 albedo;
   float roughness;
   vec3 emissive;
@@ -71,6 +78,10 @@ struct GpuMaterial {  // 80 bytes
   float sheen;  // cloth: sheen lobe strength; 0: the standard BRDF (brdf.glsl)
   float avg_opacity;  // baked mean alpha coverage (1 without alpha): alpha_strategy.glsl
   float pad2;
+  uint base_color_texture;  // image textures: indices into gib_textures' table, or
+  uint emissive_texture;    // GIB_TEXTURE_NO_INDEX (textures.glsl)
+  uint metallic_roughness_texture;
+  uint pad3;
 };
 
 struct GpuLight {  // 64 bytes
@@ -110,6 +121,8 @@ struct GpuBvhNode {  // 32 bytes
   layout(std430, set = SET, binding = (B) + GIB_SCENE_BINDING_BVH_TRI_INDEX)                   \
   readonly buffer GibBvhTriIndexBuffer { uint gib_bvh_tri_index[]; };                          \
   layout(std430, set = SET, binding = (B) + GIB_SCENE_BINDING_LIGHTS)                          \
-  readonly buffer GibLightBuffer { GpuLight gib_lights[]; };
+  readonly buffer GibLightBuffer { GpuLight gib_lights[]; };                                   \
+  layout(std430, set = SET, binding = (B) + GIB_SCENE_BINDING_TEXTURES)                        \
+  readonly buffer GibTextureBuffer { uint gib_textures[]; };
 
 #endif  // GIB_SCENE_GLSL

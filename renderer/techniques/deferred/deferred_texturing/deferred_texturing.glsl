@@ -59,16 +59,30 @@ Texel load_texel(ivec2 p, uint tri) {
 
 // The material's albedo at a pixel, filtered over its footprint. `shader`: the texture kind
 // this pipeline evaluates (the uber kernel passes the material's own).
-vec3 material_albedo(Texel x, GpuMaterial m, uint shader) {
+// The pixel's uv and its footprint (uv derivatives from the barycentric differentials).
+void texel_uv(Texel x, out vec2 uv, out vec2 duv_dx, out vec2 duv_dy) {
   float w = 1.0 - x.bc.x - x.bc.y;
   vec2 uva = vec2(x.va.u, x.va.v), uvb = vec2(x.vb.u, x.vb.v), uvc = vec2(x.vc.u, x.vc.v);
-  vec2 uv = uva * w + uvb * x.bc.x + uvc * x.bc.y;
+  uv = uva * w + uvb * x.bc.x + uvc * x.bc.y;
   vec2 bcx = vec2(gib_unpack_bary_deriv(x.dv.x), gib_unpack_bary_deriv(x.dv.y));
   vec2 bcy = vec2(gib_unpack_bary_deriv(x.dv.z), gib_unpack_bary_deriv(x.dv.w));
-  vec2 duv_dx = (uvb - uva) * bcx.x + (uvc - uva) * bcx.y;
-  vec2 duv_dy = (uvb - uva) * bcy.x + (uvc - uva) * bcy.y;
+  duv_dx = (uvb - uva) * bcx.x + (uvc - uva) * bcx.y;
+  duv_dy = (uvb - uva) * bcy.x + (uvc - uva) * bcy.y;
+}
+
+vec3 material_albedo(Texel x, GpuMaterial m, uint shader) {
+  vec2 uv, duv_dx, duv_dy;
+  texel_uv(x, uv, duv_dx, duv_dy);
   m.texture = shader;  // a classified pipeline's constant: the texture switch folds away
   return gib_material_albedo_filtered(m, uv, duv_dx, duv_dy);
+}
+
+// Its emitted radiance (an emissive texture filtered like the albedo).
+vec3 material_emissive(Texel x, GpuMaterial m) {
+  if (m.emissive_texture == GIB_TEXTURE_NO_INDEX) return m.emissive;
+  vec2 uv, duv_dx, duv_dy;
+  texel_uv(x, uv, duv_dx, duv_dy);
+  return gib_material_emissive_filtered(m, uv, duv_dx, duv_dy);
 }
 
 // Writes the G-buffer texel of geometry pixel p (its own position and normal, from x) with
@@ -89,7 +103,7 @@ void store_texel(ivec2 p, Texel x, GpuMaterial m, vec3 albedo) {
   imageStore(out_albedo, p, vec4(albedo, m.sheen));  // decals: gbuffer_update
   imageStore(out_normal, p, vec4(n, m.roughness));
   imageStore(out_position, p, vec4(position, distance(position, o)));
-  imageStore(out_emissive, p, vec4(m.emissive, m.translucency));
+  imageStore(out_emissive, p, vec4(material_emissive(x, m), m.translucency));
 }
 
 #ifdef GIB_TEXTURING_UBER

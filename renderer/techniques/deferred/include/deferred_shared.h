@@ -11,9 +11,9 @@ GIB_CONST(uint, kDeferredTileShift, 5)
 // workgroup of this size shades one material (the seed pads to the hardware wave size; ours is
 // fixed so the lists are the same on every device).
 GIB_CONST(uint, kDeferredWave, 64)
-// Material shaders: one texturing pipeline per procedural texture kind (TextureKind: none,
-// checker, value_noise), in increasing cost.
-GIB_CONST(uint, kDeferredShaderCount, 3)
+// Material shaders: one texturing pipeline per texture kind (TextureKind: none, checker,
+// value_noise, image).
+GIB_CONST(uint, kDeferredShaderCount, 4)
 GIB_CONST(uint, kDeferredPixelPad, 0xffffffffu)  // an empty entry of a padded list
 // Pixel command: tile index << 10 | local y << 5 | local x.
 

@@ -53,7 +53,7 @@ Texel trace_texel(vec3 o, vec3 d, float range, float reach) {
   atomicAdd(s_hits, 1u);
   vec3 n = back ? -s.normal : s.normal;  // the side the probe sees
   float sun = kHasSun ? pv_sun_visibility(s.position, n, m.translucency) : 0.0;
-  r.material = pv_pack_material(gib_material_albedo(m, s.uv), m.translucency, m.emissive);
+  r.material = pv_pack_material(gib_material_albedo(m, s.uv), m.translucency, gib_material_emissive(m, s.uv));
   r.normal = pv_pack_normal_shadow(n, sun);
   r.depth = gib_float_to_half(hit.t);
   atomicMin(s_min_depth, floatBitsToUint(hit.t));

@@ -141,6 +141,7 @@ void main() {
     vec3 n_hit = dot(s.normal, d) > 0.0 ? -s.normal : s.normal;  // the side the ray hit
     // multi_bounce 0: no screen cache (last frame's image holds every bounce so far).
     GpuMaterial m = gib_materials[s.material];
+    m.emissive = gib_material_emissive(m, s.uv);  // its emissive texture, if any
     if (push.screen_cache != 0u && rc.flags.z != 0u && screen_cache(s.position, n_hit, radiance)) {
       served = kGatherStatScreen;
     } else if (rc_lookup(s.position, rc_facing_normal(hit.triangle, d), radiance)) {

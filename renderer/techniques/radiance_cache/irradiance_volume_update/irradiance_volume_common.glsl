@@ -13,9 +13,9 @@ vec3 iv_fallback_radiance(ProbeHit h, vec3 p, vec3 d) {
   vec2 bary = vec2(h.barycentrics & 0xffffu, h.barycentrics >> 16u) * (1.0 / 65535.0);
   GibSurface s = gib_surface(h.triangle_plus1 - 1u, bary.x, bary.y, rc.flags.y != 0u);
   GpuMaterial m = gib_materials[s.material];
-  if (rc.flags.z == 0u) return m.emissive;  // single bounce: the volumes hold bounced light
+  if (rc.flags.z == 0u) return gib_material_emissive(m, s.uv);  // single bounce: the volumes hold bounced light
   vec3 n = dot(s.normal, d) > 0.0 ? -s.normal : s.normal;
-  return m.emissive + gib_material_albedo(m, s.uv) * rc_sample_irradiance(p, n, -d);
+  return gib_material_emissive(m, s.uv) + gib_material_albedo(m, s.uv) * rc_sample_irradiance(p, n, -d);
 }
 
 // The radiance arriving at probe position o along ray direction d with hit record h: sky on a

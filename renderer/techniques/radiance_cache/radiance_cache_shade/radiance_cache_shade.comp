@@ -40,7 +40,7 @@ vec3 bounce_radiance(GibHit hit, vec3 wi, uint now) {
   GibSurface s = gib_surface(hit.triangle, hit.u, hit.v, rc.flags.y != 0u);
   // Single bounce (multi_bounce 0): only what the hit emits; cached cells and the volumes both
   // hold light that has already bounced.
-  if (rc.flags.z == 0u) return gib_materials[s.material].emissive;
+  if (rc.flags.z == 0u) return gib_material_emissive(gib_materials[s.material], s.uv);
   vec3 q = s.position;
   float lod;
   uint i = rc_find_cell(rc_cell_key(q, rc_facing_normal(hit.triangle, wi), lod));
@@ -50,7 +50,7 @@ vec3 bounce_radiance(GibHit hit, vec3 wi, uint now) {
   }
   GpuMaterial m = gib_materials[s.material];
   vec3 n = dot(s.normal, wi) > 0.0 ? -s.normal : s.normal;
-  return m.emissive + gib_material_albedo(m, s.uv) * rc_sample_irradiance(q, n, -wi);
+  return gib_material_emissive(m, s.uv) + gib_material_albedo(m, s.uv) * rc_sample_irradiance(q, n, -wi);
 }
 
 // Debug NaN injection target: the cell of the camera's first hit through pixel inject.yz, keyed
@@ -103,7 +103,7 @@ void main() {
   vec3 n = dot(s.normal, d) > 0.0 ? -s.normal : s.normal;
   vec3 x = s.position;
   GibRng rng = gib_rng(gib_seed(), rc.misc.x, uvec2(cell, hit_id), 21u);
-  vec3 result = m.emissive;
+  vec3 result = gib_material_emissive(m, s.uv);
 
   if (kHasSun && gib_frame.sun_irradiance.w > 0.0) {
     vec3 wi = gib_uniform_cone(gib_frame.sun_dir.xyz, gib_frame.sun_dir.w, gib_next2(rng));

@@ -98,7 +98,7 @@ void main() {
       vec3 albedo = gib_decal_blend(gib_material_albedo(m, surf.uv), gib_decals_at(surf.position, n));
       vec3 wo = -d;
       vec3 ng = dot(surf.geo_normal, d) > 0.0 ? -surf.geo_normal : surf.geo_normal;
-      vec3 e = throughput * m.emissive;
+      vec3 e = throughput * gib_material_emissive(m, surf.uv);
       if (primary) direct += e; else indirect += e;
       if (depth == push.max_bounces) break;
       vec3 nee = throughput * light_direct(surf.position, n, albedo, m.translucency, m.sheen, m.roughness, wo, rng);
