@@ -25,6 +25,21 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
+// Writes `c` as DIR/cases/NAME.json and returns suite options on it (goldens, cache and output
+// inside DIR; the stability scan off), at `tier`.
+SuiteOptions tiny_suite(const test::TempDir& dir, const std::string& name, const json& c, const std::string& tier) {
+  fs::create_directories(dir.path() / "cases");
+  std::ofstream(dir.path() / "cases" / (name + ".json")) << c.dump(2);
+  SuiteOptions o;
+  o.cases_dir = (dir.path() / "cases").string();
+  o.goldens_dir = (dir.path() / "goldens").string();
+  o.reference_cache = (dir.path() / "cache").string();
+  o.out = (dir.path() / "out").string();
+  o.tier = tier;
+  o.stability_scan = false;
+  return o;
+}
+
 TEST(Tier, ChosenByDeviceClassOrForcedAndUnknownNamesAreRefused) {
   EXPECT_EQ(resolve_tier("", "lavapipe"), Tier::ci);
   EXPECT_EQ(resolve_tier("", "nvidia"), Tier::gpu);
@@ -228,35 +243,21 @@ TEST(Tier, GpuTierRendersReferencesOnceApprovesFromARunAndMatchesItsGoldens) {
   EXPECT_THROW(cmd_update_goldens(up), std::invalid_argument);
 }
 
-}  // namespace
-}  // namespace gib
-
-namespace gib {
-namespace {
-
 // A budget (--max-spp) short of the floor keeps the reference, marked not converged; a run says
 // so on its rows; a larger budget refines the entry.
 TEST(Tier, BudgetedReferencesAreMarkedNotConvergedAndRefinedLater) {
   test::TempDir dir("gib_tier_budget_");
   fs::path cases = dir.path() / "cases";
-  fs::create_directories(cases);
   json c = {{"description", "a noisy tiny Cornell box"},
             {"scene", std::string(GIB_SOURCE_DIR) + "/cases/scenes/cornell.json"},
             {"width", 16}, {"height", 9}, {"gpu_width", 16}, {"gpu_height", 9}, {"reference_spp", 4},
             {"techniques", {{{"technique", "direct"}, {"presets", {"low"}}}}}};
-  std::ofstream(cases / "noisy.json") << c.dump(2);
-  SuiteOptions o;
-  o.cases_dir = cases.string();
-  o.goldens_dir = (dir.path() / "goldens").string();
-  o.reference_cache = (dir.path() / "cache").string();
-  o.tier = "gpu";
-  o.stability_scan = false;
+  SuiteOptions o = tiny_suite(dir, "noisy", c, "gpu");
   EXPECT_EQ(cmd_references(o, false, false, 4), 1) << "4 spp cannot reach a floor of 0.01";
   ReferenceSource src = reference_source(o.goldens_dir, o.reference_cache, at_tier(load_case((cases / "noisy.json").string()), Tier::gpu), Tier::gpu);
   ASSERT_TRUE(references_present(at_tier(load_case((cases / "noisy.json").string()), Tier::gpu), src));
   EXPECT_FALSE(references_converged(src));
   EXPECT_EQ(src.store.metadata()["noise_floor"]["spp"], 4);
-  o.out = (dir.path() / "out").string();
   cmd_run(o);  // fails: no golden approved; the rows say the reference is short
   json r = json::parse(std::ifstream(dir.path() / "out" / "results.json"));
   EXPECT_EQ(r["references"]["noisy"]["converged"], false);
@@ -267,19 +268,12 @@ TEST(Tier, BudgetedReferencesAreMarkedNotConvergedAndRefinedLater) {
   EXPECT_EQ(src.store.metadata()["noise_floor"]["spp"], 16) << "refined towards its floor's prediction, within the budget";
 }
 
-}  // namespace
-}  // namespace gib
-
-namespace gib {
-namespace {
-
 // not_caught_on: where a control's break is measured not to show, an uncaught control is
 // "skipped" with the case's words; a caught one fails so the mark cannot go stale; elsewhere the
 // usual rule holds.
 TEST(Tier, NotCaughtOnMarksAControlPerClassAndTierAndCannotGoStale) {
   test::TempDir dir("gib_tier_nc_");
   fs::path cases = dir.path() / "cases";
-  fs::create_directories(cases);
   json c = {{"description", "tiny case for not_caught_on"},
             {"scene", std::string(GIB_SOURCE_DIR) + "/cases/scenes/cornell.json"},
             {"width", 16}, {"height", 9}, {"reference_spp", 0}, {"analytic_value", 0.5},
@@ -295,16 +289,10 @@ TEST(Tier, NotCaughtOnMarksAControlPerClassAndTierAndCannotGoStale) {
               {{"name", "elsewhere"}, {"why", "marked for another tier only"}, {"technique", "direct"},
                {"presets", {"low"}}, {"not_caught_on", {{"*@gpu", "only at the GPU tier"}}},
                {"thresholds", {{{"metric", "nan_count"}, {"max", 0}}}}}}}};
-  std::ofstream(cases / "nc.json") << c.dump(2);
+  SuiteOptions o = tiny_suite(dir, "nc", c, "ci");
   Case loaded = load_case((cases / "nc.json").string());
   EXPECT_EQ(loaded.negative_controls[0].not_caught_reason("lavapipe", "ci"), "measured: no break here");
   EXPECT_EQ(loaded.negative_controls[0].not_caught_reason("lavapipe", "gpu"), "");
-  SuiteOptions o;
-  o.cases_dir = cases.string();
-  o.goldens_dir = (dir.path() / "goldens").string();
-  o.out = (dir.path() / "out").string();
-  o.tier = "ci";
-  o.stability_scan = false;
   cmd_run(o);  // the technique row fails (no golden): only the controls are checked here
   json r = json::parse(std::ifstream(dir.path() / "out" / "results.json"));
   std::map<std::string, std::string> status;
