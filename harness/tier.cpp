@@ -126,9 +126,9 @@ std::vector<std::string> needed_stems(const Case& c) {
   return stems;
 }
 
-// What the renderer draws, beyond the scene file's text: the geometry, instances, materials and
-// lights the loader produced, so content a scene file pulls in (glTF objects and their buffers)
-// changes the key when it changes.
+// What the renderer draws, beyond the scene file's text: the geometry, instances, materials,
+// image textures and lights the loader produced, so content a scene file pulls in (glTF objects,
+// their buffers and images) changes the key when it changes.
 std::string scene_content_hash(const Scene& s) {
   std::string bytes;
   auto raw = [&](const void* p, size_t n) { bytes.append(static_cast<const char*>(p), n); };
@@ -162,6 +162,14 @@ std::string scene_content_hash(const Scene& s) {
     raw(&m.texture_scale, sizeof m.texture_scale);
     raw(&m.brdf, sizeof m.brdf);
     raw(&m.sheen, sizeof m.sheen);
+    raw(&m.base_color_texture, sizeof m.base_color_texture);
+    raw(&m.emissive_texture, sizeof m.emissive_texture);
+  }
+  for (const Texture& t : s.textures) {
+    raw(&t.srgb, sizeof t.srgb);
+    raw(&t.width, sizeof t.width);
+    raw(&t.height, sizeof t.height);
+    if (!t.mips.empty()) vec(t.mips[0]);  // the mips are made from level 0
   }
   vec(s.lights);
   return fnv1a_hex(bytes);
