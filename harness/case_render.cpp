@@ -106,6 +106,7 @@ CaseRender render(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::s
   r.technique = t.name;
   r.preset = preset;
   r.plan = ex.plan();
+  r.texture_bytes = ex.texture_bytes();
   r.settings = ex.settings();
   r.outputs = outputs;
   for (auto& fr : results) r.gpu_ms_total += fr.total_ms;

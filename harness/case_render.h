@@ -26,6 +26,7 @@ struct CaseRender {
   perf::FrameTiming timing;          // the frames GPU times come from (render_case says which)
   uint32_t frames = 0, spp = 0;
   std::string settings_hash;
+  uint64_t texture_bytes = 0;  // the scene's packed image textures on the GPU (Executor::texture_bytes)
   // Non-reference runs, from the case's tracking fields:
   std::map<uint32_t, FloatImage> frame_images;  // Case::eval_frames (1-based) -> output then
   std::vector<double> curve;                    // Case::convergence: ROI mean luminance per frame

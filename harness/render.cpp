@@ -130,6 +130,7 @@ RenderRun render(const RenderOptions& o) {
   run.frames = frames;
   std::vector<FrameResult> results;
   for (uint32_t f = 0; f < frames; ++f) results.push_back(ex.run_frame());
+  run.texture_bytes = ex.texture_bytes();  // uploaded with the scene, at the first frame
   run.passes = summarize(results);
   std::vector<double> totals;
   for (auto& r : results) totals.push_back(r.total_ms);
@@ -173,7 +174,10 @@ int cmd_render(const RenderOptions& o) {
     for (auto& p : make_passes(t)) decls.push_back(p->declare(scene, settings));
     CompileOptions co{scene.features(), requested_outputs(o, t), settings.width, settings.height};
     Plan plan = compile(decls, co);
-    fmt::print("scene features: {}\n{}", to_string(scene.features()), plan.to_text());
+    uint64_t texels = 0;
+    for (const Texture& tex : scene.textures) texels += tex.bytes();
+    fmt::print("scene features: {}\nscene textures: {} ({:.1f} KiB with mips)\n{}", to_string(scene.features()),
+               scene.textures.size(), texels / 1024.0, plan.to_text());
     if (!o.dot.empty()) {
       std::ofstream(o.dot) << plan.to_dot();
       fmt::print("wrote {}\n", o.dot);
@@ -191,7 +195,8 @@ int cmd_render(const RenderOptions& o) {
     fmt::print("{:<22} {:>7} {:>10.3f} {:>10.3f} {:>10.3f}\n", p.name, "ran", p.median_ms, p.min_ms, p.max_ms);
   for (auto& p : run.plan.passes)
     if (!p.runs) fmt::print("{:<22} {:>7} {:>10} {:>10} {:>10}  {}\n", p.name, "culled", "-", "-", "-", p.reason);
-  fmt::print("frame median {:.3f} ms; resources {:.2f} MiB\n", run.frame_median_ms, run.plan.total_bytes() / 1048576.0);
+  fmt::print("frame median {:.3f} ms; resources {:.2f} MiB; scene textures {:.2f} MiB\n", run.frame_median_ms,
+             run.plan.total_bytes() / 1048576.0, run.texture_bytes / 1048576.0);
   const NonFinite bad = count_non_finite(run.output);
   fmt::print("output {}: {} NaN, {} Inf values ({} pixels)\n", t.output, bad.nan, bad.inf, bad.pixels);
   write_exr(o.out, run.output);
@@ -211,6 +216,7 @@ int cmd_render(const RenderOptions& o) {
     j["spp"] = run.frames * spp_per_frame(run.settings);
     j["frame_median_ms"] = run.frame_median_ms;
     j["resource_bytes"] = run.plan.total_bytes();
+    j["texture_bytes"] = run.texture_bytes;
     j["options"] = parse_render_options(t, o.options);
     j["output_non_finite"] = {{"nan", bad.nan}, {"inf", bad.inf}, {"pixels", bad.pixels}};
     auto& passes = j["passes"] = nlohmann::json::array();

@@ -41,6 +41,7 @@ struct RenderRun {
   uint32_t frames = 0;
   std::vector<PassStats> passes;  // running passes, execution order
   double frame_median_ms = 0;
+  uint64_t texture_bytes = 0;  // the scene's packed image textures on the GPU (0 without any)
   FloatImage output;
   std::vector<std::string> validation_messages;
 };

@@ -112,7 +112,7 @@ nlohmann::json suite_to_json(const SuiteResult& suite) {
                     {"status", r.status}, {"messages", r.messages}, {"metrics", m}, {"checks", checks},
                     {"gpu_ms", r.gpu_ms}, {"passes", passes}, {"device", r.device}, {"image", r.image_id}, {"reference_image", r.reference_id},
                     {"golden_class", r.golden_class},
-                    {"resource_bytes", r.plan.total_bytes()}});
+                    {"resource_bytes", r.plan.total_bytes()}, {"texture_bytes", r.texture_bytes}});
     auto& row = rows.back();
     if (!r.views.empty()) {
       row["views"] = nlohmann::json::array();

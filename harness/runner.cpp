@@ -341,6 +341,7 @@ ResultRow evaluate(CaseContext& ctx, Gpu& gpu, const TechniqueRun& run, const st
 
   row.passes = r.passes;
   row.plan = r.plan;
+  row.texture_bytes = r.texture_bytes;
   row.curve = r.curve;
   if (c.convergence) row.curve_target = c.convergence->target;
   // Controls are named in the id: two controls of one technique and preset must not share files.

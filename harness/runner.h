@@ -76,6 +76,7 @@ struct ResultRow {
   StabilityReport stability;
   std::vector<PassStats> passes;
   Plan plan;
+  uint64_t texture_bytes = 0;  // the scene's packed image textures on the GPU
   std::string image_id;      // files under DIR/img/: <id>.png, <id>.js, <id>.flip.png, <id>.exr
   std::string reference_id;  // the reference AOV it was compared with: DIR/img/<id>.png/.js
   std::vector<std::pair<std::string, std::string>> views;  // technique debug views: name, image id
