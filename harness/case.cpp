@@ -565,6 +565,17 @@ Case parse_case(const json& doc, const std::string& file) {
 
 }  // namespace
 
+std::vector<std::string> compared_aovs(const Case& c) {
+  std::vector<std::string> aovs{c.output};
+  auto add = [&](const TechniqueRun& r) {
+    std::string aov = r.compare_aov.empty() ? c.output : r.compare_aov;
+    if (std::find(aovs.begin(), aovs.end(), aov) == aovs.end()) aovs.push_back(aov);
+  };
+  for (auto& r : c.techniques) add(r);
+  for (auto& nc : c.negative_controls) add(nc.run);
+  return aovs;
+}
+
 const std::vector<std::string>& case_metrics() {
   static const std::vector<std::string> m = {
       "flip",      "psnr",    "relmse",         "roi_mean",         "roi_ratio",      "max_abs_error",

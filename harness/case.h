@@ -170,6 +170,9 @@ struct Case {
   std::vector<NegativeControl> negative_controls;
 };
 
+// The reference AOVs the case's runs and negative controls compare with, the output first, each once.
+std::vector<std::string> compared_aovs(const Case& c);
+
 // The metric names a Threshold may use, in the order documented above.
 const std::vector<std::string>& case_metrics();
 // False for the metrics measured on the output alone (roi_mean, nan_count, inf_count).

@@ -595,9 +595,9 @@ int cmd_run(const SuiteOptions& o) {
       nlohmann::json meta = src->store.metadata();
       suite.references[c.name] = {{"key", src->key}, {"dir", src->store.dir()}, {"rendered", rendered},
                                   {"spp", recorded_reference_spp(c, meta)},
-                                  {"noise_floor", meta["noise_floor"].value("worst", 0.0)},
-                                  {"target", meta["noise_floor"].value("target", 0.0)},
-                                  {"converged", references_converged(*src)}};
+                                  {"noise_floor", reference_floor(c, *src)},
+                                  {"target", src->request.target_floor},
+                                  {"converged", references_converged(c, *src)}};
     }
     CaseContext ctx{c, technique_store(o.goldens_dir, c.name, tier), src->store, suite.tier, suite.device_class,
                     suite.golden_class, {}, {}, o};
@@ -659,10 +659,7 @@ int cmd_run(const SuiteOptions& o) {
     // Report previews of the references each row links (per-frame cases: the last frame's).
     {
       uint32_t at = per_frame_references(c) ? evaluation_frames(c).back() : 0;
-      std::set<std::string> aovs;
-      for (auto& run : c.techniques) aovs.insert(run.compare_aov.empty() ? c.output : run.compare_aov);
-      for (auto& nc : c.negative_controls) aovs.insert(nc.run.compare_aov.empty() ? c.output : nc.run.compare_aov);
-      for (auto& aov : aovs) {
+      for (auto& aov : compared_aovs(c)) {
         auto it = ctx.references.find(GoldenStore::reference_stem(aov, c.output, at));
         if (it != ctx.references.end())
           write_report_image((fs::path(o.out) / "img" / fmt::format("{}__reference.{}", c.name, aov)).string(),

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <stdexcept>
 #include <tuple>
 #include <unistd.h>
@@ -80,32 +81,23 @@ std::string reference_cache_root(const std::string& requested) {
 }
 
 std::string path_tracer_revision() {
-  const Technique& t = find_technique("reference");
-  std::string text = fmt::format("cpu {};", kPathTracerCpuRevision);
-  const auto& registry = shader_registry();
-  for (const PassEntry& p : t.passes)
-    for (auto& [name, words] : registry)
-      if (name.rfind(p.name + ".", 0) == 0)
-        text += name + ":" +
-                std::string(reinterpret_cast<const char*>(words.data()), words.size() * sizeof(uint32_t)) + ";";
-  Settings s = apply_preset(t, "ultra", Settings{});
-  text += fmt::format("max_bounces {};", s.params<ReferenceSettings>().max_bounces);
-  return fnv1a_hex(text);
+  // The binary's shaders and presets: fixed for the process, so hashed once.
+  static const std::string revision = [] {
+    const Technique& t = find_technique("reference");
+    std::string text = fmt::format("cpu {};", kPathTracerCpuRevision);
+    for (const PassEntry& p : t.passes)
+      for (auto& [name, words] : shader_registry())
+        if (name.rfind(p.name + ".", 0) == 0)
+          text += name + ":" +
+                  std::string(reinterpret_cast<const char*>(words.data()), words.size() * sizeof(uint32_t)) + ";";
+    Settings s = apply_preset(t, "ultra", Settings{});
+    text += fmt::format("max_bounces {};", s.params<ReferenceSettings>().max_bounces);
+    return fnv1a_hex(text);
+  }();
+  return revision;
 }
 
 namespace {
-
-// The AOVs the case's runs and controls compare with (the output first).
-std::vector<std::string> compared_aovs(const Case& c) {
-  std::vector<std::string> aovs{c.output};
-  auto add = [&](const TechniqueRun& r) {
-    std::string aov = r.compare_aov.empty() ? c.output : r.compare_aov;
-    if (std::find(aovs.begin(), aovs.end(), aov) == aovs.end()) aovs.push_back(aov);
-  };
-  for (auto& r : c.techniques) add(r);
-  for (auto& nc : c.negative_controls) add(nc.run);
-  return aovs;
-}
 
 // The worst floor of a measured noise floor record ({"flip", "aovs": {...}}) over the AOVs the
 // case compares with (an AOV nothing compares with does not decide convergence), and that AOV.
@@ -243,9 +235,14 @@ ReferenceSource reference_source(const std::string& goldens_dir, const std::stri
   return {GoldenStore(cache_root, c.name, key), key, inputs, req};
 }
 
-bool references_converged(const ReferenceSource& src) {
+double reference_floor(const Case& c, const ReferenceSource& src) {
   nlohmann::json meta = src.store.metadata();
-  return meta.contains("noise_floor") && meta["noise_floor"].value("converged", false);
+  return meta.contains("noise_floor") ? worst_floor(c, meta["noise_floor"]).first
+                                      : std::numeric_limits<double>::infinity();
+}
+
+bool references_converged(const Case& c, const ReferenceSource& src) {
+  return reference_floor(c, src) <= src.request.target_floor;
 }
 
 bool references_present(const Case& c, const ReferenceSource& src) {
@@ -303,7 +300,6 @@ std::string render_references(Gpu& gpu, const Case& c, ReferenceSource& src, con
   meta["noise_floor"]["worst"] = worst;
   meta["noise_floor"]["worst_aov"] = worst_aov;
   meta["noise_floor"]["target"] = src.request.target_floor;
-  meta["noise_floor"]["converged"] = worst <= src.request.target_floor;
   src.store.write_metadata(meta);
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::string line = fmt::format("{}: reference {}x{} at {} spp, noise floor {:.4f} ({}; target {:.4f}), {:.1f} s -> {}",
@@ -366,21 +362,19 @@ int cmd_references(const SuiteOptions& o, bool refresh, bool dry_run, uint32_t m
     }
     ReferenceSource src = reference_source(o.goldens_dir, root, c, Tier::gpu);
     src.request.max_spp = max_spp;
-    nlohmann::json meta = src.store.metadata();
     const bool present = references_present(c, src);
-    const uint32_t held = present ? recorded_reference_spp(c, meta) : 0;
+    const uint32_t held = present ? recorded_reference_spp(c, src.store.metadata()) : 0;
+    const double floor = reference_floor(c, src);
     // An entry short of its target is refined (at the spp its floor predicts) when the budget allows more.
-    const bool refine = present && !references_converged(src) && held < max_spp;
-    if (refine) src.request.first_spp = next_spp(held, meta["noise_floor"].value("worst", 1.0), src.request);
-    if (refresh || !present || refine) {
+    const bool refine = present && floor > src.request.target_floor && held < max_spp;
+    if (refine) src.request.first_spp = next_spp(held, floor, src.request);
+    if (refresh || !present || refine)
       fmt::print("{}\n", render_references(*gpu, c, src, terminal_progress("")));
-      meta = src.store.metadata();
-    } else {
-      fmt::print("{}: cached ({} spp, noise floor {:.4f}{}, key {})\n", c.name, held,
-                 meta["noise_floor"].value("worst", 0.0), references_converged(src) ? "" : ", NOT CONVERGED", src.key);
-    }
+    else
+      fmt::print("{}: cached ({} spp, noise floor {:.4f}{}, key {})\n", c.name, held, floor,
+                 floor <= src.request.target_floor ? "" : ", NOT CONVERGED", src.key);
     std::fflush(stdout);
-    if (meta["noise_floor"].value("worst", 0.0) > src.request.target_floor) status = 1;
+    if (!references_converged(c, src)) status = 1;
   }
   return status;
 }

@@ -83,8 +83,10 @@ ReferenceSource reference_source(const std::string& goldens_dir, const std::stri
 
 // True when the entry holds every reference file the case compares with, and a noise floor.
 bool references_present(const Case& c_at_tier, const ReferenceSource& src);
-// Whether a present entry reached its target floor, and the spp it holds.
-bool references_converged(const ReferenceSource& src);
+// The entry's noise floor: the worst over the AOVs the case compares with (infinity when none
+// is recorded); converged when it is at most the request's target.
+double reference_floor(const Case& c_at_tier, const ReferenceSource& src);
+bool references_converged(const Case& c_at_tier, const ReferenceSource& src);
 
 // Renders the case's GPU-tier references into its cache entry: at the request's start spp,
 // measures the floor (FLIP between seeds reference_seed and +1000, the worst AOV), and while it

@@ -1,10 +1,5 @@
-// The triangle test must round exactly like the GLSL one (which marks its arithmetic precise):
-// no fused multiply-add contraction, whatever -march the project is built with.
-#if defined(__clang__)
-#pragma clang fp contract(off)
-#elif defined(__GNUC__)
-#pragma GCC optimize("fp-contract=off")
-#endif
+// The triangle test must round exactly like the GLSL one (which marks its arithmetic precise).
+#include "renderer/scene/fp_contract_off.h"
 
 #include "renderer/scene/bvh.h"
 

@@ -1,9 +1,5 @@
-// Must round like material.glsl (precise): no fused multiply-add contraction.
-#if defined(__clang__)
-#pragma clang fp contract(off)
-#elif defined(__GNUC__)
-#pragma GCC optimize("fp-contract=off")
-#endif
+// Must round like material.glsl (precise).
+#include "renderer/scene/fp_contract_off.h"
 
 #include "renderer/scene/material_eval.h"
 
