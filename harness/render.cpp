@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -22,6 +23,15 @@ double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// The process's peak resident set in bytes (VmHWM), or 0 when /proc/self/status has none.
+uint64_t peak_rss_bytes() {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::strtoull(line.c_str() + 6, nullptr, 10) * 1024;  // kB
+  return 0;
 }
 
 Settings make_settings(const RenderOptions& o, const Technique& t) {
@@ -110,9 +120,33 @@ std::vector<PassStats> summarize(const std::vector<FrameResult>& frames) {
   return out;
 }
 
+Scene load_scene_measured(const std::string& path, SceneLoad& load) {
+  const uint64_t rss0 = peak_rss_bytes();
+  const auto t0 = std::chrono::steady_clock::now();
+  Scene scene = load_scene(path);
+  load.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  const uint64_t rss1 = peak_rss_bytes();
+  load.peak_rss_known = rss0 > 0 && rss1 > 0;
+  load.peak_rss_growth = load.peak_rss_known ? rss1 - rss0 : 0;
+  load.mesh_bytes = load.texture_bytes = 0;
+  for (const Mesh& m : scene.meshes)
+    load.mesh_bytes += m.positions.size() * sizeof(Vec3) + m.normals.size() * sizeof(Vec3) +
+                       m.uvs.size() * sizeof(Vec2) + m.indices.size() * sizeof(uint32_t);
+  for (const Texture& t : scene.textures) load.texture_bytes += t.bytes();
+  return scene;
+}
+
+std::string to_string(const SceneLoad& l) {
+  return fmt::format("scene load: {:.1f} ms; holds {:.1f} KiB of meshes, {:.1f} KiB of textures with mips; peak RSS {}",
+                     l.ms, l.mesh_bytes / 1024.0, l.texture_bytes / 1024.0,
+                     l.peak_rss_known ? fmt::format("+{:.1f} MiB while loading", l.peak_rss_growth / 1048576.0)
+                                      : std::string("unknown (no /proc/self/status)"));
+}
+
 RenderRun render(const RenderOptions& o) {
   const Technique& t = find_technique(o.technique);
-  Scene scene = load_scene(o.scene);
+  SceneLoad load;
+  Scene scene = load_scene_measured(o.scene, load);
   Settings settings = make_settings(o, t);
   uint32_t frames = o.frames ? o.frames : 1;
   if (t.name == "reference") {
@@ -124,6 +158,7 @@ RenderRun render(const RenderOptions& o) {
   auto gpu = Gpu::create({o.device, o.validate});
   Executor ex(*gpu, scene, settings, make_passes(t), requested_outputs(o, t));
   RenderRun run;
+  run.scene_load = load;
   run.device = gpu->info();
   run.plan = ex.plan();
   run.settings = settings;
@@ -168,7 +203,9 @@ int cmd_devices(const std::string& ctest_resource_spec) {
 int cmd_render(const RenderOptions& o) {
   const Technique& t = find_technique(o.technique);
   if (o.plan_only || !o.dot.empty()) {
-    Scene scene = load_scene(o.scene);
+    SceneLoad load;
+    Scene scene = load_scene_measured(o.scene, load);
+    fmt::print("{}\n", to_string(load));
     Settings settings = make_settings(o, t);
     std::vector<PassDecl> decls;
     for (auto& p : make_passes(t)) decls.push_back(p->declare(scene, settings));
@@ -188,6 +225,7 @@ int cmd_render(const RenderOptions& o) {
   RenderRun run = render(o);
   fmt::print("device: {} ({}, {} {})\n", run.device.name, run.device.type, run.device.driver_name,
              run.device.driver_info);
+  fmt::print("{}\n", to_string(run.scene_load));
   fmt::print("technique: {} preset {}  size {}x{}  frames {}  spp/frame {}\n", t.name, run.settings.preset,
              run.settings.width, run.settings.height, run.frames, spp_per_frame(run.settings));
   fmt::print("{:<22} {:>7} {:>10} {:>10} {:>10}  {}\n", "pass", "status", "median ms", "min ms", "max ms", "reason");
@@ -217,6 +255,9 @@ int cmd_render(const RenderOptions& o) {
     j["frame_median_ms"] = run.frame_median_ms;
     j["resource_bytes"] = run.plan.total_bytes();
     j["texture_bytes"] = run.texture_bytes;
+    j["scene_load"] = {{"ms", run.scene_load.ms}, {"mesh_bytes", run.scene_load.mesh_bytes},
+                       {"texture_bytes", run.scene_load.texture_bytes}};
+    if (run.scene_load.peak_rss_known) j["scene_load"]["peak_rss_growth_bytes"] = run.scene_load.peak_rss_growth;
     j["options"] = parse_render_options(t, o.options);
     j["output_non_finite"] = {{"nan", bad.nan}, {"inf", bad.inf}, {"pixels", bad.pixels}};
     auto& passes = j["passes"] = nlohmann::json::array();

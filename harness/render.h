@@ -34,8 +34,22 @@ struct PassStats {
   double median_ms = 0, min_ms = 0, max_ms = 0;
 };
 
+// Loading a scene file (its glTF objects' import included), measured: wall time, the bytes the
+// loaded scene holds (mesh arrays, texture mips), and how far the process's peak resident set
+// (VmHWM, /proc/self/status) rose during the load: the import's transient memory, decoders'
+// buffers included (0 where the peak was already higher, or /proc is unreadable).
+struct SceneLoad {
+  double ms = 0;
+  uint64_t mesh_bytes = 0, texture_bytes = 0;
+  uint64_t peak_rss_growth = 0;
+  bool peak_rss_known = false;
+};
+Scene load_scene_measured(const std::string& path, SceneLoad& load);
+std::string to_string(const SceneLoad& load);  // one line for the console
+
 struct RenderRun {
   DeviceInfo device;
+  SceneLoad scene_load;
   Plan plan;
   Settings settings;
   uint32_t frames = 0;

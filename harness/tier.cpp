@@ -156,6 +156,10 @@ std::string scene_content_hash(const Scene& s) {
     raw(&m.sheen, sizeof m.sheen);
     raw(&m.base_color_texture, sizeof m.base_color_texture);
     raw(&m.emissive_texture, sizeof m.emissive_texture);
+    if (m.normal_texture >= 0) {  // only then, so keys made before normal maps stay valid
+      raw(&m.normal_texture, sizeof m.normal_texture);
+      raw(&m.normal_scale, sizeof m.normal_scale);
+    }
   }
   for (const Texture& t : s.textures) {
     raw(&t.srgb, sizeof t.srgb);

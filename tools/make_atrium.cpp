@@ -3,7 +3,7 @@
 // inside 7 m brick walls; along its north side a colonnade (six plaster columns, a roof slab,
 // alpha-masked arch cards between the columns) that the roof keeps in shade; two clumps of
 // alpha-masked foliage cards in the court. Textures (base colour, sRGB): brick 128x128, plaster
-// 64x64, arch 64x64 and leaf 64x64 with alpha masks. No lights, camera or sun: the scene file
+// 64x64, arch 64x64 and leaf 64x64 with alpha masks; the bricks' normal map (linear) 128x128. No lights, camera or sun: the scene file
 // (cases/scenes/atrium.json) sets them.
 //
 //   cmake --build build --target gib_make_atrium && build/gib_make_atrium cases/scenes/atrium.glb
@@ -15,6 +15,7 @@
 
 #include "renderer/scene/gltf_export.h"
 #include "renderer/scene/material_eval.h"
+#include "renderer/scene/normal_map.h"
 #include "renderer/scene/primitives.h"
 #include "renderer/scene/scene.h"
 #include "renderer/scene/texture.h"
@@ -43,6 +44,28 @@ Texture brick_texture() {
       px.insert(px.end(), {u8(r), u8(g), u8(b), 255});
     }
   return make_texture("atrium/brick", n, n, px.data(), true);
+}
+
+// The bricks' tangent-space normal map (linear, glTF's convention: +x along u, +y up the image):
+// brick faces flat, their edges bevelled 45 degrees over 2 texels down into the mortar joints of
+// brick_texture, which are flat and recessed.
+Texture brick_normal_texture() {
+  const uint32_t n = 128;
+  std::vector<uint8_t> px;
+  for (uint32_t y = 0; y < n; ++y)
+    for (uint32_t x = 0; x < n; ++x) {
+      const uint32_t shift = (y / 32 % 2) * 32, yy = y % 32, xx = (x + shift) % 64;
+      Vec3 m{0, 0, 1};
+      if (yy >= 2 && xx >= 2) {  // a brick texel: tilt towards the joints it is within 2 texels of
+        if (yy - 2 < 2) m.y += 1;    // joint above (up the image): the face slopes up
+        if (31 - yy < 2) m.y -= 1;   // joint below
+        if (xx - 2 < 2) m.x -= 1;    // joint to the left (towards -u)
+        if (63 - xx < 2) m.x += 1;   // joint to the right
+      }
+      const Vec3 t = encode_tangent_normal(normalize(m));
+      px.insert(px.end(), {u8(t.x), u8(t.y), u8(t.z), 255});
+    }
+  return make_texture("atrium/brick_normal", n, n, px.data(), false);
 }
 
 // Warm plaster with a soft mottle (smoothed lattice noise).
@@ -146,8 +169,9 @@ struct Builder {
 
 Scene build() {
   Builder b;
-  b.s.textures = {brick_texture(), plaster_texture(), arch_texture(), leaf_texture()};
+  b.s.textures = {brick_texture(), plaster_texture(), arch_texture(), leaf_texture(), brick_normal_texture()};
   const uint32_t brick = b.material("brick", {1, 1, 1}, 0), plaster = b.material("plaster", {1, 1, 1}, 1);
+  b.s.materials[brick].normal_texture = 4;
   const uint32_t stone = b.material("paving", {0.9f, 0.9f, 0.85f}, 1);
   const uint32_t arch = b.material("arch", {1, 1, 1}, 2, AlphaKind::texture_mask);
   const uint32_t leaf = b.material("leaves", {1, 1, 1}, 3, AlphaKind::texture_mask);

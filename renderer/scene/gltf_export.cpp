@@ -149,6 +149,8 @@ class Exporter {
     g.pbrMetallicRoughness.baseColorTexture.index = texture(mat.base_color_texture);
     g.pbrMetallicRoughness.metallicRoughnessTexture.index = texture(mat.metallic_roughness_texture);
     g.emissiveTexture.index = texture(mat.emissive_texture);
+    g.normalTexture.index = texture(mat.normal_texture);
+    g.normalTexture.scale = mat.normal_scale;
     if (mat.texture != TextureKind::none && mat.texture != TextureKind::image) r_.lossy.push_back(mat.name + ": procedural texture (albedo2, texture_scale) not exported");
     if (mat.translucency > 0) r_.lossy.push_back(mat.name + ": translucency not exported");
     if (mat.brdf == BrdfKind::cloth) r_.lossy.push_back(mat.name + ": cloth BRDF (sheen) exported as standard");

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -204,9 +205,9 @@ uint32_t Importer::mesh_for(size_t mi, size_t pj) {
   return it->second;
 }
 
-// The textures materials reference: base colour, emissive and metallic-roughness images are
-// decoded into Scene::textures (once per image and colour space); normal and occlusion images
-// must exist and decode but are not sampled.
+// The textures materials reference: base colour, emissive, metallic-roughness and normal images
+// are decoded into Scene::textures (once per image and colour space); occlusion images must
+// exist and decode but are not sampled.
 void Importer::load_textures() {
   report_.first_texture = static_cast<uint32_t>(scene_.textures.size());
   size_t unsampled = 0;
@@ -218,18 +219,23 @@ void Importer::load_textures() {
     mat.base_color_texture = texture_for(t.base_color, pp + "/baseColorTexture/index", true);
     mat.emissive_texture = texture_for(t.emissive, p + "/emissiveTexture/index", true);
     mat.metallic_roughness_texture = texture_for(t.metallic_roughness, pp + "/metallicRoughnessTexture/index", false);
-    for (const auto& [index, ref] : {std::pair{t.normal, p + "/normalTexture/index"},
-                                     std::pair{t.occlusion, p + "/occlusionTexture/index"}})
-      if (index != -1) {
-        texture_for(index, ref, false);  // checked (and decoded) like the others
-        ++unsampled;
-      }
-    for (const auto& [info, ref] : {std::pair{g.pbrMetallicRoughness.baseColorTexture, pp + "/baseColorTexture"},
-                                    std::pair{g.emissiveTexture, p + "/emissiveTexture"},
-                                    std::pair{g.pbrMetallicRoughness.metallicRoughnessTexture,
-                                              pp + "/metallicRoughnessTexture"}})
-      if (info.index != -1 && info.texCoord != 0)
-        report_.notes.push_back(ref + ": TEXCOORD_" + std::to_string(info.texCoord) + " read as TEXCOORD_0");
+    mat.normal_texture = texture_for(t.normal, p + "/normalTexture/index", false);
+    mat.normal_scale = static_cast<float>(g.normalTexture.scale);
+    if (!std::isfinite(mat.normal_scale))
+      w_.fail(p + "/normalTexture/scale", "a finite number", fmt::format("{}", g.normalTexture.scale));
+    if (t.occlusion != -1) {
+      texture_for(t.occlusion, p + "/occlusionTexture/index", false);  // checked (and decoded) like the others
+      ++unsampled;
+    }
+    for (const auto& [index, coord, ref] :
+         {std::tuple{g.pbrMetallicRoughness.baseColorTexture.index, g.pbrMetallicRoughness.baseColorTexture.texCoord,
+                     pp + "/baseColorTexture"},
+          std::tuple{g.emissiveTexture.index, g.emissiveTexture.texCoord, p + "/emissiveTexture"},
+          std::tuple{g.pbrMetallicRoughness.metallicRoughnessTexture.index,
+                     g.pbrMetallicRoughness.metallicRoughnessTexture.texCoord, pp + "/metallicRoughnessTexture"},
+          std::tuple{g.normalTexture.index, g.normalTexture.texCoord, p + "/normalTexture"}})
+      if (index != -1 && coord != 0)
+        report_.notes.push_back(ref + ": TEXCOORD_" + std::to_string(coord) + " read as TEXCOORD_0");
     if (mat.base_color_texture < 0) continue;
     mat.texture = TextureKind::image;
     const float alpha = static_cast<float>(g.pbrMetallicRoughness.baseColorFactor[3]);  // checked
@@ -243,7 +249,7 @@ void Importer::load_textures() {
   }
   // Textures the scene will not use, the trailing ones of an unreferenced material, stay (they
   // cost memory only).
-  if (unsampled) report_.notes.push_back(fmt::format("{} normal/occlusion texture reference(s) not sampled", unsampled));
+  if (unsampled) report_.notes.push_back(fmt::format("{} occlusion texture reference(s) not sampled", unsampled));
   report_.texture_count = static_cast<uint32_t>(scene_.textures.size()) - report_.first_texture;
   for (size_t i = report_.first_texture; i < scene_.textures.size(); ++i) report_.texture_bytes += scene_.textures[i].bytes();
 }

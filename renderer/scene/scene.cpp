@@ -114,6 +114,8 @@ GpuMaterial material_to_gpu(const Material& m) {
   g.base_color_texture = index(m.base_color_texture);
   g.emissive_texture = index(m.emissive_texture);
   g.metallic_roughness_texture = index(m.metallic_roughness_texture);
+  g.normal_texture = index(m.normal_texture);
+  g.normal_scale = m.normal_scale;
   return g;
 }
 
@@ -140,7 +142,7 @@ SceneFeatures Scene::features() const {
     if (m.alpha != AlphaKind::none) f |= Feature::alpha_tested;
     if (m.translucency > 0) f |= Feature::translucent;
     if (m.texture != TextureKind::none || m.base_color_texture >= 0 || m.emissive_texture >= 0 ||
-        m.metallic_roughness_texture >= 0)
+        m.metallic_roughness_texture >= 0 || m.normal_texture >= 0)
       f |= Feature::textured;
     if (m.brdf == BrdfKind::cloth && m.sheen > 0) f |= Feature::cloth;
   }

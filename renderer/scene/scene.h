@@ -40,10 +40,14 @@ struct Material {
   float sheen = 0.0f;  // cloth: sheen lobe strength (grey), > 0; its roughness is `roughness`
   // Image textures (indices into Scene::textures, -1: none): base colour (sRGB, TextureKind::image
   // and the texture alphas read it), emissive (sRGB, multiplies `emissive`), metallic-roughness
-  // (linear; recorded: no BRDF here reads metalness, and roughness only shapes cloth sheen).
+  // (linear; recorded: no BRDF here reads metalness, and roughness only shapes cloth sheen),
+  // normal (linear, tangent space, glTF's convention: every pass's shading normal, normal_map.h;
+  // normal_scale scales its x and y).
   int32_t base_color_texture = -1;
   int32_t emissive_texture = -1;
   int32_t metallic_roughness_texture = -1;
+  int32_t normal_texture = -1;
+  float normal_scale = 1.0f;
 };
 
 // A box-projected decal (the seed's projected decals, blended into the G-buffer albedo): a box
@@ -202,12 +206,12 @@ struct GpuMaterial {  // 96 bytes
   // Baked mean coverage of its alpha mask over the triangles that use it (1 without alpha):
   // the dither and opaque-approximation alpha strategies (alpha_strategy.glsl).
   float avg_opacity;
-  float pad;
+  float normal_scale;  // glTF normalTexture.scale
   // Image textures (indices into the packed texture buffer, kTextureNone: none).
   uint32_t base_color_texture;
   uint32_t emissive_texture;
   uint32_t metallic_roughness_texture;
-  uint32_t pad2;
+  uint32_t normal_texture;  // tangent-space normal map (linear; normal_map.h)
 };
 struct GpuLight {  // 64 bytes
   float position[3];

@@ -77,11 +77,11 @@ struct GpuMaterial {  // 96 bytes
   float opacity;
   float sheen;  // cloth: sheen lobe strength; 0: the standard BRDF (brdf.glsl)
   float avg_opacity;  // baked mean alpha coverage (1 without alpha): alpha_strategy.glsl
-  float pad2;
+  float normal_scale;       // glTF normalTexture.scale (normal_map.glsl)
   uint base_color_texture;  // image textures: indices into gib_textures' table, or
   uint emissive_texture;    // GIB_TEXTURE_NO_INDEX (textures.glsl)
   uint metallic_roughness_texture;
-  uint pad3;
+  uint normal_texture;      // tangent-space normal map (linear), sampled by gib_surface
 };
 
 struct GpuLight {  // 64 bytes

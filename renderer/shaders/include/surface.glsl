@@ -1,7 +1,8 @@
 // Surface attributes at a hit (triangle + barycentrics), and self-intersection-safe ray origins.
 // Requires scene.glsl's buffers (GIB_SCENE_BUFFERS) to be declared first.
 //
-// Shading normal: the interpolated vertex normal, normalised. A zero one (a mesh without normals,
+// Shading normal: the interpolated vertex normal, normalised, bent by the material's normal map
+// where it has one (normal_map.glsl). A zero one (a mesh without normals,
 // zero input normals) means "none": the face normal is used. A non-finite one (a NaN vertex
 // normal reaches every pixel of its triangles, since NaN * 0 is NaN) is the NaN guard's case:
 // every pass that interpolates normals calls gib_surface(tri, u, v, nan_guard) with its
@@ -11,6 +12,8 @@
 #ifndef GIB_SURFACE_GLSL
 #define GIB_SURFACE_GLSL
 #include "finite.glsl"
+#include "normal_map.glsl"
+#include "textures.glsl"
 
 struct GibSurface {
   vec3 position;
@@ -39,6 +42,14 @@ GibSurface gib_surface(uint tri, float u, float v, bool nan_guard) {
   s.uv = vec2(a.u, a.v) * w + vec2(b.u, b.v) * u + vec2(c.u, c.v) * v;
   s.instance = t.instance;
   s.material = gib_instances[t.instance].material;
+  // A normal map bends the shading normal in every pass alike (G-buffer, GI traces, path
+  // tracer: the same light paths), sampled bilinearly at level 0 as the material's unfiltered
+  // lookups are. A non-finite normal (no guard) passes on untouched.
+  uint nt = gib_materials[s.material].normal_texture;
+  if (nt != GIB_TEXTURE_NO_INDEX && gib_finite(s.normal))
+    s.normal = gib_normal_map(s.normal, a.position, b.position, c.position, vec2(a.u, a.v), vec2(b.u, b.v),
+                              vec2(c.u, c.v), gib_texture_bilinear(nt, 0u, s.uv).rgb,
+                              gib_materials[s.material].normal_scale);
   return s;
 }
 GibSurface gib_surface(uint tri, float u, float v) { return gib_surface(tri, u, v, true); }
