@@ -36,7 +36,7 @@ for c in "${cases[@]}"; do
   spp=$start
   while :; do
     t0=$(date +%s.%N)
-    log=$($gibench update-goldens --case "$c" --reference --only-reference --noise-floor --spp "$spp" \
+    log=$($gibench update-goldens --case "$c" --tier ci --reference --only-reference --noise-floor --spp "$spp" \
           --reason "converged reference on a GPU: noise floor <= $target FLIP (ci/gpu_references.sh)" 2>&1) || {
       echo "$log" >&2; echo "gpu_references.sh: $c: update-goldens failed at $spp spp" >&2; status=1; break; }
     t1=$(date +%s.%N)
