@@ -1,7 +1,7 @@
 // Shared by the calibration kernels (bench/calibrate_fma.comp, calibrate_fma_scalar.comp,
-// calibrate_copy.comp) and
-// perf/calibration.cpp: the device's achieved FP32 FMA rate and copy bandwidth, which
-// the console-scaling model divides pass costs by (bench/README.md).
+// calibrate_copy.comp, calibrate_raster.vert/.frag) and perf/calibration.cpp: the device's
+// achieved FP32 FMA rate, copy bandwidth and raster fill rate, which the console-scaling model
+// divides pass costs by (bench/README.md).
 #ifndef GIB_CALIBRATION_SHARED_H
 #define GIB_CALIBRATION_SHARED_H
 #include "gib_shared.h"
@@ -18,6 +18,10 @@ struct CalibFmaPush {
   float a;          // multiplier and addend from push constants so the compiler cannot fold
   float b;
   uint pad;
+};
+struct CalibRasterPush {
+  uint layers;  // full-screen triangles in the draw, front to back
+  uint pad0, pad1, pad2;
 };
 struct CalibCopyPush {
   uint count;  // vec4 elements

@@ -23,6 +23,39 @@ double time_dispatch(Gpu& gpu, const Pipeline& pipeline, const std::vector<Bind>
   return (ns[1] - ns[0]) * 1e-6;
 }
 
+std::shared_ptr<Pipeline> raster_calibration_pipeline(Gpu& gpu) {
+  GraphicsPipelineDesc desc;
+  desc.vertex_shader = "calibrate_raster.vert";
+  desc.fragment_shader = "calibrate_raster.frag";
+  desc.push_constant_bytes = sizeof(glsl::CalibRasterPush);
+  desc.color_formats = {Format::rg32_uint};
+  desc.depth = true;
+  return gpu.graphics_pipeline(desc);
+}
+
+double time_raster(Gpu& gpu, const Pipeline& pipeline, const Image& color, const Image& depth, uint32_t layers) {
+  const glsl::CalibRasterPush push{layers, 0, 0, 0};
+  const Image* colors[] = {&color};
+  const float clear[4] = {0, 0, 0, 0};
+  auto cmd = gpu.begin(2);
+  cmd->timestamp(0);
+  cmd->begin_rendering(colors, &depth, clear);
+  cmd->bind(pipeline, {}, &push, sizeof(push));
+  cmd->draw(3 * layers);
+  cmd->end_rendering();
+  cmd->timestamp(1);
+  auto t0 = std::chrono::steady_clock::now();
+  auto ns = gpu.submit(std::move(cmd));
+  if (gpu.info().is_software() || ns.size() < 2)
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return (ns[1] - ns[0]) * 1e-6;
+}
+
+double Calibration::fill_gpix_of(const std::vector<double>& ms) const {
+  if (ms.empty()) return 0;
+  return double(raster_width) * raster_height * raster_layers / (median_of(ms) * 1e-3) * 1e-9;
+}
+
 Calibration calibrate(Gpu& gpu, uint32_t repeats) {
   Calibration c;
   c.repeats = std::max(1u, repeats);
@@ -89,6 +122,22 @@ Calibration calibrate(Gpu& gpu, uint32_t repeats) {
       c.copy_ms.push_back(time_dispatch(gpu, *pipe, binds, &push, sizeof(push), groups));
     c.throughput.bandwidth_gbs = double(c.copy_bytes) / (median_of(c.copy_ms) * 1e-3) * 1e-9;
   }
+  {  // raster fill rate: full-screen layers front to back through a D32 depth test
+    c.raster_width = c.raster_height = cpu ? 256 : 4096;
+    auto color = gpu.create_image(Format::rg32_uint, c.raster_width, c.raster_height, "calib_raster_color");
+    auto depth = gpu.create_image(Format::d32_float, c.raster_width, c.raster_height, "calib_raster_depth");
+    auto pipe = raster_calibration_pipeline(gpu);
+    uint32_t layers = 4;
+    time_raster(gpu, *pipe, *color, *depth, layers);  // lazy compile
+    for (;;) {
+      double ms = time_raster(gpu, *pipe, *color, *depth, layers);
+      if (ms >= target_ms || layers >= (1u << 16)) break;
+      layers *= ms < target_ms / 8 ? 8 : 2;
+    }
+    c.raster_layers = layers;
+    for (uint32_t r = 0; r < c.repeats; ++r) c.raster_ms.push_back(time_raster(gpu, *pipe, *color, *depth, layers));
+    c.throughput.fill_gpix = c.fill_gpix_of(c.raster_ms);
+  }
   return c;
 }
 
@@ -100,7 +149,9 @@ nlohmann::json Calibration::to_json() const {
           {"fma", {{"threads", fma_threads}, {"iterations", fma_iterations}, {"flops", fma_flops}, {"ms", fma_ms},
                    {"gflops", fma_gflops}}},
           {"fma_scalar", {{"ms", fma_scalar_ms}, {"gflops", fma_scalar_gflops}}},
-          {"copy", {{"bytes", copy_bytes}, {"ms", copy_ms}}}};
+          {"copy", {{"bytes", copy_bytes}, {"ms", copy_ms}}},
+          {"fill_gpix", throughput.fill_gpix},
+          {"raster", {{"width", raster_width}, {"height", raster_height}, {"layers", raster_layers}, {"ms", raster_ms}}}};
 }
 
 Calibration Calibration::from_json(const nlohmann::json& j) {
@@ -119,6 +170,13 @@ Calibration Calibration::from_json(const nlohmann::json& j) {
   if (j.contains("fma_scalar")) {
     c.fma_scalar_ms = j["fma_scalar"].value("ms", std::vector<double>{});
     c.fma_scalar_gflops = j["fma_scalar"].value("gflops", 0.0);
+  }
+  c.throughput.fill_gpix = j.value("fill_gpix", 0.0);  // absent in baselines before the raster calibration
+  if (j.contains("raster")) {
+    c.raster_width = j["raster"].value("width", 0u);
+    c.raster_height = j["raster"].value("height", 0u);
+    c.raster_layers = j["raster"].value("layers", 0u);
+    c.raster_ms = j["raster"].value("ms", std::vector<double>{});
   }
   if (j.contains("copy")) {
     c.copy_bytes = j["copy"].value("bytes", uint64_t(0));

@@ -1,5 +1,6 @@
-// Calibration micro-kernels (bench/calibrate_fma.comp, calibrate_fma_scalar.comp, calibrate_copy.comp): the
-// measuring device's achieved FP32 FMA rate and copy bandwidth, median of repeats. Every
+// Calibration micro-kernels (bench/calibrate_fma.comp, calibrate_fma_scalar.comp, calibrate_copy.comp,
+// calibrate_raster.vert/.frag): the measuring device's achieved FP32 FMA rate, copy bandwidth
+// and raster fill rate (pixels written through depth test), median of repeats. Every
 // `gibench bench` run records them, since the console-scaling model divides by them.
 #pragma once
 #include <cstdint>
@@ -23,6 +24,11 @@ struct Calibration {
   double fma_gflops = 0, fma_scalar_gflops = 0;  // each kernel's median rate; fp32_gflops is the larger
   uint64_t copy_bytes = 0;      // per dispatch (read + write)
   std::vector<double> copy_ms;
+  // Raster fill rate (calibrate_raster.vert/.frag): `raster_layers` full-screen triangles over a
+  // raster_width x raster_height rg32_uint + D32 target per draw, every fragment written.
+  uint32_t raster_width = 0, raster_height = 0, raster_layers = 0;
+  std::vector<double> raster_ms;
+  double fill_gpix_of(const std::vector<double>& ms) const;  // Gpixel/s at the median of ms
   nlohmann::json to_json() const;
   static Calibration from_json(const nlohmann::json& j);
 };
@@ -37,5 +43,12 @@ Calibration calibrate(Gpu& gpu, uint32_t repeats = 7);
 // submit-and-wait on a CPU device (llvmpipe's timestamps misattribute its lazily-run work).
 double time_dispatch(Gpu& gpu, const Pipeline& pipeline, const std::vector<Bind>& binds, const void* push,
                      uint32_t push_bytes, uint32_t groups);
+
+// The raster calibration's pipeline (calibrate_raster.vert/.frag: rg32_uint colour, D32 depth)
+// and one draw of `layers` full-screen triangles, front to back, into color + depth (cleared
+// first), in ms as time_dispatch. Every fragment of every layer passes the depth test, so a
+// draw writes layers x width x height pixels; the last layer's id is what the target holds.
+std::shared_ptr<Pipeline> raster_calibration_pipeline(Gpu& gpu);
+double time_raster(Gpu& gpu, const Pipeline& pipeline, const Image& color, const Image& depth, uint32_t layers);
 
 }  // namespace gib::perf

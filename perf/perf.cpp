@@ -120,6 +120,7 @@ struct PassRun {
   std::vector<uint32_t> repeat;  // which repeat each sample came from
   PassBytes bytes_run, bytes_full;
   double work_scale = 1;         // bytes_full / bytes_run: the per-pass scale to the workload
+  bool raster = false;           // a graphics pass: scaled by fill rate (scale_raster_to_profile)
   nlohmann::json counters;
 };
 
@@ -349,6 +350,8 @@ int cmd_bench(const BenchOptions& o) {
              thr.fp32_gflops, cal.timing, cal.fma_gflops, cal.fma_scalar_gflops,
              cal.fma_scalar_gflops > 0 ? cal.fma_gflops / cal.fma_scalar_gflops : 0.0, thr.bandwidth_gbs,
              cal.copy_bytes / 1048576.0);
+  fmt::print("calibration: raster fill {:.2f} Gpixel/s ({} full-screen layers at {}x{}, D32 test + rg32_uint write)\n",
+             thr.fill_gpix, cal.raster_layers, cal.raster_width, cal.raster_height);
 
   // Workloads: one per distinct target resolution; profiles sharing one share the measurement.
   std::vector<Workload> workloads;
@@ -419,6 +422,7 @@ int cmd_bench(const BenchOptions& o) {
         for (auto* pp : r.plan_run.running()) {
           PassRun pr;
           pr.name = pp->name;
+          pr.raster = pp->kind == PassKind::graphics;
           pr.bytes_run = pass_bytes(r.plan_run, *pp);
           // Bytes and work at the profile's workload: from the plan compiled at that size.
           const PlannedPass* full = pp;
@@ -516,14 +520,26 @@ int cmd_bench(const BenchOptions& o) {
                                      pr.work_scale, fmt_ms(full_ms), pr.bytes_full.total() / 1e6,
                                      fmt_ms(split.memory_ms), fmt_ms(split.compute_ms));
       nlohmann::json scaled = nlohmann::json::object();
+      std::vector<std::string> raster_fallback;
       for (auto* p : w.profiles) {
-        double ms = scale_to_profile(split, thr, *p);
+        std::optional<double> raster = pr.raster ? scale_raster_to_profile(full_ms, thr, *p) : std::nullopt;
+        if (pr.raster && !raster) raster_fallback.push_back(p->name);
+        double ms = raster ? *raster : scale_to_profile(split, thr, *p);
         scaled[p->name] = ms;
         scaled_total[p->name] += ms;
         line += fmt::format(" {:>13}", fmt_ms(ms));
         scaled_by_pass[p->name][pr.name] += ms;
       }
       fmt::print("{}\n", line);
+      if (pr.raster) {
+        fmt::print("  {} rasterises: scaled by fill rate (this device {:.2f} Gpixel/s calibrated; a profile's ROPs x clock), "
+                   "not by the FLOP split. A GPU with few graphics-capable units (an H100) rasterises far below its "
+                   "compute rate, so its raster time says little about a console's.\n",
+                   pr.name, thr.fill_gpix);
+        if (!raster_fallback.empty())
+          fmt::print("  {}: no fill rate for {} (no ROP count in the profile, or no raster calibration): scaled like "
+                     "compute there\n", pr.name, fmt::join(raster_fallback, ", "));
+      }
       meas_total += s.median;
       full_total += full_ms;
       bytes_total += double(pr.bytes_full.total());
@@ -574,6 +590,7 @@ int cmd_bench(const BenchOptions& o) {
                               {"device_ms_full", full_ms},
                               {"memory_ms", split.memory_ms},
                               {"compute_ms", split.compute_ms},
+                              {"scaling", pr.raster ? "fill_rate" : "flop_bandwidth_split"},
                               {"scaled_ms", scaled},
                               {"counters", pr.counters}});
     }
@@ -674,6 +691,7 @@ int cmd_bench(const BenchOptions& o) {
                         {"scale_resolution", scale},
                         {"fp32_gflops", thr.fp32_gflops},
                         {"bandwidth_gbs", thr.bandwidth_gbs},
+                        {"fill_gpix", thr.fill_gpix},
                         {"median_ms", medians}};
     std::ofstream h(hist, std::ios::app);
     if (!h) throw PerfError(fmt::format("--history {}: cannot append", hist));

@@ -80,6 +80,14 @@ std::vector<ConsoleProfile> parse_profiles(const std::string& text, const std::s
     c.label = p.value("label", name);
     c.fp32_tflops = positive(p, "fp32_tflops", file, ptr);
     c.bandwidth_gbs = positive(p, "bandwidth_gbs", file, ptr);
+    if (p.contains("rops")) {  // fill rate = ROPs x clock; the clock must be given with them
+      const ojson& r = p["rops"];
+      if (!r.is_number_unsigned() || r.get<uint64_t>() == 0)
+        throw PerfError(fmt::format("{}: {}/rops: expected a positive integer, got {}", file, ptr, got(r)));
+      if (!p.contains("clock_ghz"))
+        throw PerfError(fmt::format("{}: {}/clock_ghz: expected the clock (GHz) that rops is multiplied by, got none", file, ptr));
+      c.fill_gpix = double(r.get<uint64_t>()) * positive(p, "clock_ghz", file, ptr);
+    }
     const ojson& t = member(p, "targets", file, ptr, "an object with resolution");
     std::tie(c.width, c.height) = resolution(t, file, ptr + "/targets");
     if (t.contains("probes_per_frame")) {
@@ -308,6 +316,11 @@ double scale_to_profile(const PassSplit& s, const DeviceThroughput& dev, const C
   double mem = p.bandwidth_gbs > 0 ? s.memory_ms * dev.bandwidth_gbs / p.bandwidth_gbs : 0.0;
   double comp = p.fp32_tflops > 0 ? s.compute_ms * dev.fp32_gflops / (p.fp32_tflops * 1e3) : 0.0;
   return mem + comp;
+}
+
+std::optional<double> scale_raster_to_profile(double device_ms, const DeviceThroughput& dev, const ConsoleProfile& p) {
+  if (!(dev.fill_gpix > 0) || !(p.fill_gpix > 0)) return std::nullopt;
+  return std::max(0.0, device_ms) * dev.fill_gpix / p.fill_gpix;
 }
 
 std::string find_data_dir(const std::string& override_dir) {

@@ -18,6 +18,9 @@ struct PerfError : std::runtime_error {
 struct ConsoleProfile {
   std::string name, label;
   double fp32_tflops = 0, bandwidth_gbs = 0;
+  // Raster fill rate in Gpixel/s: rops x clock_ghz (public figures), 0 where the file gives no
+  // ROP count; a raster pass then scales by the FLOP / bandwidth split like a compute pass.
+  double fill_gpix = 0;
   uint32_t width = 0, height = 0;               // targets.resolution
   std::optional<uint32_t> probes_per_frame;     // targets.probes_per_frame
   std::optional<double> gi_trace_scale;         // targets.gi_trace_scale
@@ -78,6 +81,7 @@ AlphaCostTable load_alpha_cost_table(const std::string& path);
 struct DeviceThroughput {
   double fp32_gflops = 0;    // achieved FP32 rate (calibrated)
   double bandwidth_gbs = 0;  // achieved copy bandwidth (calibrated)
+  double fill_gpix = 0;      // achieved raster fill rate (calibrated; 0: not measured)
 };
 struct PassSplit {
   double device_ms = 0;   // measured, at the profile's workload
@@ -88,6 +92,11 @@ struct PassSplit {
 PassSplit split_pass(double device_ms, double bytes, const DeviceThroughput& dev);
 // memory_ms x device_bw / console_bw + compute_ms x device_flops / console_flops
 double scale_to_profile(const PassSplit& s, const DeviceThroughput& dev, const ConsoleProfile& p);
+// A rasterising pass (PassKind::graphics): its time is set by the fixed-function raster and ROP
+// rate, which a FLOP split does not see (an H100 rasterises through a few graphics-capable
+// units). device_ms x device fill rate / profile fill rate, when both are known; else nullopt
+// (the caller falls back to scale_to_profile and says so).
+std::optional<double> scale_raster_to_profile(double device_ms, const DeviceThroughput& dev, const ConsoleProfile& p);
 
 // Where the profile and seed data live: --data-dir, else $GIB_DATA_DIR, else <executable
 // dir>/data or <executable dir>/../data (a pack from ci/pack_gpu.sh), else <source>/data (the

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <random>
@@ -201,6 +202,18 @@ std::string error_of(const std::function<void()>& f) {
   return "";
 }
 
+TEST(PerfModel, RasterScalesByFillRate) {
+  DeviceThroughput dev{10000, 1000, 20};  // 20 Gpixel/s
+  ConsoleProfile p;
+  p.fill_gpix = 64 * 2.23;  // PS5: 64 ROPs at 2.23 GHz
+  EXPECT_DOUBLE_EQ(*scale_raster_to_profile(1.0, dev, p), 20.0 / (64 * 2.23));
+  p.fill_gpix = 0;  // no ROP figure: no raster scaling
+  EXPECT_FALSE(scale_raster_to_profile(1.0, dev, p).has_value());
+  dev.fill_gpix = 0;  // not calibrated
+  p.fill_gpix = 10;
+  EXPECT_FALSE(scale_raster_to_profile(1.0, dev, p).has_value());
+}
+
 TEST(PerfProfiles, ErrorsNameTheFileAndField) {
   const std::string ok_profile =
       R"("fp32_tflops": 4.0, "bandwidth_gbs": 224.0, "targets": {"resolution": [1600, 900]})";
@@ -213,6 +226,13 @@ TEST(PerfProfiles, ErrorsNameTheFileAndField) {
 
   e = error_of([&] { parse_profiles(one(R"("fp32_tflops": "fast", "bandwidth_gbs": 1, "targets": {"resolution": [1, 1]})"), "p.json"); });
   EXPECT_NE(e.find("/profiles/xss/fp32_tflops: expected a positive number"), std::string::npos) << e;
+
+  EXPECT_DOUBLE_EQ(parse_profiles(one(ok_profile + R"(, "rops": 32, "clock_ghz": 1.565)"), "p.json").at(0).fill_gpix, 32 * 1.565);
+  EXPECT_EQ(parse_profiles(one(ok_profile), "p.json").at(0).fill_gpix, 0.0);
+  e = error_of([&] { parse_profiles(one(ok_profile + R"(, "rops": 32)"), "p.json"); });
+  EXPECT_NE(e.find("/profiles/xss/clock_ghz: expected the clock"), std::string::npos) << e;
+  e = error_of([&] { parse_profiles(one(ok_profile + R"(, "rops": -4, "clock_ghz": 1)"), "p.json"); });
+  EXPECT_NE(e.find("/profiles/xss/rops: expected a positive integer"), std::string::npos) << e;
 
   e = error_of([&] { parse_profiles(one(R"("fp32_tflops": 1, "bandwidth_gbs": 1, "targets": {"resolution": [1600]})"), "q.json"); });
   EXPECT_NE(e.find("q.json: /profiles/xss/targets/resolution"), std::string::npos) << e;
@@ -420,6 +440,40 @@ TEST_F(PerfCalibration, BothFmaKernelsAreTimedAndTheFasterCounts) {
   EXPECT_EQ(back.fma_scalar_gflops, c.fma_scalar_gflops);
   EXPECT_EQ(back.fma_scalar_ms, c.fma_scalar_ms);
   EXPECT_EQ(back.throughput.fp32_gflops, c.throughput.fp32_gflops);
+  EXPECT_GT(c.throughput.fill_gpix, 0.0);
+  EXPECT_EQ(c.raster_ms.size(), 2u);
+  EXPECT_EQ(back.throughput.fill_gpix, c.throughput.fill_gpix);
+  EXPECT_EQ(back.raster_layers, c.raster_layers);
+  EXPECT_EQ(back.fill_gpix_of(back.raster_ms), c.throughput.fill_gpix);
+}
+
+// The fill rate counts layers x width x height pixels per draw: true only if every layer's
+// every fragment passes the depth test. After a draw the target holds the last layer's id and
+// depth everywhere (a layer that failed anywhere would leave an earlier id there).
+TEST_F(PerfCalibration, RasterDrawWritesEveryLayerEverywhere) {
+  auto pipe = raster_calibration_pipeline(gpu());
+  auto color = gpu().create_image(Format::rg32_uint, 37, 21, "raster_test_color");
+  auto depth = gpu().create_image(Format::d32_float, 37, 21, "raster_test_depth");
+  for (uint32_t layers : {1u, 7u, 64u}) {
+    EXPECT_GT(time_raster(gpu(), *pipe, *color, *depth, layers), 0.0);
+    const std::vector<uint8_t> c = gpu().download(*color);
+    const std::vector<uint8_t> d = gpu().download(*depth);
+    ASSERT_EQ(c.size(), 37u * 21u * 8u);
+    ASSERT_EQ(d.size(), 37u * 21u * 4u);
+    const float z = 1.0f - float(layers) / float(layers + 1);
+    size_t wrong = 0;
+    for (size_t i = 0; i < 37u * 21u; ++i) {
+      uint32_t id, zbits;
+      float dz;
+      std::memcpy(&id, &c[i * 8], 4);
+      std::memcpy(&zbits, &c[i * 8 + 4], 4);
+      std::memcpy(&dz, &d[i * 4], 4);
+      float fz;
+      std::memcpy(&fz, &zbits, 4);
+      wrong += id != layers - 1 || std::fabs(fz - z) > 1e-6f || std::fabs(dz - z) > 1e-6f;
+    }
+    EXPECT_EQ(wrong, 0u) << layers << " layers";
+  }
 }
 }  // namespace
 }  // namespace gib::perf
