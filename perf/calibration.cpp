@@ -9,6 +9,20 @@
 
 namespace gib::perf {
 
+namespace {
+
+// Runs cmd (timestamps 0 and 1 around its work) and returns the work's time in ms: timestamps
+// on a GPU, the host clock around submit-and-wait on a CPU device.
+double submit_timed(Gpu& gpu, std::unique_ptr<Cmd> cmd) {
+  auto t0 = std::chrono::steady_clock::now();
+  auto ns = gpu.submit(std::move(cmd));
+  if (gpu.info().is_software() || ns.size() < 2)
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return (ns[1] - ns[0]) * 1e-6;
+}
+
+}  // namespace
+
 double time_dispatch(Gpu& gpu, const Pipeline& pipeline, const std::vector<Bind>& binds, const void* push,
                      uint32_t push_bytes, uint32_t groups) {
   auto cmd = gpu.begin(2);
@@ -16,11 +30,7 @@ double time_dispatch(Gpu& gpu, const Pipeline& pipeline, const std::vector<Bind>
   cmd->timestamp(0);
   cmd->dispatch(groups);
   cmd->timestamp(1);
-  auto t0 = std::chrono::steady_clock::now();
-  auto ns = gpu.submit(std::move(cmd));
-  if (gpu.info().is_software() || ns.size() < 2)
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  return (ns[1] - ns[0]) * 1e-6;
+  return submit_timed(gpu, std::move(cmd));
 }
 
 std::shared_ptr<Pipeline> raster_calibration_pipeline(Gpu& gpu) {
@@ -44,11 +54,7 @@ double time_raster(Gpu& gpu, const Pipeline& pipeline, const Image& color, const
   cmd->draw(3 * layers);
   cmd->end_rendering();
   cmd->timestamp(1);
-  auto t0 = std::chrono::steady_clock::now();
-  auto ns = gpu.submit(std::move(cmd));
-  if (gpu.info().is_software() || ns.size() < 2)
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  return (ns[1] - ns[0]) * 1e-6;
+  return submit_timed(gpu, std::move(cmd));
 }
 
 double Calibration::fill_gpix_of(const std::vector<double>& ms) const {

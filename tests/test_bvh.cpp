@@ -23,6 +23,7 @@
 #include "renderer/scene/bvh.h"
 #include "renderer/scene/material_eval.h"
 #include "tests/bvh_test_shared.h"
+#include "tests/test_rng.h"
 
 #ifndef GIB_BVH_TEST_NO_GPU
 #include <functional>
@@ -40,15 +41,9 @@ constexpr uint32_t kSceneBufferCount = 7;  // GIB_SCENE_BINDING_COUNT in scene.g
 constexpr uint32_t kSceneTexturesOffset = 30;  // GIB_SCENE_BINDING_TEXTURES in scene.glsl
 
 // Small deterministic generator (no dependence on the standard library's distributions).
-struct Rng {
-  uint64_t s;
-  explicit Rng(uint64_t seed) : s(seed * 0x9E3779B97F4A7C15ull + 1) {}
-  uint32_t next() {
-    s ^= s >> 12; s ^= s << 25; s ^= s >> 27;
-    return uint32_t((s * 0x2545F4914F6CDD1Dull) >> 32);
-  }
-  float uniform() { return float(next() >> 8) * (1.0f / 16777216.0f); }  // [0, 1)
-  float range(float a, float b) { return a + (b - a) * uniform(); }
+struct Rng : test::Rng {
+  using test::Rng::Rng;
+  float range(float a, float b) { return uniform(a, b); }
   Vec3 in_box(float h) { return {range(-h, h), range(-h, h), range(-h, h)}; }
   Vec3 unit() {
     for (;;) {
@@ -57,7 +52,6 @@ struct Rng {
       if (l > 1e-4f && l <= 1.0f) return v / std::sqrt(l);
     }
   }
-  uint32_t below(uint32_t n) { return next() % n; }
 };
 
 struct SoupBuilder {

@@ -24,6 +24,7 @@
 #include "renderer/codecs/sh2.h"
 #include "tests/codecs_test_shared.h"
 #include "tests/gpu_fixture.h"
+#include "tests/test_rng.h"
 
 namespace gib {
 namespace {
@@ -36,16 +37,7 @@ constexpr float kPi = std::numbers::pi_v<float>;
 uint32_t bits(float f) { return std::bit_cast<uint32_t>(f); }
 float from_bits(uint32_t u) { return std::bit_cast<float>(u); }
 
-struct Rng {
-  uint64_t s;
-  explicit Rng(uint64_t seed) : s(seed * 0x9E3779B97F4A7C15ull + 1) {}
-  uint32_t next() {
-    s ^= s >> 12; s ^= s << 25; s ^= s >> 27;
-    return uint32_t((s * 0x2545F4914F6CDD1Dull) >> 32);
-  }
-  uint32_t below(uint32_t n) { return next() % n; }
-  float uniform() { return float(next() >> 8) * (1.0f / 16777216.0f); }
-};
+using test::Rng;
 
 // ---------------------------------------------------------------- references
 // Every non-negative finite code of a small float format, decoded: the values ascend with the

@@ -17,6 +17,7 @@
 #include "tests/normal_map_test_shared.h"
 #include "tests/technique_settings.h"
 #include "tests/temp_dir.h"
+#include "tests/test_rng.h"
 #include "tests/texture_test_content.h"
 
 namespace gib {
@@ -88,33 +89,21 @@ TEST(NormalMap, DegenerateInputsKeepTheNormal) {
   EXPECT_EQ(s.z, 1.0f);
 }
 
-struct Rng {
-  uint64_t s;
-  explicit Rng(uint64_t seed) : s(seed * 0x9E3779B97F4A7C15ull + 1) {}
-  float next() {
-    s ^= s >> 12;
-    s ^= s << 25;
-    s ^= s >> 27;
-    return float(uint32_t((s * 0x2545F4914F6CDD1Dull) >> 40)) * (1.0f / 16777216.0f);
-  }
-  float in(float lo, float hi) { return lo + (hi - lo) * next(); }
-};
-
 class NormalMapGpu : public test::GpuTest {};
 
 TEST_F(NormalMapGpu, GpuMatchesCpuMirrorToAFewUlps) {
-  Rng rng(18);
+  test::Rng rng(18);
   std::vector<NormalMapTestQuery> q(8192);
   for (size_t i = 0; i < q.size(); ++i) {
     NormalMapTestQuery& x = q[i];
-    Vec3 n = normalize({rng.in(-1, 1), rng.in(-1, 1), rng.in(-1, 1)});
+    Vec3 n = normalize({rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)});
     x.n[0] = n.x, x.n[1] = n.y, x.n[2] = n.z;
-    x.scale = i % 7 == 0 ? 0.0f : rng.in(0.2f, 2.0f);
+    x.scale = i % 7 == 0 ? 0.0f : rng.uniform(0.2f, 2.0f);
     const float span = i % 3 == 0 ? 1000.0f : 2.0f;  // far-from-origin triangles too
-    for (float& p : x.p) p = rng.in(-span, span);
-    for (float& t : x.t) t = rng.in(-3, 3);
+    for (float& p : x.p) p = rng.uniform(-span, span);
+    for (float& t : x.t) t = rng.uniform(-3, 3);
     if (i % 11 == 0) x.t[2] = x.t[0], x.t[3] = x.t[1], x.t[4] = x.t[0], x.t[5] = x.t[1];  // no uv area
-    for (float& c : x.texel) c = float(int(rng.in(0, 256))) / 255.0f;  // 8-bit texels
+    for (float& c : x.texel) c = float(int(rng.uniform(0, 256))) / 255.0f;  // 8-bit texels
   }
   auto in = gpu().create_buffer(q.size() * sizeof(NormalMapTestQuery), BufferUsage::storage, "normal_map_test.queries");
   gpu().upload(*in, q.data(), q.size() * sizeof(NormalMapTestQuery));

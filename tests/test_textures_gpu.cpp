@@ -12,6 +12,7 @@
 
 #include "renderer/scene/texture.h"
 #include "tests/gpu_fixture.h"
+#include "tests/test_rng.h"
 #include "tests/textures_test_shared.h"
 
 namespace gib {
@@ -19,17 +20,7 @@ namespace {
 
 using namespace textures_test;
 
-struct Rng {
-  uint64_t s;
-  explicit Rng(uint64_t seed) : s(seed * 0x9E3779B97F4A7C15ull + 1) {}
-  uint32_t next() {
-    s ^= s >> 12;
-    s ^= s << 25;
-    s ^= s >> 27;
-    return uint32_t((s * 0x2545F4914F6CDD1Dull) >> 32);
-  }
-  float uniform(float lo, float hi) { return lo + (hi - lo) * float(next() >> 8) * (1.0f / 16777216.0f); }
-};
+using test::Rng;
 
 Texture random_texture(uint32_t w, uint32_t h, bool srgb, Rng& rng) {
   std::vector<uint8_t> px(size_t(w) * h * 4);
