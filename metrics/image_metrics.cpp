@@ -356,26 +356,26 @@ double penumbra_width(const std::vector<double>& profile, const std::vector<doub
   if (!std::isfinite(lo) || !std::isfinite(hi) || !(hi > lo))
     throw std::invalid_argument(fmt::format("penumbra_width: levels lo {} hi {}, expected finite with hi > lo", lo, hi));
   const size_t n = profile.size();
-  const bool from_left = dark_from.front() <= dark_from.back();
-  auto at = [&](size_t i) { return (profile[from_left ? i : n - 1 - i] - lo) / (hi - lo); };
+  // Start at dark_from's darkest column (the umbra), walk towards its brighter end.
+  const size_t start = size_t(std::min_element(dark_from.begin(), dark_from.end()) - dark_from.begin());
+  const bool rightwards = dark_from.back() >= dark_from.front();
+  const size_t steps = rightwards ? n - start : start + 1;
+  auto at = [&](size_t i) { return (profile[rightwards ? start + i : start - i] - lo) / (hi - lo); };
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
   auto crossing = [&](double level) {
-    for (size_t i = 0; i < n; ++i) {
+    for (size_t i = 0; i < steps; ++i) {
       const double v = at(i);
-      if (std::isnan(v)) return std::numeric_limits<double>::quiet_NaN();
-      if (v >= level) {
-        if (i == 0) return 0.0;
-        const double prev = at(i - 1);
-        return double(i - 1) + (level - prev) / (v - prev);
-      }
+      if (std::isnan(v)) return nan;
+      if (v >= level) return i == 0 ? 0.0 : double(i - 1) + (level - at(i - 1)) / (v - at(i - 1));
     }
-    return std::numeric_limits<double>::infinity();
+    return inf;
   };
-  // A dark end at or above the 10 % level never gets dark (light leaked): no edge.
-  if (!(at(0) < 0.1)) return std::isnan(at(0)) ? std::numeric_limits<double>::quiet_NaN()
-                                               : std::numeric_limits<double>::infinity();
+  // Not dark where the reference's umbra is (light leaked): no edge.
+  if (std::isnan(at(0))) return nan;
+  if (!(at(0) < 0.1)) return inf;
   const double a = crossing(0.1), b = crossing(0.9);
-  if (std::isnan(a) || std::isnan(b)) return std::numeric_limits<double>::quiet_NaN();
-  if (std::isinf(a) || std::isinf(b)) return std::numeric_limits<double>::infinity();
+  if (std::isnan(a) || std::isnan(b)) return nan;
+  if (std::isinf(a) || std::isinf(b)) return inf;
   return b - a;
 }
 

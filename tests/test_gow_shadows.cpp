@@ -145,6 +145,10 @@ TEST(PenumbraMetric, KnownWidths) {
   std::vector<double> leak(40);
   for (size_t i = 0; i < leak.size(); ++i) leak[i] = 0.5 + 0.5 * ramp[i];
   EXPECT_TRUE(std::isinf(metrics::penumbra_width(leak, ramp, 0, 1)));
+  // The tail of another edge before the umbra is skipped: the walk starts at the darkest column.
+  std::vector<double> tail = ramp;
+  tail[0] = 0.3, tail[1] = 0.2;
+  EXPECT_NEAR(metrics::penumbra_width(tail, tail, 0, 1), 16.0, 1e-9);
   EXPECT_THROW(metrics::penumbra_width(ramp, ramp, 1, 1), std::invalid_argument);
   EXPECT_THROW(metrics::penumbra_width(ramp, step, 0, std::nan("")), std::invalid_argument);
 }
