@@ -24,7 +24,8 @@ struct ShadowCascadePush {
                     //   towards the sun beyond a cascade's sphere), w: near view distance (m)
   vec4 area;        // x: filter radius (m, light space) of the area light; y: march distance (m);
                     //   z: depth bias (m); w: normal offset (texels)
-  uvec4 counts;     // x: taps, y: march steps, z: cascade to rasterise (shadow_maps), w: use min/max (1)
+  uvec4 counts;     // x: taps, y: march steps, z: cascade to rasterise (shadow_maps) or dilation axis
+                    //   (shadow_minmax: 1 x, 0 y), w: use min/max (1)
 };
 GIB_SHARED_END
 #endif

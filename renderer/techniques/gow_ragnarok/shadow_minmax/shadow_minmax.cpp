@@ -1,6 +1,7 @@
 #include "renderer/techniques/gow_ragnarok/shadow_minmax/shadow_minmax.h"
 
 #include <algorithm>
+#include <utility>
 
 #include "renderer/techniques/gow_ragnarok/shadow_cascades.h"
 #include "renderer/techniques/gow_ragnarok/shadow_minmax/shadow_minmax_shared.h"
@@ -18,7 +19,10 @@ class ShadowMinMaxPass final : public Pass {
     PassDecl d;
     d.name = "shadow_minmax";
     d.needs = Feature::sun;
-    d.slots = {{"shadow_map", Access::read}, {"shadow_minmax_tiles", Access::write, mm}, {"shadow_minmax", Access::write, mm}};
+    d.slots = {{"shadow_map", Access::read},
+               {"shadow_minmax_tiles", Access::write, mm},
+               {"shadow_minmax_rows", Access::write, mm},
+               {"shadow_minmax", Access::write, mm}};
     return d;
   }
 
@@ -31,13 +35,19 @@ class ShadowMinMaxPass final : public Pass {
                          .groups_x = div_up(w, kShadowGroup),
                          .groups_y = div_up(h, kShadowGroup),
                          .scene = false});
-    ctx.cmd.barrier(kStageCompute, kStageCompute);
-    record_compute(ctx, {.shader = "shadow_minmax.comp",
-                         .images = {{kMinMaxBindTiles, "shadow_minmax_tiles"}, {kShadowBindMinMax, "shadow_minmax"}},
-                         .groups_x = div_up(w, kShadowGroup),
-                         .groups_y = div_up(h, kShadowGroup),
-                         .push = &push,
-                         .push_bytes = sizeof(push)});
+    // Dilate along x into shadow_minmax_rows, then along y into shadow_minmax.
+    const std::pair<const char*, const char*> steps[2] = {{"shadow_minmax_tiles", "shadow_minmax_rows"},
+                                                          {"shadow_minmax_rows", "shadow_minmax"}};
+    for (int axis = 0; axis < 2; ++axis) {
+      push.counts.z = axis == 0 ? 1u : 0u;  // the dilation axis: 1 x, 0 y
+      ctx.cmd.barrier(kStageCompute, kStageCompute);
+      record_compute(ctx, {.shader = "shadow_minmax.comp",
+                           .images = {{kMinMaxBindTiles, steps[axis].first}, {kShadowBindMinMax, steps[axis].second}},
+                           .groups_x = div_up(w, kShadowGroup),
+                           .groups_y = div_up(h, kShadowGroup),
+                           .push = &push,
+                           .push_bytes = sizeof(push)});
+    }
   }
 };
 
