@@ -51,7 +51,7 @@ for b in "${bins[@]}"; do
 done
 
 data=${GIB_DATA_DIR:-data}
-cp "$data/console-profiles.json" "$data/seed-timings.json" "$out/data/"
+cp "$data/console-profiles.json" "$data/seed-timings.json" "$data/budgets.json" "$out/data/"
 
 if ((validation)); then
   mkdir -p "$out/layers"

@@ -582,7 +582,7 @@ const std::vector<std::string>& case_metrics() {
       "nan_count", "inf_count", "uv_shift_max", "banding",          "banding_excess", "flicker",
       "conv_error_final", "conv_error_max", "conv_drift", "conv_oscillation",
       "scan_nan", "scan_inf", "scan_negative", "scan_above_max", "scan_saturated", "nan_frames",
-      "nan_last_frame", "nan_max_pixels"};
+      "nan_last_frame", "nan_max_pixels", "penumbra_width_error"};
   return m;
 }
 

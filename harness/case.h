@@ -45,6 +45,8 @@ struct Roi {
 //                             darker than 1e-3 skipped; metrics::chromaticity_shift)
 //   banding                   banding index of the output's luminance (metrics::banding_index)
 //   banding_excess            banding(output) - banding(against): the part the content lacks
+//   penumbra_width_error      |w(output) - w(against)| / w(against): 10-90 % penumbra width along
+//                             x of the ROI's mean row profile, levels from against's (needs roi)
 //   flicker                   mean per-pixel relative std of luminance over the last
 //                             Case::flicker_frames frames (needs flicker_frames)
 //   conv_error_final          |m - t| / t at the last frame, m = ROI mean luminance per frame,

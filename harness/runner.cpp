@@ -188,6 +188,10 @@ double compute_metric(const Case& c, const std::string& metric, const FloatImage
   metrics::Roi mroi = roi ? metrics::Roi{roi->x0, roi->y0, roi->x1, roi->y1} : metrics::Roi{};
   if (metric == "uv_shift_max") return metrics::max_chromaticity_shift(need(), output, mroi);
   if (metric == "banding") return metrics::banding_index(output, mroi);
+  if (metric == "penumbra_width_error") {
+    if (!roi) throw CaseError(fmt::format("{}: metric 'penumbra_width_error' needs a roi (a band across the shadow edge)", c.file));
+    return metrics::penumbra_width_error(need(), output, mroi);
+  }
   if (metric == "banding_excess") return metrics::banding_index(output, mroi) - metrics::banding_index(need(), mroi);
   if (metric == "flicker") {
     if (!series.frames || series.frames->size() < 2)

@@ -334,3 +334,60 @@ double flicker(const std::vector<FloatImage>& frames, const Roi& roi, double mea
 }
 
 }  // namespace gib::metrics
+
+namespace gib::metrics {
+
+std::vector<double> penumbra_profile(const FloatImage& img, const Roi& roi) {
+  check_image("penumbra_profile", "input", img);
+  const PixelRect r = roi_pixels(roi, img.width, img.height);
+  std::vector<double> out(r.width(), 0.0);
+  for (uint32_t x = r.x_begin; x < r.x_end; ++x) {
+    double sum = 0;
+    for (uint32_t y = r.y_begin; y < r.y_end; ++y) sum += luminance(img, x, y);
+    out[x - r.x_begin] = sum / r.height();
+  }
+  return out;
+}
+
+double penumbra_width(const std::vector<double>& profile, const std::vector<double>& dark_from, double lo, double hi) {
+  if (profile.size() < 2 || dark_from.size() != profile.size())
+    throw std::invalid_argument(fmt::format("penumbra_width: profiles of {} and {} columns, expected equal and >= 2",
+                                            profile.size(), dark_from.size()));
+  if (!std::isfinite(lo) || !std::isfinite(hi) || !(hi > lo))
+    throw std::invalid_argument(fmt::format("penumbra_width: levels lo {} hi {}, expected finite with hi > lo", lo, hi));
+  const size_t n = profile.size();
+  // Start at dark_from's darkest column (the umbra), walk towards its brighter end.
+  const size_t start = size_t(std::min_element(dark_from.begin(), dark_from.end()) - dark_from.begin());
+  const bool rightwards = dark_from.back() >= dark_from.front();
+  const size_t steps = rightwards ? n - start : start + 1;
+  auto at = [&](size_t i) { return (profile[rightwards ? start + i : start - i] - lo) / (hi - lo); };
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  auto crossing = [&](double level) {
+    for (size_t i = 0; i < steps; ++i) {
+      const double v = at(i);
+      if (std::isnan(v)) return nan;
+      if (v >= level) return i == 0 ? 0.0 : double(i - 1) + (level - at(i - 1)) / (v - at(i - 1));
+    }
+    return inf;
+  };
+  // Not dark where the reference's umbra is (light leaked): no edge.
+  if (std::isnan(at(0))) return nan;
+  if (!(at(0) < 0.1)) return inf;
+  const double a = crossing(0.1), b = crossing(0.9);
+  if (std::isnan(a) || std::isnan(b)) return nan;
+  if (std::isinf(a) || std::isinf(b)) return inf;
+  return b - a;
+}
+
+double penumbra_width_error(const FloatImage& ref, const FloatImage& test, const Roi& roi) {
+  check_pair("penumbra_width_error", ref, test);
+  const std::vector<double> pr = penumbra_profile(ref, roi), pt = penumbra_profile(test, roi);
+  const auto [lo, hi] = std::minmax_element(pr.begin(), pr.end());
+  const double w_ref = penumbra_width(pr, pr, *lo, *hi);
+  if (!(w_ref > 0) || !std::isfinite(w_ref))
+    throw std::invalid_argument(fmt::format(
+        "penumbra_width_error: the reference has no shadow edge across the ROI (width {}), expected one", w_ref));
+  return std::abs(penumbra_width(pt, pr, *lo, *hi) - w_ref) / w_ref;
+}
+
+}  // namespace gib::metrics

@@ -165,4 +165,22 @@ inline constexpr double kFlickerMeanFloor = 1e-3;
 double flicker(const std::vector<FloatImage>& frames, const Roi& roi = {},
                double mean_floor = kFlickerMeanFloor);
 
+// Penumbra width along a line across a shadow edge (the contact-shadows case). The ROI's rows
+// are averaged into one profile of mean Rec.709 luminance per column, so the line runs along x;
+// penumbra_profile() returns it, left to right.
+std::vector<double> penumbra_profile(const FloatImage& img, const Roi& roi);
+// Width in columns between the points where `profile`, normalised as (p - lo) / (hi - lo),
+// first reaches 0.1 and first reaches 0.9, walking from the darkest column of `dark_from`
+// (normally the reference's profile, so both images walk the same way: from its umbra) towards
+// dark_from's brighter end; linear interpolation between columns. +infinity when the profile is
+// not below 0.1 at that column (a leak: it never gets dark) or never reaches 0.9 (a shadow that
+// never gets lit). Throws std::invalid_argument for fewer than 2 columns, profiles of different
+// lengths, hi <= lo or non-finite levels.
+double penumbra_width(const std::vector<double>& profile, const std::vector<double>& dark_from, double lo, double hi);
+// |width(test) - width(ref)| / width(ref), both normalised by the reference profile's minimum
+// (umbra) and maximum (lit) over the ROI; +infinity where the test's width is. Throws
+// std::invalid_argument for a bad ROI, different sizes, or a reference with no edge (width 0
+// or not finite).
+double penumbra_width_error(const FloatImage& ref, const FloatImage& test, const Roi& roi);
+
 }  // namespace gib::metrics

@@ -30,6 +30,8 @@ inline void add_perf_commands(CLI::App& app, PerfCli& c) {
   b->add_option("--scale-resolution", c.bench.scale_resolution,
                 "render at this fraction of the profile's resolution, e.g. 1/8 (default 1 on a GPU, 1/8 on a CPU device)");
   b->add_option("--json", c.bench.json, "write the run (every sample, calibration, scaled costs) as JSON");
+  b->add_option("--budget-html", c.bench.budget_html,
+                "write each run's per-category budget tree (data/budgets.json, console-scaled) as an HTML page");
   b->add_option("--history", c.bench.history, "append one line per run here (default bench/history.jsonl)");
   b->add_flag("--no-history", c.bench.no_history, "do not append to the history file");
   b->add_option("--device", c.bench.device, "device index or name substring");

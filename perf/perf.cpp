@@ -1,5 +1,7 @@
 #include "perf/perf.h"
 
+#include "perf/budgets.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -322,6 +324,11 @@ int cmd_bench(const BenchOptions& o) {
   auto profiles = select_profiles(all_profiles, o.profiles);
   const std::vector<SeedTable> seeds = load_seed_tables(seeds_path);
   const AlphaCostTable alpha_costs = load_alpha_cost_table(seeds_path);  // before the runs: a bad table fails first
+  // Per-category budgets (data/budgets.json); a data folder without the file prints no trees.
+  std::optional<Budgets> budgets;
+  if (std::ifstream(data + "/budgets.json").good()) budgets = load_budgets(data + "/budgets.json");
+  else fmt::print("note: no {}/budgets.json: no budget trees\n", data);
+  std::vector<std::pair<std::string, BudgetTree>> budget_trees;
 
   std::vector<const Technique*> techs;
   if (o.techniques.empty())
@@ -511,6 +518,7 @@ int cmd_bench(const BenchOptions& o) {
     std::map<std::string, double> scaled_total;
     double meas_total = 0, full_total = 0, bytes_total = 0, mem_total = 0, comp_total = 0;
     std::map<std::string, std::map<std::string, double>> scaled_by_pass;  // profile -> pass -> ms
+    std::map<std::string, std::vector<std::pair<std::string, double>>> pass_order;  // the same, in run order
     for (auto& pr : r.passes) {
       Summary s = summarize_samples(pr.samples);
       double full_ms = s.median * pr.work_scale;
@@ -529,6 +537,7 @@ int cmd_bench(const BenchOptions& o) {
         scaled_total[p->name] += ms;
         line += fmt::format(" {:>13}", fmt_ms(ms));
         scaled_by_pass[p->name][pr.name] += ms;
+        pass_order[p->name].push_back({pr.name, ms});
       }
       fmt::print("{}\n", line);
       if (pr.raster) {
@@ -607,12 +616,26 @@ int cmd_bench(const BenchOptions& o) {
     jr["frame"] = {{"key", fkey}, {"samples_ms", r.frame_ms}, {"sample_repeat", r.frame_repeat},
                    {"median_ms", fs.median}, {"sum_of_pass_medians_ms", meas_total},
                    {"device_ms_full", full_total}, {"scaled_ms", scaled_total}};
+    // The seed's budget tree per profile that has budgets (GoW Ragnarok: PS4).
+    for (auto* p : w.profiles) {
+      if (!budgets || !budgets->profiles.count(p->name)) continue;
+      BudgetTree tree = budget_tree(*budgets, p->name, pass_order[p->name]);
+      fmt::print("\n-- {} budgets @ {} (console-scaled) --\n{}", r.name, p->name, format_budget_tree(tree));
+      jr["budgets"].push_back(to_json(tree));
+      budget_trees.push_back({fmt::format("{} @ {} ({})", r.name, p->name, w.name()), std::move(tree)});
+    }
     jruns.push_back(jr);
 
     for (const SeedTable& table : seeds)
       if (table.technique == r.technique->name) add_seed_rows(table, r, scaled_by_pass, jseed);
   }
   print_seed_comparison(seeds, techs, jseed);
+  if (!o.budget_html.empty()) {
+    std::ofstream html(o.budget_html);
+    if (!html) throw PerfError(fmt::format("--budget-html {}: cannot write", o.budget_html));
+    html << budget_html(budget_trees);
+    fmt::print("wrote {} ({} budget trees)\n", o.budget_html, budget_trees.size());
+  }
 
   fmt::print("\n== noise floor: the same configuration timed twice in this run ({}) ==\n",
              repeats >= 2 ? "even vs odd repeats" : "first vs second half of the frames");

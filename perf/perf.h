@@ -31,6 +31,7 @@ struct BenchOptions {
   uint32_t warmup = 0;        // frames before timing (0: 1 on a CPU device, 5 on a GPU)
   std::string scale_resolution;  // "1/8" or "0.125"; "" auto: 1 on a GPU, 1/8 on a CPU device
   std::string json;              // write the run here
+  std::string budget_html;       // write the budget trees (data/budgets.json) as an HTML page here
   std::string history;           // "" : <source>/bench/history.jsonl
   bool no_history = false;
   std::string device;

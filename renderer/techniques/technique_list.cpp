@@ -8,7 +8,8 @@
   X(reference)                \
   X(radiance_cache)           \
   X(deferred)                 \
-  X(probe_volume)
+  X(probe_volume)             \
+  X(gow_ragnarok)
 
 namespace gib {
 

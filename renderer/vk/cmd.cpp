@@ -174,6 +174,13 @@ void VkCmd::begin_rendering(std::span<const Image* const> colors, const Image* d
   vkCmdSetScissor(cb, 0, 1, &sc);
 }
 
+void VkCmd::set_viewport(uint32_t x, uint32_t y, uint32_t width, uint32_t height) {
+  VkViewport vp{static_cast<float>(x), static_cast<float>(y), static_cast<float>(width), static_cast<float>(height), 0.0f, 1.0f};
+  VkRect2D sc{{static_cast<int32_t>(x), static_cast<int32_t>(y)}, {width, height}};
+  vkCmdSetViewport(cb, 0, 1, &vp);
+  vkCmdSetScissor(cb, 0, 1, &sc);
+}
+
 void VkCmd::draw(uint32_t vertex_count) {
   if (vertex_count) vkCmdDraw(cb, vertex_count, 1, 0, 0);
 }

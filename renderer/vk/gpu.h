@@ -111,6 +111,8 @@ class Cmd {
   virtual void dispatch_indirect(const Buffer& args, uint64_t offset) = 0;
   virtual void begin_rendering(std::span<const Image* const> colors, const Image* depth,
                                const float clear_color[4]) = 0;
+  // Viewport and scissor inside the current rendering area (begin_rendering sets them to all of it).
+  virtual void set_viewport(uint32_t x, uint32_t y, uint32_t width, uint32_t height) = 0;
   virtual void draw(uint32_t vertex_count) = 0;
   virtual void end_rendering() = 0;
   virtual void barrier(uint32_t src_stages, uint32_t dst_stages) = 0;  // global memory barrier

@@ -116,6 +116,7 @@ class VkCmd final : public Cmd {
   void dispatch(uint32_t x, uint32_t y, uint32_t z) override;
   void dispatch_indirect(const Buffer& args, uint64_t offset) override;
   void begin_rendering(std::span<const Image* const> colors, const Image* depth, const float clear_color[4]) override;
+  void set_viewport(uint32_t x, uint32_t y, uint32_t width, uint32_t height) override;
   void draw(uint32_t vertex_count) override;
   void end_rendering() override;
   void barrier(uint32_t src_stages, uint32_t dst_stages) override;

@@ -7,7 +7,8 @@
 // brdf.glsl;
 // the G-buffer images gb_albedo, gb_normal, gb_position, gb_emissive (rgba16f / rgba32f as in
 // gbuffer_shared.h) and the visibility buffer `vbuffer`; booleans kHasSun, kHasSky, kHasLocal,
-// kHasEmissive (specialization constants: which lights the scene has).
+// kHasEmissive (specialization constants: which lights the scene has). Optionally
+// GIB_SUN_VISIBILITY(p): the sun's visibility at pixel p, replacing the sun's shadow ray.
 //
 // gib_direct_light(p, sky_rays, nan_guards, translucent_path, cloth_path):
 //   translucent_path false skips the back-face terms; it gives the same value wherever the
@@ -60,6 +61,15 @@ vec3 gib_direct_light(ivec2 p, uint sky_rays, bool nan_guards, bool translucent_
   GibRng rng = gib_rng(gib_seed(), gib_frame_index(), uvec2(p), 1u);
   vec3 result = em.rgb;
 
+#ifdef GIB_SUN_VISIBILITY
+  // The sun's visibility from a shadow pass of the technique: light from the sun's centre, scaled.
+  if (kHasSun && gib_frame.sun_irradiance.w > 0.0) {
+    vec3 wi = gib_frame.sun_dir.xyz;
+    vec3 resp = diffuse_response(albedo, translucency, n, wi);
+    if (sheen > 0.0) resp += gib_sheen_lobe(sheen, normal_rough.a, n, wi, wo) * max(dot(n, wi), 0.0);
+    result += resp * gib_frame.sun_irradiance.rgb * clamp(GIB_SUN_VISIBILITY(p), 0.0, 1.0);
+  }
+#else
   if (kHasSun && gib_frame.sun_irradiance.w > 0.0) {
     vec3 wi = gib_uniform_cone(gib_frame.sun_dir.xyz, gib_frame.sun_dir.w, gib_next2(rng));
     vec3 resp = diffuse_response(albedo, translucency, n, wi);
@@ -69,6 +79,7 @@ vec3 gib_direct_light(ivec2 p, uint sky_rays, bool nan_guards, bool translucent_
       if (!trace_any(gib_offset_ray(x, side), wi, 0.0, kShadowMax)) result += resp * gib_frame.sun_irradiance.rgb;
     }
   }
+#endif
   if ((kHasSky || kHasEmissive) && sky_rays > 0u) {
     // Cosine-distributed rays: each carries albedo * the radiance it finds straight away, the
     // sky's where it escapes, an emissive surface's emission where it hits one (light that

@@ -5,7 +5,8 @@
 // (renderer/techniques/aov.h) exactly, for every light type. Lambertian, with
 // diffuse transmission for translucent materials (light from the back face scaled by
 // translucency). Sky pixels get the sky radiance. Output is linear HDR (RGBA32F).
-// Slots: reads gbuffer_albedo, gbuffer_normal, gbuffer_position, gbuffer_emissive; writes direct_light.
+// Slots: reads gbuffer_albedo, gbuffer_normal, gbuffer_position, gbuffer_emissive (and the slot
+// named by DirectLightingParams::sun_visibility, where set and the scene has a sun); writes direct_light.
 // Seed: the `direct` base technique (docs/architecture.md "Techniques"); shadows are traced with our BVH (god-of-war
 // PCF/contact-hardening shadows are a later pass).
 // Limits: loops over all local lights (the light grid of radiance-cache will bound this);
@@ -14,6 +15,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <string_view>
 #include <vector>
 
 #include "renderer/graph/pass.h"
@@ -24,6 +26,10 @@ namespace gib {
 // from this (the pass reads Settings::params<DirectLightingParams>()).
 struct DirectLightingParams {
   uint32_t sky_rays = 4;  // cosine rays per pixel for sky and emissive-surface light (0: neither)
+  // Empty: the sun is shadowed by a ray per pixel. Else the name of a slot (r32_float, render
+  // size, visibility in [0, 1]) another pass of the technique writes: the sun light is scaled by
+  // it instead of traced (a shadow-map technique's filtered shadows), from the sun's centre.
+  std::string_view sun_visibility;
 };
 
 // The sky-ray ladder of every technique whose quality is direct_lighting's (direct, deferred).

@@ -1,0 +1,95 @@
+// `gow-ragnarok`: God of War Ragnarök's sun shadows (gow_ragnarok.md) on the visibility-buffer
+// and G-buffer path of `direct`: cascaded shadow maps, a dilated min/max depth map, and the sun's
+// visibility by Poisson-style PCF (the baseline) or contact-hardening shadows marched through the
+// shadow map; direct_lighting takes the sun's visibility from the selected pass instead of
+// tracing a shadow ray. The screen-space terms and ray-traced cubemaps of issue 17 come later.
+#include "renderer/techniques/gow_ragnarok/gow_ragnarok.h"
+
+#include "renderer/passes/gbuffer/gbuffer.h"
+#include "renderer/passes/visibility/visibility.h"
+#include "renderer/techniques/gow_ragnarok/shadow_maps/shadow_maps.h"
+#include "renderer/techniques/gow_ragnarok/shadow_minmax/shadow_minmax.h"
+#include "renderer/techniques/gow_ragnarok/shadows_contact_hardening/shadows_contact_hardening.h"
+#include "renderer/techniques/gow_ragnarok/shadows_pcf/shadows_pcf.h"
+#include "renderer/techniques/technique.h"
+
+namespace gib {
+namespace {
+
+struct Preset {
+  const char* name;
+  uint32_t cascades, resolution, taps, march_steps, sky_rays;
+};
+constexpr Preset kPresets[] = {
+    {"low", 2, 512, 8, 6, 1}, {"medium", 3, 1024, 16, 10, 4}, {"high", 4, 2048, 24, 14, 16}, {"ultra", 4, 4096, 32, 20, 64}};
+
+// The slot direct_lighting reads the sun's visibility from: the selected filter's output.
+std::string_view visibility_slot(uint32_t filter) {
+  return filter == uint32_t(ShadowFilter::pcf) ? "shadow_pcf" : "shadow_contact_hardening";
+}
+
+void apply_row(GowRagnarokSettings& s, const Preset& p) {
+  s.cascades = p.cascades;
+  s.shadow_resolution = p.resolution;
+  s.taps = p.taps;
+  s.march_steps = p.march_steps;
+  s.sky_rays = p.sky_rays;
+  s.sun_visibility = visibility_slot(s.shadow_filter);
+}
+
+}  // namespace
+
+Technique gow_ragnarok_technique() {
+  Technique t;
+  t.name = "gow-ragnarok";
+  t.description =
+      "visibility buffer, G-buffer, cascaded sun shadow maps with a dilated min/max early-out, PCF or "
+      "contact-hardening shadows marched in shadow-map space (God of War Ragnarok)";
+  t.passes = {{"visibility", make_visibility_pass},
+              {"gbuffer", make_gbuffer_pass},
+              {"shadow_maps", make_shadow_maps_pass},
+              {"shadow_minmax", make_shadow_minmax_pass},
+              {"shadows_pcf", make_shadows_pcf_pass},
+              {"shadows_contact_hardening", make_shadows_contact_hardening_pass},
+              {"direct_lighting", make_direct_lighting_pass}};
+  t.output = "direct_light";
+  // Only direct light (sun through the shadow map, sky and local lights as `direct`).
+  t.contract_aovs = {{"direct", "direct_light"}};
+  t.aovs = {"vbuffer",          "depth",         "gbuffer_albedo", "gbuffer_normal", "gbuffer_position",
+            "gbuffer_emissive", "shadow_map",    "shadow_minmax",  "shadow_pcf",     "shadow_contact_hardening"};
+  define_settings<GowRagnarokSettings>(t, kPresets, apply_row);
+  TechniqueOption filter{"shadow_filter", "sun shadows: 0 PCF (the baseline), 1 contact hardening", 0, 1, true};
+  filter.apply = [](Settings& s, double v) {
+    auto& g = s.params<GowRagnarokSettings>();
+    g.shadow_filter = uint32_t(v);
+    g.sun_visibility = visibility_slot(g.shadow_filter);
+  };
+  filter.read = [](const Settings& s) { return double(s.params<GowRagnarokSettings>().shadow_filter); };
+  using G = GowRagnarokSettings;
+  t.options = with_common_options(
+      {
+          option("sky_rays", "sky visibility rays per pixel (0: no sky light)", 0, 4294967295.0,
+                 &DirectLightingParams::sky_rays),
+          filter,
+          option("cascades", "shadow cascades", 1, 4, &G::cascades),
+          option("shadow_resolution", "texels per side of one cascade (rounded up to 8)", 64, 8192, &G::shadow_resolution),
+          option("shadow_distance", "view distance (m) the last cascade ends at", 0.1, 1e5, &G::shadow_distance),
+          option("split_lambda", "cascade splits: 1 logarithmic, 0 uniform", 0, 1, &G::split_lambda),
+          option("caster_range", "metres towards the sun beyond a cascade that still cast", 0, 1e5, &G::caster_range),
+          option("filter_radius", "area-light radius (m); 0: the sun's angular radius seen from march_distance", 0, 100,
+                 &G::filter_radius),
+          option("march_distance", "distance (m) of the area light the rays march to (seed: 2)", 0.01, 100,
+                 &G::march_distance),
+          option("shadow_bias", "depth bias (m) along the sun (too large: light leaks under objects)", 0, 100,
+                 &G::shadow_bias),
+          option("normal_offset", "receiver offset along its normal (shadow-map texels)", 0, 16, &G::normal_offset),
+          option("taps", "PCF taps / contact-hardening rays per pixel", 1, 32, &G::taps),
+          option("march_steps", "contact-hardening steps over the march distance", 1, 256, &G::march_steps),
+          option("minmax_early_out", "skip fully lit / shadowed pixels and shorten marches by the dilated min/max", 0, 1,
+                 &G::minmax_early_out),
+      },
+      {0, 1});
+  return t;
+}
+
+}  // namespace gib

@@ -1,0 +1,71 @@
+// A G-buffer pixel as a shadow receiver in the cascaded shadow map (gow_shadow.glsl), shared by
+// shadows_pcf and shadows_contact_hardening: its cascade, shadow-map position, biased depth,
+// receiver-plane depth slope, filter radius in texels, the tap rotation (jitter) and the dilated
+// min/max early-out (seed: "Use dilated min/max depth to early out if fully in or out of shadow,
+// tighten range of ray trace").
+//
+// The includer declares: frame.glsl, hash.glsl, gow_shadow_shared.h, GOW_SHADOW_MAP_BOUND with
+// images shadow_map, shadow_minmax, gb_position, gb_normal; gow_shadow.glsl; push `push`.
+#ifndef GIB_GOW_RECEIVER_GLSL
+#define GIB_GOW_RECEIVER_GLSL
+
+struct ShadowReceiver {
+  int state;         // -1: no pixel (sky) or beyond the cascades (lit); 0 fully shadowed; 1 fully lit; 2 filter
+  uint cascade;
+  vec2 uv;
+  float z;           // biased receiver depth
+  vec2 slope;        // depth change per unit of uv offset on the receiver's plane
+  float radius_tex;  // area-light radius in texels (>= 1)
+  float march;       // march distance in depth units
+  float t_max;       // fraction of the march beyond which every ray sample is lit
+  float rotation;    // tap-pattern rotation (radians)
+};
+
+ShadowReceiver gow_receiver(ivec2 p, ShadowCascadePush sp) {
+  ShadowReceiver r;
+  r.state = -1;
+  vec4 pos = imageLoad(gb_position, p);
+  if (pos.w == 0.0) return r;
+  vec3 cam, fwd;
+  float tan_y, aspect;
+  gow_camera(cam, fwd, tan_y, aspect);
+  ShadowBasis b = gow_shadow_basis(gib_frame.sun_dir.xyz);
+  float radius_m = gow_filter_radius(sp);
+  vec3 x_rel = pos.xyz - cam;
+  r.cascade = gow_select_cascade(cam, fwd, tan_y, aspect, b, sp, x_rel, radius_m, 2.0 + sp.area.w);
+  if (r.cascade >= kShadowMaxCascades) return r;
+  ShadowCascade c = gow_cascade(r.cascade, cam, fwd, tan_y, aspect, b, sp);
+  float res = sp.params.y, texel = gow_texel_size(c, sp);
+  vec3 n = imageLoad(gb_normal, p).xyz;
+  if (!(dot(n, n) > 0.25 && dot(n, n) < 4.0)) n = b.s;  // a broken normal: no offset, flat slope
+  n = normalize(n);
+  // The normal offset faces the sun side of the surface (light reaching a back face is lit from behind).
+  vec3 ns = dot(n, b.s) >= 0.0 ? n : -n;
+  vec3 q = gow_shadow_project(c, b, x_rel + ns * (sp.area.w * texel));
+  r.uv = q.xy;
+  r.z = q.z - sp.area.z / c.z_range;
+  // Receiver plane: dot(ns, dx) = 0 gives d(dot(x, s)) = -(ns.r da + ns.u db) / ns.s; depth runs
+  // the other way, and one unit of uv is 2 half_extent metres. Grazing planes are clamped.
+  float nss = max(dot(ns, b.s), 0.25);
+  r.slope = vec2(dot(ns, b.r), dot(ns, b.u)) / nss * (2.0 * c.half_extent / c.z_range);
+  r.radius_tex = max(1.0, radius_m / texel);
+  r.march = sp.area.y / c.z_range;
+  r.t_max = 1.0;
+  GibRng rng = gib_rng(gib_seed(), gib_frame_index(), uvec2(p), 7u);
+  r.rotation = 6.28318531 * gib_next(rng);
+  r.state = 2;
+  if (sp.counts.w != 0u) {
+    // One min/max texel per kShadowMinMaxTile^2 shadow-map texels, dilated by the filter radius.
+    ivec2 tile = ivec2(clamp(r.uv, vec2(0.0), vec2(1.0)) * res) / int(kShadowMinMaxTile);
+    int tiles = int(res) / int(kShadowMinMaxTile);
+    tile = clamp(tile, ivec2(0), ivec2(tiles - 1));
+    vec2 mm = imageLoad(shadow_minmax, ivec2(int(r.cascade) * tiles + tile.x, tile.y)).xy;
+    float spread = length(r.slope) * r.radius_tex / res;  // receiver-plane depth change over the disk
+    if (r.z + spread <= mm.x) r.state = 1;
+    else if (r.z - spread > mm.y) r.state = 0;
+    else r.t_max = clamp((r.z + spread - mm.x) / max(r.march, 1e-20), 0.0, 1.0);
+  }
+  return r;
+}
+
+#endif

@@ -1,0 +1,136 @@
+// The cascaded sun shadow map of gow-ragnarok: cascade set-up, projection, selection, the
+// filtered (bilinear comparison) tap and the filter disk. Every function here has a CPU mirror
+// in renderer/techniques/gow_ragnarok/shadow_cascades.h, and tests/test_gow_shadows.cpp checks
+// the two agree.
+//
+// Coordinates are camera-relative (x_rel = world position - camera position) so that a scene
+// 10 km from the origin projects as precisely as one at it. The cascade centres are snapped to
+// whole texels in a world-fixed light frame (stable under camera translation).
+//
+// The includer declares, before including this file: frame.glsl, gow_shadow_shared.h.
+#ifndef GIB_GOW_SHADOW_GLSL
+#define GIB_GOW_SHADOW_GLSL
+
+struct ShadowBasis {
+  vec3 r, u, s;  // light-space right, up, and s: towards the sun
+};
+struct ShadowCascade {
+  vec2 offset;        // camera-relative light-space (r, u) of the cascade's centre
+  float half_extent;  // metres from the centre to a side
+  float z_top;        // camera-relative dot(x, s) that maps to depth 0 (nearest the sun)
+  float z_range;      // metres of depth 0..1
+};
+
+const float kGowGoldenAngle = 2.39996323;
+
+ShadowBasis gow_shadow_basis(vec3 sun_dir) {
+  ShadowBasis b;
+  b.s = normalize(sun_dir);
+  vec3 ref = abs(b.s.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+  b.r = normalize(cross(ref, b.s));
+  b.u = cross(b.s, b.r);
+  return b;
+}
+
+// The bounding sphere of the view-frustum slice between view distances n and f (measured along
+// the view axis) of a camera with tan(fov_y / 2) = tan_y and width / height = aspect: its
+// centre's distance along the axis (x) and its radius (y).
+vec2 gow_slice_sphere(float n, float f, float tan_y, float aspect) {
+  float a2 = tan_y * tan_y * (1.0 + aspect * aspect);  // squared tan of the corner ray's angle
+  float c = min(0.5 * (f + n) * (1.0 + a2), f);
+  float r = max(sqrt((c - n) * (c - n) + a2 * n * n), sqrt((f - c) * (f - c) + a2 * f * f));
+  return vec2(c, r);
+}
+
+// Cascade i of the set in p for a camera at cam looking along fwd.
+ShadowCascade gow_cascade(uint i, vec3 cam, vec3 fwd, float tan_y, float aspect, ShadowBasis b, ShadowCascadePush p) {
+  float n = i == 0u ? p.params.w : p.splits[i - 1u];
+  float f = p.splits[i];
+  vec2 sphere = gow_slice_sphere(n, f, tan_y, aspect);
+  float res = p.params.y;
+  // Two texels of margin so the snapped square still holds the sphere.
+  float texel = 2.0 * sphere.y / (res - 2.0);
+  vec3 centre = fwd * sphere.x;
+  vec2 cam_l = vec2(dot(cam, b.r), dot(cam, b.u));
+  vec2 world_l = cam_l + vec2(dot(centre, b.r), dot(centre, b.u));
+  ShadowCascade c;
+  c.offset = floor(world_l / texel) * texel - cam_l;
+  c.half_extent = 0.5 * texel * res;
+  c.z_top = dot(centre, b.s) + sphere.y + p.params.z;
+  c.z_range = 2.0 * sphere.y + p.params.z;
+  return c;
+}
+
+// (u, v, depth) of a camera-relative point in cascade c: u, v in [0, 1] across the cascade's
+// square (v = 0 at texel row 0), depth 0 nearest the sun.
+vec3 gow_shadow_project(ShadowCascade c, ShadowBasis b, vec3 x_rel) {
+  vec2 l = vec2(dot(x_rel, b.r), dot(x_rel, b.u)) - c.offset;
+  return vec3(l / (2.0 * c.half_extent) + 0.5, (c.z_top - dot(x_rel, b.s)) / c.z_range);
+}
+
+// Metres per shadow-map texel of cascade c.
+float gow_texel_size(ShadowCascade c, ShadowCascadePush p) { return 2.0 * c.half_extent / p.params.y; }
+
+// The first cascade whose square holds x_rel with margin_m metres plus margin_texels texels to
+// spare and whose depth range holds it; kShadowMaxCascades when none does (the point is lit:
+// beyond the shadowed distance).
+uint gow_select_cascade(vec3 cam, vec3 fwd, float tan_y, float aspect, ShadowBasis b, ShadowCascadePush p,
+                        vec3 x_rel, float margin_m, float margin_texels) {
+  for (uint i = 0u; i < uint(p.params.x); ++i) {
+    ShadowCascade c = gow_cascade(i, cam, fwd, tan_y, aspect, b, p);
+    vec3 q = gow_shadow_project(c, b, x_rel);
+    float m = margin_m / (2.0 * c.half_extent) + margin_texels / p.params.y;
+    if (all(greaterThanEqual(q.xy, vec2(m))) && all(lessThanEqual(q.xy, vec2(1.0 - m))) && q.z >= 0.0 && q.z <= 1.0)
+      return i;
+  }
+  return kShadowMaxCascades;
+}
+
+// Tap k of n of the filter disk (a golden-angle spiral: even area density, no two taps closer
+// than about 1.2 / sqrt(n) of the radius), turned by `rotation` radians; inside the unit disk.
+vec2 gow_disk_tap(uint k, uint n, float rotation) {
+  float r = sqrt((float(k) + 0.5) / float(n));
+  float a = float(k) * kGowGoldenAngle + rotation;
+  return r * vec2(cos(a), sin(a));
+}
+
+// The camera frame from the frame constants.
+void gow_camera(out vec3 cam, out vec3 fwd, out float tan_y, out float aspect) {
+  cam = gib_frame.camera_pos.xyz;
+  vec4 h = gib_frame.inv_view_proj_rel * vec4(0.0, 0.0, 0.5, 1.0);
+  fwd = normalize(h.xyz / h.w);
+  tan_y = gib_frame.camera_pos.w;
+  aspect = float(gib_frame.frame_info.y) / float(gib_frame.frame_info.z);
+}
+
+// tan of the sun's angular radius (frame: cos of it).
+float gow_sun_tan() {
+  float c = clamp(gib_frame.sun_dir.w, 1e-4, 1.0);
+  return sqrt(max(1.0 - c * c, 0.0)) / c;
+}
+
+// Area-light radius (m): authored (> 0) or the sun's, seen from the march distance.
+float gow_filter_radius(ShadowCascadePush p) {
+  return p.area.x > 0.0 ? p.area.x : p.area.y * gow_sun_tan();
+}
+
+#ifdef GOW_SHADOW_MAP_BOUND
+// Filtered comparison at (u, v) of cascade `cascade` against depth z: the four nearest texels
+// compared (1: lit, the stored surface is no nearer the sun than z) and bilinearly weighted;
+// texels are clamped to the cascade's own square.
+float gow_shadow_tap(uint cascade, vec2 uv, float z, float res) {
+  vec2 t = uv * res - 0.5;
+  vec2 i0 = floor(t);
+  vec2 f = t - i0;
+  ivec2 a = ivec2(clamp(i0, vec2(0.0), vec2(res - 1.0)));
+  ivec2 b = ivec2(clamp(i0 + 1.0, vec2(0.0), vec2(res - 1.0)));
+  int x0 = int(cascade) * int(res);
+  float l00 = imageLoad(shadow_map, ivec2(x0 + a.x, a.y)).x >= z ? 1.0 : 0.0;
+  float l10 = imageLoad(shadow_map, ivec2(x0 + b.x, a.y)).x >= z ? 1.0 : 0.0;
+  float l01 = imageLoad(shadow_map, ivec2(x0 + a.x, b.y)).x >= z ? 1.0 : 0.0;
+  float l11 = imageLoad(shadow_map, ivec2(x0 + b.x, b.y)).x >= z ? 1.0 : 0.0;
+  return mix(mix(l00, l10, f.x), mix(l01, l11, f.x), f.y);
+}
+#endif
+
+#endif

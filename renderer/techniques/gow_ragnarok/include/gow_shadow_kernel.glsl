@@ -1,0 +1,15 @@
+// The common head of shadows_pcf.comp and shadows_contact_hardening.comp: bindings (the
+// shadow-map atlas, its dilated min/max, the G-buffer, the visibility output) and includes.
+// The includer includes its <pass>_shared.h first.
+#include "frame.glsl"
+#include "hash.glsl"
+layout(local_size_x = kShadowGroup, local_size_y = kShadowGroup) in;
+layout(set = 0, binding = kShadowBindMap, r32f) uniform readonly image2D shadow_map;
+layout(set = 0, binding = kShadowBindMinMax, rg32f) uniform readonly image2D shadow_minmax;
+layout(set = 0, binding = kShadowBindPosition, rgba32f) uniform readonly image2D gb_position;
+layout(set = 0, binding = kShadowBindNormal, rgba16f) uniform readonly image2D gb_normal;
+layout(set = 0, binding = kShadowBindOut, r32f) uniform writeonly image2D out_visibility;
+layout(push_constant) uniform Push { ShadowCascadePush push; };
+#define GOW_SHADOW_MAP_BOUND 1
+#include "renderer/techniques/gow_ragnarok/include/gow_shadow.glsl"
+#include "renderer/techniques/gow_ragnarok/include/gow_receiver.glsl"

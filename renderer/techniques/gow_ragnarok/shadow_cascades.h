@@ -1,0 +1,56 @@
+// CPU side of gow-ragnarok's cascaded shadow map: the push constants every shadow pass gets
+// (cascade splits from the settings), and mirrors of gow_shadow.glsl's closed forms (basis,
+// slice sphere, cascade, projection, selection, filter disk, filtered tap) that
+// tests/test_gow_shadows.cpp checks against the GPU and against known answers.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "renderer/graph/pass.h"
+#include "renderer/image/float_image.h"
+#include "renderer/scene/math.h"
+#include "renderer/techniques/gow_ragnarok/gow_ragnarok.h"
+#include "renderer/techniques/gow_ragnarok/include/gow_shadow_shared.h"
+
+namespace gib {
+
+// Texels per side of one cascade (the setting rounded up to whole min/max tiles).
+uint32_t shadow_map_resolution(const GowRagnarokSettings& s);
+// Far view distances of cascades 0..n-1 between near and far: lambda * logarithmic + (1 -
+// lambda) * uniform (the practical split scheme); the last is `far`.
+std::vector<float> cascade_splits(uint32_t n, float near_plane, float far_plane, float lambda);
+// The push constants of every shadow pass (counts.z, the cascade to rasterise, left 0).
+glsl::ShadowCascadePush shadow_cascade_push(const GowRagnarokSettings& s, float camera_near);
+
+struct ShadowBasisCpu {
+  Vec3 r, u, s;
+};
+struct ShadowCascadeCpu {
+  float offset_x = 0, offset_y = 0, half_extent = 0, z_top = 0, z_range = 0;
+};
+struct ShadowCameraCpu {
+  Vec3 position, forward;
+  float tan_y = 0, aspect = 1;
+};
+
+ShadowBasisCpu shadow_basis(Vec3 sun_dir);
+// (centre distance along the view axis, radius) of the slice's bounding sphere.
+Vec2 slice_sphere(float n, float f, float tan_y, float aspect);
+ShadowCascadeCpu shadow_cascade(uint32_t i, const ShadowCameraCpu& cam, const ShadowBasisCpu& b,
+                                const glsl::ShadowCascadePush& p);
+Vec3 shadow_project(const ShadowCascadeCpu& c, const ShadowBasisCpu& b, Vec3 x_rel);  // (u, v, depth)
+uint32_t select_cascade(const ShadowCameraCpu& cam, const ShadowBasisCpu& b, const glsl::ShadowCascadePush& p,
+                        Vec3 x_rel, float margin_m, float margin_texels);  // kShadowMaxCascades: none
+Vec2 disk_tap(uint32_t k, uint32_t n, float rotation);
+// Filtered comparison against a one-channel shadow-map atlas (cascades side by side, res each).
+float shadow_tap(const FloatImage& map, uint32_t cascade, float u, float v, float z, uint32_t res);
+
+}  // namespace gib
+
+namespace gib {
+// The slots and the dispatch of a shadow filter pass (shadows_pcf, shadows_contact_hardening):
+// reads gbuffer_position, gbuffer_normal, shadow_map, shadow_minmax; writes `out` (r32_float,
+// render size, sun visibility in [0, 1]).
+std::vector<Slot> shadow_filter_slots(const char* out);
+void record_shadow_filter(RecordContext& ctx, const char* shader, const char* out);
+}  // namespace gib

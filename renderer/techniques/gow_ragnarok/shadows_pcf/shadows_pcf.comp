@@ -1,0 +1,25 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "renderer/techniques/gow_ragnarok/shadows_pcf/shadows_pcf_shared.h"
+#include "renderer/techniques/gow_ragnarok/include/gow_shadow_kernel.glsl"
+
+// Poisson-style PCF: the mean of `taps` filtered comparisons over a disk of the area-light radius
+// (the same radius contact hardening reaches at its full march distance), each against the
+// receiver's plane, the pattern turned per pixel.
+void main() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(p, imageSize(out_visibility)))) return;
+  ShadowReceiver r = gow_receiver(p, push);
+  float vis = 1.0;
+  if (r.state == 0) vis = 0.0;
+  else if (r.state == 2) {
+    float res = push.params.y, sum = 0.0;
+    uint taps = push.counts.x;
+    for (uint k = 0u; k < taps; ++k) {
+      vec2 d = gow_disk_tap(k, taps, r.rotation) * (r.radius_tex / res);
+      sum += gow_shadow_tap(r.cascade, r.uv + d, r.z + dot(r.slope, d), res);
+    }
+    vis = sum / float(taps);
+  }
+  imageStore(out_visibility, p, vec4(vis, 0.0, 0.0, 0.0));
+}
