@@ -8,7 +8,8 @@
   X(reference)                \
   X(radiance_cache)           \
   X(deferred)                 \
-  X(probe_volume)
+  X(probe_volume)             \
+  X(voxel_clipmap)
 
 namespace gib {
 
