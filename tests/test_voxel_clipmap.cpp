@@ -25,7 +25,7 @@ TEST(VoxelClipmapCpu, ToroidalAddressingKnownAnswers) {
   // A box scrolled by one voxel keeps every slot but one plane: the slot of the cell that left
   // now holds the cell that entered.
   const Int3 o{-16, -16, -16}, moved{-15, -16, -16};
-  EXPECT_EQ(vc_slot_world({16, 0, 0}, o, 32), (Int3{16, 0, 0}));
+  EXPECT_EQ(vc_slot_world({16, 0, 0}, o, 32), (Int3{-16, 0, 0}));  // -16 mod 32 = 16
   EXPECT_EQ(vc_slot_world(vc_wrap({-16, 3, 4}, 32), moved, 32), (Int3{16, 3, 4}));
   // Every slot maps to a distinct cell of the box, and back to itself.
   std::vector<int> seen(8 * 8 * 8, 0);

@@ -45,7 +45,7 @@ void main() {
   } else if (mode.x == kVcTestOverlap) {
     r.u.x = vc_triangle_box_overlap(t.p0.xyz, t.p1.xyz, t.p2.xyz, t.p3.xyz, vec3(t.p3.w)) ? 1u : 0u;
   } else {
-    r.u.x = vc_opacity_byte(t.p0.x);
+    r.u.x = vc_opacity_byte(t.p0.w);
   }
   results[i] = r;
 }

@@ -16,7 +16,7 @@ GIB_CONST(uint, kVcTestAddressing, 0)  // in.a: g xyz, level; in.p0: origin xyz 
 GIB_CONST(uint, kVcTestLevel, 1)       // in.p0: point xyz
 GIB_CONST(uint, kVcTestCube, 2)        // in.a.x: cell, in.p0: normal
 GIB_CONST(uint, kVcTestOverlap, 3)     // in.p0-p2: triangle, in.p3: box centre xyz, half extent w
-GIB_CONST(uint, kVcTestOpacity, 4)     // in.p0.x: opacity
+GIB_CONST(uint, kVcTestOpacity, 4)     // in.p0.w: opacity
 struct VcTestIn {
   ivec4 a;
   vec4 p0, p1, p2, p3;

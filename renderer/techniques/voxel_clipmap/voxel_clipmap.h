@@ -10,10 +10,12 @@
 namespace gib {
 
 struct VoxelClipmapSettings : TechniqueSettingsOf<VoxelClipmapSettings>, DirectLightingParams {
-  // Sky light comes from the irradiance clipmap's ray misses (the seed's "indirect lighting +
-  // sky light" map), not from direct_lighting's sky rays; composite counts it as direct light
-  // (the AOV contract: sky reaching the first surface with no further bounce).
-  VoxelClipmapSettings() { sky_rays = 0; }
+  // Sky and emissive surfaces reach the first visible surface through direct_lighting's sky
+  // rays (the AOV contract's `direct`, exactly); the irradiance clipmap's bounce part carries
+  // the rest. sky_rays 0 takes sky and emitters from the clipmap's direct part instead (the
+  // seed's "indirect lighting + sky light" map): cheaper, but `direct` then carries the voxel
+  // approximation (voxelised occlusion, trilinear cells), not the contract's exact light.
+  VoxelClipmapSettings() { sky_rays = 4; }
   // ---- scene voxels (Enlisted GDC 2019, 4.1-4.3)
   uint32_t levels = 4;            // nested levels, voxel size doubling per level
   uint32_t grid = 32;             // voxels per axis per level (cells: grid / 2)
