@@ -62,6 +62,10 @@ std::vector<TechniqueOption> own_options() {
       option("semi_transparent",
              "alpha-tested surfaces give voxels their mean opacity and rays accumulate-and-extinct (0: opaque voxels)", 0,
              1, &S::semi_transparent),
+      option("multi_bounce",
+             "fed pixels add albedo x the irradiance clipmap's bounce light (0: voxels hold direct light only, one "
+             "bounce: the control)",
+             0, 1, &S::multi_bounce),
       option("queue_a", "irradiance cells with geometry relit per frame at most (queue A, A' included)", 0, 65536,
              &S::queue_a),
       option("queue_a_new", "cells with geometry never relit, relit first (queue A')", 0, 65536, &S::queue_a_new),

@@ -25,6 +25,7 @@ struct VoxelClipmapSettings : TechniqueSettingsOf<VoxelClipmapSettings>, DirectL
   bool geometry_fill = true;      // new voxels take opacity from the scene's triangles (the talk's collision model)
   bool invalidate = true;         // voxels in the box of moved geometry are cleared and refilled
   bool semi_transparent = true;   // alpha-tested surfaces give voxels their mean opacity (< 1)
+  bool multi_bounce = true;       // fed pixels add albedo x the irradiance clipmap's bounce (0: one bounce)
   // ---- irradiance clipmap (3.1)
   uint32_t queue_a = 1024;        // capacity of queue A (cells with geometry), A' included
   uint32_t queue_a_new = 128;     // capacity of queue A' (cells with geometry never relit)

@@ -41,6 +41,7 @@ GIB_CONST(uint, kVcFlagGeometryFill, 4)
 GIB_CONST(uint, kVcFlagSemiTransparent, 8)
 GIB_CONST(uint, kVcFlagSkyFromCubes, 16)   // direct_lighting traces no sky rays: the cubes' direct part (sky, emitters) lights pixels
 GIB_CONST(uint, kVcFlagInvalidate, 32)
+GIB_CONST(uint, kVcFlagMultiBounce, 64)    // the feed adds albedo x the clipmap's bounce (0: one bounce, a control)
 
 struct VcParams {
   uvec4 grid;    // x: N voxels per axis per level, y: levels, z: frame, w: kVcFlag*

@@ -77,6 +77,7 @@ void main() {
   if (vc_flag(kVcFlagNanGuards) && !gib_finite(direct)) return;
   vec3 bounce, sky;
   vc_irradiance(x, n, vc_flag(kVcFlagConvexOffset), bounce, sky);
+  if (!vc_flag(kVcFlagMultiBounce)) bounce = vec3(0.0);
   vec3 radiance = direct + albedo * (bounce + (vc_flag(kVcFlagSkyFromCubes) ? sky : vec3(0.0)));
   if (vc_flag(kVcFlagNanGuards) && !(gib_finite(radiance) && gib_finite(emitted))) return;
   GpuMaterial m = gib_materials[gib_instances[instance].material];

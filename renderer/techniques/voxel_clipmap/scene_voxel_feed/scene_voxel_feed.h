@@ -3,7 +3,7 @@
 // and pixels of moving objects (animated instances, up to 8) are skipped; each is lit as the
 // voxel will send light on: direct_light (emission, sun, local lights) plus albedo x the
 // irradiance clipmap at the pixel (bounce, and sky when direct_lighting traces no sky rays),
-// which closes the loop to multiple bounces; and averaged exponentially (feed_weight) into its
+// which closes the loop to multiple bounces (multi_bounce 0: the bounce part left out, a control); and averaged exponentially (feed_weight) into its
 // voxel in every level whose box holds it. A voxel never fed is written without averaging.
 // Opacity: 1 for opaque pixels; with semi_transparent, an alpha-tested material's mean opacity,
 // and a semi-transparent pixel leaves a voxel that opaque pixels fed at its opacity (4.4).
