@@ -137,7 +137,16 @@ TEST(CaseLoad, WhiteFurnace) {
   EXPECT_EQ(c.reference_spp, 65536u);
   ASSERT_TRUE(c.analytic_value);
   EXPECT_EQ(*c.analytic_value, 1.0);
-  ASSERT_EQ(c.techniques.size(), 1u);
+  // The reference's row, then voxel-clipmap's (per-pixel sky rays, and sky through its clipmap),
+  // which converge over frames: held to the analytic value in both ROIs.
+  ASSERT_EQ(c.techniques.size(), 3u);
+  for (size_t i : {1u, 2u}) {
+    EXPECT_EQ(c.techniques[i].technique, "voxel-clipmap");
+    EXPECT_EQ(c.techniques[i].frames, 256u);
+    ASSERT_GE(c.techniques[i].thresholds.size(), 2u);
+    EXPECT_EQ(c.techniques[i].thresholds[0].against, "analytic");
+  }
+  EXPECT_EQ(c.techniques[2].options.at("sky_rays"), 0.0);
   const TechniqueRun& ref = c.techniques[0];
   EXPECT_EQ(ref.technique, "reference");
   EXPECT_EQ(ref.presets, std::vector<std::string>{"ultra"});

@@ -9,7 +9,8 @@
   X(radiance_cache)           \
   X(deferred)                 \
   X(probe_volume)             \
-  X(gow_ragnarok)
+  X(gow_ragnarok)             \
+  X(voxel_clipmap)
 
 namespace gib {
 

@@ -1,0 +1,87 @@
+#include "renderer/codecs/voxel_clipmap.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gib::codecs {
+namespace {
+
+int32_t wrap1(int32_t g, int32_t n) { return ((g % n) + n) % n; }
+Float3 sub(Float3 a, Float3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+Float3 cross(Float3 a, Float3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+float dot(Float3 a, Float3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+bool separated(Float3 axis, Float3 v0, Float3 v1, Float3 v2, Float3 h) {
+  const float p0 = dot(axis, v0), p1 = dot(axis, v1), p2 = dot(axis, v2);
+  const float r = h.x * std::fabs(axis.x) + h.y * std::fabs(axis.y) + h.z * std::fabs(axis.z);
+  return std::min(p0, std::min(p1, p2)) > r || std::max(p0, std::max(p1, p2)) < -r;
+}
+
+}  // namespace
+
+Int3 vc_wrap(Int3 g, int32_t n) { return {wrap1(g.x, n), wrap1(g.y, n), wrap1(g.z, n)}; }
+uint32_t vc_slot_index(Int3 s, int32_t n) { return uint32_t((s.z * n + s.y) * n + s.x); }
+Int3 vc_slot_world(Int3 s, Int3 o, int32_t n) {
+  const Int3 d = vc_wrap({s.x - o.x, s.y - o.y, s.z - o.z}, n);
+  return {o.x + d.x, o.y + d.y, o.z + d.z};
+}
+bool vc_in_box(Int3 g, Int3 o, int32_t n) {
+  return g.x >= o.x && g.y >= o.y && g.z >= o.z && g.x < o.x + n && g.y < o.y + n && g.z < o.z + n;
+}
+uint32_t vc_voxel_index(uint32_t level, Int3 g, int32_t n) {
+  return level * uint32_t(n * n * n) + vc_slot_index(vc_wrap(g, n), n);
+}
+Int3 vc_origin_around(Float3 x, float size, int32_t n) {
+  return {int32_t(std::floor(x.x / size)) - n / 2, int32_t(std::floor(x.y / size)) - n / 2,
+          int32_t(std::floor(x.z / size)) - n / 2};
+}
+uint32_t vc_voxel_level(Float3 x, const Int3* origins, uint32_t levels, float voxel_size, int32_t n) {
+  for (uint32_t l = 0; l < levels; ++l) {
+    const float s = voxel_size * float(1u << l);
+    const Int3 g{int32_t(std::floor(x.x / s)), int32_t(std::floor(x.y / s)), int32_t(std::floor(x.z / s))};
+    if (vc_in_box(g, origins[l], n)) return l;
+  }
+  return levels;
+}
+
+CubeValue vc_cube_eval(const AmbientAxis& x, const AmbientAxis& y, const AmbientAxis& z, Float3 n) {
+  const AmbientAxis* axes[3] = {&x, &y, &z};
+  const float c[3] = {n.x, n.y, n.z};
+  CubeValue v;
+  float* b[3] = {&v.bounce.x, &v.bounce.y, &v.bounce.z};
+  float* s[3] = {&v.sky.x, &v.sky.y, &v.sky.z};
+  for (int a = 0; a < 3; ++a) {
+    const float w = c[a] * c[a];
+    const size_t o = c[a] >= 0.0f ? 0 : 3;
+    for (int ch = 0; ch < 3; ++ch) {
+      *b[ch] += w * (*axes[a])[o + ch];
+      *s[ch] += w * (*axes[a])[o + 6 + ch];
+    }
+  }
+  return v;
+}
+
+uint32_t vc_opacity_byte(float opacity) {
+  return uint32_t(std::clamp(std::floor(opacity * 255.0f + 0.5f), 1.0f, 255.0f));
+}
+
+bool vc_triangle_box_overlap(Float3 a, Float3 b, Float3 c, Float3 centre, Float3 h) {
+  const Float3 v0 = sub(a, centre), v1 = sub(b, centre), v2 = sub(c, centre);
+  const float lo[3] = {std::min(v0.x, std::min(v1.x, v2.x)), std::min(v0.y, std::min(v1.y, v2.y)),
+                       std::min(v0.z, std::min(v1.z, v2.z))};
+  const float hi[3] = {std::max(v0.x, std::max(v1.x, v2.x)), std::max(v0.y, std::max(v1.y, v2.y)),
+                       std::max(v0.z, std::max(v1.z, v2.z))};
+  const float he[3] = {h.x, h.y, h.z};
+  for (int i = 0; i < 3; ++i)
+    if (lo[i] > he[i] || hi[i] < -he[i]) return false;
+  const Float3 e0 = sub(v1, v0), e1 = sub(v2, v1), e2 = sub(v0, v2);
+  if (separated(cross(e0, e1), v0, v1, v2, h)) return false;
+  const Float3 units[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (const Float3& u : units)
+    if (separated(cross(u, e0), v0, v1, v2, h) || separated(cross(u, e1), v0, v1, v2, h) ||
+        separated(cross(u, e2), v0, v1, v2, h))
+      return false;
+  return true;
+}
+
+}  // namespace gib::codecs

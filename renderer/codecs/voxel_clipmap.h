@@ -1,0 +1,50 @@
+// The voxel-clipmap technique's GPU encodings on the CPU: toroidal addressing of its clipmap
+// levels, level selection, the ambient-cube evaluation, the voxel opacity byte and the
+// triangle/box overlap that voxelises geometry. Mirrors
+// renderer/techniques/voxel_clipmap/include/vc_common.glsl and vc_voxelize.glsl;
+// tests/test_voxel_clipmap.cpp checks that the two agree.
+#pragma once
+#include <array>
+#include <cstdint>
+
+namespace gib::codecs {
+
+struct Int3 {
+  int32_t x = 0, y = 0, z = 0;
+  bool operator==(const Int3&) const = default;
+};
+struct Float3 {
+  float x = 0, y = 0, z = 0;
+};
+
+// Non-negative remainder of g by n per axis: the slot world grid coordinate g occupies.
+Int3 vc_wrap(Int3 g, int32_t n);
+// Slot s of an n^3 grid as a linear index (x fastest, then y, then z).
+uint32_t vc_slot_index(Int3 s, int32_t n);
+// The world grid coordinate slot s holds in a box of n^3 starting at origin o.
+Int3 vc_slot_world(Int3 s, Int3 o, int32_t n);
+bool vc_in_box(Int3 g, Int3 o, int32_t n);
+// Index of voxel g of level l in the atlas of levels of n^3 voxels.
+uint32_t vc_voxel_index(uint32_t level, Int3 g, int32_t n);
+// The box origin (grid units of `size`) centring an n-wide box on x.
+Int3 vc_origin_around(Float3 x, float size, int32_t n);
+// Finest level whose box (origins[l], n voxels of voxel_size x 2^l) holds x; `levels` when none.
+uint32_t vc_voxel_level(Float3 x, const Int3* origins, uint32_t levels, float voxel_size, int32_t n);
+
+// One cell's ambient cube: per axis (x, y, z) 12 floats: bounce +axis rgb, bounce -axis rgb, sky
+// +axis rgb, sky -axis rgb (voxel_clipmap_shared.h).
+using AmbientAxis = std::array<float, 12>;
+struct CubeValue {
+  Float3 bounce, sky;
+};
+// sum over axes of n_a^2 x the value of the direction on n's side.
+CubeValue vc_cube_eval(const AmbientAxis& x, const AmbientAxis& y, const AmbientAxis& z, Float3 n);
+
+// The voxel opacity byte: opacity x 255 rounded half up, clamped to [1, 255] (0 is "no geometry").
+uint32_t vc_opacity_byte(float opacity);
+
+// Triangle a, b, c against the box of centre c and half extent h (separating axis theorem;
+// touching counts as overlap).
+bool vc_triangle_box_overlap(Float3 a, Float3 b, Float3 c, Float3 centre, Float3 h);
+
+}  // namespace gib::codecs

@@ -1,0 +1,189 @@
+// Voxel-clipmap geometry and buffer accessors shared by its passes (layout:
+// voxel_clipmap_shared.h; design: renderer/techniques/voxel_clipmap/voxel_clipmap.md). CPU
+// mirror: renderer/codecs/voxel_clipmap.h (tests/test_voxel_clipmap.cpp checks they agree).
+//
+// Level l: voxels of size vc_voxel_size(l) = vc.sizes.x * 2^l, N = vc.grid.x per axis; cells of
+// twice that size, N / 2 per axis. A level's box starts at its origin (world grid coordinate,
+// VcState) and follows the camera; a voxel or cell lives in slot g mod N (toroidal), so the box
+// scrolls without copying.
+//
+// Use: declare the push constants as `VcParams vc` first, then
+//   VC_STATE_BUFFER(binding, readonly)   // (voxel_clipmap_shared.h) or with no qualifier to write it
+//   VC_VOXEL_BUFFER(binding, readonly)
+//   VC_CUBE_BUFFERS(bx, by, bz, bstate, readonly)
+// and include this file after them (the functions below use the names they declare that exist:
+// define VC_HAS_VOXELS / VC_HAS_CUBES before including to get the voxel / cube functions).
+#ifndef GIB_VC_COMMON_GLSL
+#define GIB_VC_COMMON_GLSL
+#include "renderer/techniques/voxel_clipmap/include/voxel_clipmap_shared.h"
+
+int vc_n() { return int(vc.grid.x); }
+int vc_m() { return int(vc.grid.x) / 2; }
+uint vc_levels() { return vc.grid.y; }
+uint vc_frame() { return vc.grid.z; }
+bool vc_flag(uint f) { return (vc.grid.w & f) != 0u; }
+float vc_voxel_size(uint l) { return vc.sizes.x * float(1u << l); }
+float vc_cell_size(uint l) { return 2.0 * vc_voxel_size(l); }
+uint vc_voxels_per_level() { return vc.grid.x * vc.grid.x * vc.grid.x; }
+uint vc_cells_per_level() { uint m = vc.grid.x / 2u; return m * m * m; }
+
+// The level's box origin (in units of its voxels / cells) centred on x: the camera sits in the
+// middle of every level, so each finer box lies inside the next coarser one.
+ivec3 vc_origin_around(vec3 x, float size, int n) { return ivec3(floor(x / size)) - ivec3(n / 2); }
+
+// Non-negative remainder: the toroidal slot of world grid coordinate g.
+ivec3 vc_wrap(ivec3 g, int n) { return ((g % n) + n) % n; }
+uint vc_slot_index(ivec3 s, int n) { return uint((s.z * n + s.y) * n + s.x); }
+// The world grid coordinate a slot holds for a box starting at origin o.
+ivec3 vc_slot_world(ivec3 slot, ivec3 o, int n) { return o + vc_wrap(slot - o, n); }
+// The voxel opacity byte: opacity x 255 rounded half up, clamped to [1, 255] (0: no geometry).
+uint vc_opacity_byte(float opacity) { return uint(clamp(floor(opacity * 255.0 + 0.5), 1.0, 255.0)); }
+bool vc_in_box(ivec3 g, ivec3 o, int n) { return all(greaterThanEqual(g, o)) && all(lessThan(g, o + ivec3(n))); }
+
+uint vc_voxel_index(uint l, ivec3 g) { return l * vc_voxels_per_level() + vc_slot_index(vc_wrap(g, vc_n()), vc_n()); }
+uint vc_cell_index(uint l, ivec3 k) { return l * vc_cells_per_level() + vc_slot_index(vc_wrap(k, vc_m()), vc_m()); }
+
+#ifdef VC_HAS_STATE
+ivec3 vc_voxel_origin(uint l) { return vc_state.voxel_origin[l].xyz; }
+ivec3 vc_cell_origin(uint l) { return vc_state.cell_origin[l].xyz; }
+// Finest level whose voxel box holds x (levels when none).
+uint vc_voxel_level(vec3 x) {
+  for (uint l = 0u; l < vc_levels(); ++l)
+    if (vc_in_box(ivec3(floor(x / vc_voxel_size(l))), vc_voxel_origin(l), vc_n())) return l;
+  return vc_levels();
+}
+#endif
+
+#ifdef VC_HAS_VOXELS
+float vc_opacity(uvec4 v, bool semi) {
+  uint a = v.y & kVcOpacityMask;
+  return a == 0u ? 0.0 : (semi ? float(a) / 255.0 : 1.0);
+}
+
+// Brute-force march through the scene voxels (the seed's "ray casting", no cone tracing): a
+// DDA over the finest level holding each point, accumulate-and-extinct through semi-transparent
+// voxels (opaque when semi is false). Returns the reflected radiance
+// the voxels send back along the ray; `emitted` their emission; `transmittance` what reaches
+// past them (the sky's share).
+vec3 vc_march(vec3 o, vec3 d, bool semi, out vec3 emitted, out float transmittance) {
+  vec3 sum = vec3(0.0);
+  emitted = vec3(0.0);
+  float T = 1.0;
+  float t = 0.0;
+  vec3 inv = 1.0 / max(abs(d), vec3(1e-8)) * sign(d + vec3(1e-30));
+  for (uint i = 0u; i < vc.rays.y; ++i) {
+    vec3 p = o + d * t;
+    uint l = vc_voxel_level(p);
+    if (l >= vc_levels()) break;
+    float s = vc_voxel_size(l);
+    ivec3 g = ivec3(floor(p / s));
+    uvec4 v = vc_voxels[vc_voxel_index(l, g)];
+    float a = vc_opacity(v, semi);
+    // A voxel with geometry opacity that no pixel has fed yet takes the radiance of the first
+    // fed coarser voxel holding the point (the seed fills finer levels from coarser ones):
+    // pixels seen at a grazing angle leave gaps between fed voxels that would read black.
+    for (uint c = l + 1u; a > 0.0 && (v.y & kVcVoxelFed) == 0u && c < vc_levels(); ++c) {
+      ivec3 gc = ivec3(floor(p / vc_voxel_size(c)));
+      if (!vc_in_box(gc, vc_voxel_origin(c), vc_n())) break;
+      uvec4 cv = vc_voxels[vc_voxel_index(c, gc)];
+      if ((cv.y & kVcVoxelFed) != 0u) v = uvec4(cv.x, v.y, cv.z, 0u);
+    }
+    if (a > 0.0) {
+      sum += T * a * gib_unpack_rgb9e5(v.x);
+      emitted += T * a * gib_unpack_rgb9e5(v.z);
+      T *= 1.0 - a;
+      if (T < 1.0 / 64.0) { T = 0.0; break; }
+    }
+    // Exit of this voxel: the nearest of the three boundary planes ahead.
+    vec3 bound = (vec3(g) + step(vec3(0.0), d)) * s;
+    vec3 te = (bound - p) * inv;
+    float dt = min(te.x, min(te.y, te.z));
+    t += max(dt, 0.0) + s * 1e-3;
+  }
+  transmittance = T;
+  return sum;
+}
+#endif
+
+#ifdef VC_HAS_CUBES
+// Ambient cube of cell `cell` towards normal n (the seed's 5.1; Half-Life 2's ambient cube):
+// sum over axes of n_a^2 x the value of the direction on n's side.
+void vc_cube_eval(uint cell, vec3 n, out vec3 bounce, out vec3 sky) {
+  vec3 w = n * n;
+  uint base = cell * kVcCellFloats;
+  uint ox = base + (n.x >= 0.0 ? 0u : 3u), oy = base + (n.y >= 0.0 ? 0u : 3u), oz = base + (n.z >= 0.0 ? 0u : 3u);
+  bounce = w.x * vec3(vc_cube_x[ox], vc_cube_x[ox + 1u], vc_cube_x[ox + 2u]) +
+           w.y * vec3(vc_cube_y[oy], vc_cube_y[oy + 1u], vc_cube_y[oy + 2u]) +
+           w.z * vec3(vc_cube_z[oz], vc_cube_z[oz + 1u], vc_cube_z[oz + 2u]);
+  sky = w.x * vec3(vc_cube_x[ox + 6u], vc_cube_x[ox + 7u], vc_cube_x[ox + 8u]) +
+        w.y * vec3(vc_cube_y[oy + 6u], vc_cube_y[oy + 7u], vc_cube_y[oy + 8u]) +
+        w.z * vec3(vc_cube_z[oz + 6u], vc_cube_z[oz + 7u], vc_cube_z[oz + 8u]);
+}
+
+// Trilinear ambient cubes of level l at x for normal n; cells never relit get no weight. With
+// convex offset filtering the lookup moves half a cell along the normal and corner cells whose
+// centres lie behind the surface's plane (more than a quarter cell) get no weight: the filter
+// footprint stays on the lit side of a wall. Returns the weight found (0: nothing usable).
+float vc_cubes_trilinear(uint l, vec3 x, vec3 n, bool convex, out vec3 bounce, out vec3 sky) {
+  float c = vc_cell_size(l);
+  vec3 q = convex ? x + n * (0.5 * c) : x;
+  vec3 u = q / c - 0.5;
+  ivec3 k0 = ivec3(floor(u));
+  vec3 f = u - vec3(k0);
+  bounce = vec3(0.0);
+  sky = vec3(0.0);
+  float wsum = 0.0;
+  for (int i = 0; i < 8; ++i) {
+    ivec3 o = ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+    ivec3 k = k0 + o;
+    if (!vc_in_box(k, vc_cell_origin(l), vc_m())) continue;
+    uint cell = vc_cell_index(l, k);
+    if ((vc_cell_state[cell] & kVcCellUpdated) == 0u) continue;
+    if (convex && dot((vec3(k) + 0.5) * c - x, n) < -0.25 * c) continue;
+    vec3 t = mix(1.0 - f, f, vec3(o));
+    float w = t.x * t.y * t.z;
+    if (w <= 0.0) continue;
+    vec3 b, s;
+    vc_cube_eval(cell, n, b, s);
+    bounce += w * b;
+    sky += w * s;
+    wsum += w;
+  }
+  if (wsum > 1e-6) {
+    bounce /= wsum;
+    sky /= wsum;
+  }
+  return wsum;
+}
+
+// Irradiance / pi at x for normal n, bounce and direct (sky, emitters) parts (the seed's 5.1): the finest level whose cell box holds the
+// filter footprint, blended with the next coarser one over the two cells next to its border.
+void vc_irradiance(vec3 x, vec3 n, bool convex, out vec3 bounce, out vec3 sky) {
+  bounce = vec3(0.0);
+  sky = vec3(0.0);
+  float m = float(vc_m());
+  for (uint l = 0u; l < vc_levels(); ++l) {
+    vec3 q = x / vc_cell_size(l) - vec3(vc_cell_origin(l));
+    float border = min(min(min(q.x, q.y), q.z), min(min(m - q.x, m - q.y), m - q.z)) - 1.0;
+    if (border < 0.0) continue;
+    vec3 b, s;
+    if (vc_cubes_trilinear(l, x, n, convex, b, s) <= 0.0) continue;
+    float w = clamp(border / 2.0, 0.0, 1.0);
+    if (w < 1.0) {
+      for (uint c = l + 1u; c < vc_levels(); ++c) {
+        vec3 cb, cs;
+        if (vc_cubes_trilinear(c, x, n, convex, cb, cs) > 0.0) {
+          b = mix(cb, b, w);
+          s = mix(cs, s, w);
+          break;
+        }
+      }
+    }
+    bounce = b;
+    sky = s;
+    return;
+  }
+}
+#endif
+
+#endif

@@ -1,0 +1,86 @@
+// The voxel-clipmap technique's cross-pass contract (C++ and GLSL): the parameters every pass
+// receives in its push constants, the clipmap state, the irradiance queue and the layout of the
+// voxel and ambient-cube buffers. Passes never include each other's headers; what two passes
+// must agree on lives here. Design: renderer/techniques/voxel_clipmap/voxel_clipmap.md.
+#ifndef GIB_VOXEL_CLIPMAP_SHARED_H
+#define GIB_VOXEL_CLIPMAP_SHARED_H
+#include "gib_shared.h"
+GIB_SHARED_BEGIN
+
+GIB_CONST(uint, kVcMaxLevels, 8)
+GIB_CONST(uint, kVcMaxRays, 256)  // rays per irradiance cell: one thread each, one workgroup per cell
+
+// Scene voxels (buffer scene_voxel_data): level l holds N^3 voxels of size voxel_size x 2^l,
+// voxel (world grid coordinate g) at slot g mod N (toroidal), index l N^3 + (s.z N + s.y) N + s.x.
+// A voxel is a uvec4: x reflected radiance RGB9E5 (outgoing, lit, without emission), y opacity
+// unorm8 (bits 0-7) | flags, z emitted radiance RGB9E5, w unused.
+GIB_CONST(uint, kVcOpacityMask, 0xff)
+GIB_CONST(uint, kVcVoxelFed, 0x100)       // lit from the G-buffer at least once (else: written without averaging)
+GIB_CONST(uint, kVcVoxelGeometry, 0x200)  // opacity from voxelising scene triangles (scene_voxel_fill)
+GIB_CONST(uint, kVcVoxelNew, 0x400)       // entered the clipmap (or was invalidated) this frame
+GIB_CONST(uint, kVcVoxelOpaqueFed, 0x800) // an opaque pixel fed it: semi-transparent pixels keep its opacity
+
+// Irradiance cells (buffers irradiance_x / _y / _z, irradiance_cell_state): level l holds M^3
+// cells, M = N / 2, of size 2 x voxel size; toroidal like the voxels. Each axis buffer holds
+// the +/- pair of that axis' ambient-cube directions as 12 floats per cell: bounce (light
+// voxels reflect) towards +axis rgb, towards -axis rgb, then direct (sky through ray misses,
+// emission of the voxels hit) towards +axis rgb, -axis rgb. Values are the cosine-weighted mean incoming radiance around the direction
+// (irradiance / pi), so a surface facing +axis reflects albedo x value.
+GIB_CONST(uint, kVcCellFloats, 12)
+// irradiance_cell_state: uint per cell: age in frames (bits 0-15, saturating), flags.
+GIB_CONST(uint, kVcAgeMask, 0xffff)
+GIB_CONST(uint, kVcCellUpdated, 0x10000)    // holds irradiance (relit, or inherited from the coarser level)
+GIB_CONST(uint, kVcCellGeometry, 0x20000)   // its box holds voxels with opacity (queue A / A')
+GIB_CONST(uint, kVcCellVisible, 0x40000)    // in the view frustum this frame
+GIB_CONST(uint, kVcCellRelit, 0x80000)      // relit at least once (else: queue A' when it has geometry)
+
+// Flags in VcParams.grid.w.
+GIB_CONST(uint, kVcFlagNanGuards, 1)
+GIB_CONST(uint, kVcFlagConvexOffset, 2)
+GIB_CONST(uint, kVcFlagGeometryFill, 4)
+GIB_CONST(uint, kVcFlagSemiTransparent, 8)
+GIB_CONST(uint, kVcFlagSkyFromCubes, 16)   // direct_lighting traces no sky rays: the cubes' direct part (sky, emitters) lights pixels
+GIB_CONST(uint, kVcFlagInvalidate, 32)
+GIB_CONST(uint, kVcFlagMultiBounce, 64)    // the feed adds albedo x the clipmap's bounce (0: one bounce, a control)
+
+struct VcParams {
+  uvec4 grid;    // x: N voxels per axis per level, y: levels, z: frame, w: kVcFlag*
+  vec4 sizes;    // x: level-0 voxel size (m), y: feed weight (exponential average), z: relight history frames, w: unused
+  uvec4 budget;  // x: feed pixels per frame (K), y: queue A capacity, z: queue A' capacity, w: queue B capacity
+  uvec4 rays;    // x: rays per cell, y: max march steps, z: seed, w: unused
+};
+
+// Per level origins: the minimum-corner world grid coordinate of the level's box (voxels or
+// cells); w: bit 0 valid, bit 1 cells entered this frame.
+struct VcState {
+  ivec4 voxel_origin[kVcMaxLevels];
+  ivec4 voxel_prev[kVcMaxLevels];
+  ivec4 cell_origin[kVcMaxLevels];
+  ivec4 cell_prev[kVcMaxLevels];
+  vec4 select;   // x: threshold P of age x random > P, y: candidates that passed last frame, z,w: unused
+  uvec4 stats;   // x: voxels entered (moved in or invalidated), y: voxels fed, z: voxels given geometry opacity, w: cells entered
+};
+GIB_CONST(uint, kVcOriginValid, 1)
+GIB_CONST(uint, kVcOriginEntered, 2)
+
+// irradiance_queue: header, then entries (cell index), capacity A' + A + B.
+struct VcQueue {
+  uvec4 args;    // VkDispatchIndirectCommand: x cells to relight, 1, 1; w unused
+  uvec4 counts;  // x: queue A' taken, y: queue A taken, z: queue B taken, w: candidates that passed
+};
+
+GIB_SHARED_END
+
+#ifndef __cplusplus
+// The buffers as GLSL declares them (vc_common.glsl reads them by these names).
+#define VC_STATE_BUFFER(B, QUAL) \
+  layout(std430, set = 0, binding = (B)) QUAL buffer VcStateBuffer { VcState vc_state; };
+#define VC_VOXEL_BUFFER(B, QUAL) \
+  layout(std430, set = 0, binding = (B)) QUAL buffer VcVoxelBuffer { uvec4 vc_voxels[]; };
+#define VC_CUBE_BUFFERS(BX, BY, BZ, BS, QUAL)                                              \
+  layout(std430, set = 0, binding = (BX)) QUAL buffer VcCubeX { float vc_cube_x[]; };      \
+  layout(std430, set = 0, binding = (BY)) QUAL buffer VcCubeY { float vc_cube_y[]; };      \
+  layout(std430, set = 0, binding = (BZ)) QUAL buffer VcCubeZ { float vc_cube_z[]; };      \
+  layout(std430, set = 0, binding = (BS)) QUAL buffer VcCellState { uint vc_cell_state[]; };
+#endif
+#endif

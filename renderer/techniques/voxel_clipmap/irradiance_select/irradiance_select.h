@@ -1,0 +1,21 @@
+// irradiance_select: which irradiance cells are relit this frame (Enlisted GDC 2019, 3.1):
+// every cell ages by one frame; visible cells (in the view frustum) pass when
+// age x random > P, P adapted from the previous frame's count of passing cells (halved to
+// doubled towards the queues' total capacity). Queues: A' (cells whose box holds voxels with
+// opacity and that were never relit: taken whether they pass or not), A (cells with geometry
+// that passed; A' and A together at most queue_a: "first N cells in QueueA, where N is
+// capacity(QueueA) - occupied(QueueA')"), B (empty cells that passed, at most queue_b). The
+// result is one list, A' then A then B, and the indirect arguments of irradiance_relight (one
+// workgroup per cell). One workgroup appends in cell order with subgroup ballots, so the
+// selection is the same on every run.
+// Slots: read_write voxel_clip_state, irradiance_cell_state; read scene_voxel_data;
+// writes irradiance_queue.
+// Limits: no hierarchical-Z occlusion test (frustum only); one workgroup walks every cell.
+#pragma once
+#include <memory>
+
+#include "renderer/graph/pass.h"
+
+namespace gib {
+std::unique_ptr<Pass> make_irradiance_select_pass();
+}

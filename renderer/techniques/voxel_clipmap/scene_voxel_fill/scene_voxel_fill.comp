@@ -1,0 +1,79 @@
+// scene_voxel_fill: geometry opacity and coarser-level radiance for the voxels that entered the
+// clipmap (see scene_voxel_fill.h); two kernels chosen by the specialisation constant kKernel.
+// Opacities merge with atomicMax, so the result does not depend on thread order.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "renderer/techniques/voxel_clipmap/scene_voxel_fill/scene_voxel_fill_shared.h"
+#include "frame.glsl"
+#include "scene.glsl"
+GIB_SCENE_BUFFERS(0, kBindSceneFirst)
+#include "finite.glsl"
+layout(constant_id = kScFillSpecKernel) const uint kKernel = 0u;
+layout(push_constant) uniform Push { VcParams vc; };
+VC_STATE_BUFFER(kScFillBindState, )
+VC_VOXEL_BUFFER(kScFillBindVoxels, )
+layout(std430, set = 0, binding = kScFillBindGeometry) buffer GeometryBuffer { uint geometry[]; };
+#define VC_HAS_STATE
+#include "renderer/techniques/voxel_clipmap/include/vc_common.glsl"
+#include "renderer/techniques/voxel_clipmap/include/vc_voxelize.glsl"
+layout(local_size_x = kScFillGroup) in;
+
+void voxelize(uint tid) {
+  uint tri = tid / vc_levels(), l = tid % vc_levels();
+  if (tri >= gib_frame.scene_info.x) return;
+  ivec4 o = vc_state.voxel_origin[l];
+  if ((o.w & int(kVcOriginEntered)) == 0) return;
+  GpuTriangle t = gib_triangles[tri];
+  vec3 a = gib_vertices[t.i0].position, b = gib_vertices[t.i1].position, c = gib_vertices[t.i2].position;
+  if (!gib_finite(a) || !gib_finite(b) || !gib_finite(c)) return;
+  GpuMaterial m = gib_materials[gib_instances[t.instance].material];
+  float opacity = (m.alpha != GIB_ALPHA_NONE && vc_flag(kVcFlagSemiTransparent)) ? m.avg_opacity : 1.0;
+  uint op8 = vc_opacity_byte(opacity);
+  float s = vc_voxel_size(l);
+  int n = vc_n();
+  ivec3 lo = max(ivec3(floor(min(a, min(b, c)) / s)), o.xyz);
+  ivec3 hi = min(ivec3(floor(max(a, max(b, c)) / s)), o.xyz + ivec3(n - 1));
+  vec3 h = vec3(0.5 * s);
+  for (int z = lo.z; z <= hi.z; ++z)
+    for (int y = lo.y; y <= hi.y; ++y)
+      for (int x = lo.x; x <= hi.x; ++x) {
+        ivec3 g = ivec3(x, y, z);
+        uint idx = vc_voxel_index(l, g);
+        if ((vc_voxels[idx].y & kVcVoxelNew) == 0u) continue;
+        if (vc_triangle_box_overlap(a, b, c, (vec3(g) + 0.5) * s, h)) atomicMax(geometry[idx], op8);
+      }
+}
+
+void merge(uint tid) {
+  if (tid >= vc_levels() * vc_voxels_per_level()) return;
+  uvec4 v = vc_voxels[tid];
+  if ((v.y & kVcVoxelNew) == 0u) return;
+  uint l = tid / vc_voxels_per_level(), slot = tid % vc_voxels_per_level();
+  int n = vc_n();
+  ivec3 s = ivec3(int(slot) % n, (int(slot) / n) % n, int(slot) / (n * n));
+  ivec3 g = vc_slot_world(s, vc_state.voxel_origin[l].xyz, n);
+  uint radiance = 0u, emitted = 0u;
+  if (l + 1u < vc_levels()) {
+    // The coarser voxel holding this one's centre (grid coordinates halve per level).
+    ivec3 gc = ivec3(floor((vec3(g) + 0.5) * 0.5));
+    if (vc_in_box(gc, vc_state.voxel_origin[l + 1u].xyz, n)) {
+      uvec4 cv = vc_voxels[vc_voxel_index(l + 1u, gc)];
+      if ((cv.y & kVcVoxelFed) != 0u) {
+        radiance = cv.x;
+        emitted = cv.z;
+      }
+    }
+  }
+  uint op8 = geometry[tid];
+  uint y = kVcVoxelNew;
+  if (op8 != 0u) {
+    y |= kVcVoxelGeometry | op8;
+    atomicAdd(vc_state.stats.z, 1u);
+  }
+  vc_voxels[tid] = uvec4(radiance, y, emitted, 0u);
+}
+
+void main() {
+  if (kKernel == kScFillVoxelize) voxelize(gl_GlobalInvocationID.x);
+  else merge(gl_GlobalInvocationID.x);
+}

@@ -1,0 +1,20 @@
+// scene_voxel_fill: fills the voxels that entered the clipmap this frame (Enlisted GDC 2019,
+// 4.2 "Fill-in new scene representation voxels" and 3.2): their radiance starts from the
+// coarser level's voxel holding their centre (when that one was ever fed; the coarsest level
+// starts empty), and their opacity from the scene geometry: every triangle is voxelised into
+// the entered voxels of each level it overlaps (the talk's "collision models" fill-in, here the
+// render triangles themselves), so rays do not pass through walls the camera has not seen.
+// A voxel filled from geometry only is dark until the feed sees it (the seed: "over darkening
+// is preferred over light bleeding"). Alpha-tested materials give their baked mean opacity
+// when semi_transparent is on. geometry_fill 0 (the control) leaves entered voxels empty.
+// Slots: read_write voxel_clip_state, scene_voxel_data; writes voxel_geometry (transient).
+// Limits: triangles are tested against each level's whole box when any of its voxels entered
+// (one thread per triangle and level; no spatial culling of triangles).
+#pragma once
+#include <memory>
+
+#include "renderer/graph/pass.h"
+
+namespace gib {
+std::unique_ptr<Pass> make_scene_voxel_fill_pass();
+}

@@ -1,0 +1,40 @@
+// The `voxel-clipmap` technique's settings (definition: voxel_clipmap.cpp; design notes:
+// voxel_clipmap.md). Presets and case options set them; its passes read them with
+// Settings::params<VoxelClipmapSettings>().
+#pragma once
+#include <cstdint>
+
+#include "renderer/graph/settings.h"
+#include "renderer/passes/direct_lighting/direct_lighting.h"
+
+namespace gib {
+
+struct VoxelClipmapSettings : TechniqueSettingsOf<VoxelClipmapSettings>, DirectLightingParams {
+  // Sky and emissive surfaces reach the first visible surface through direct_lighting's sky
+  // rays (the AOV contract's `direct`, exactly); the irradiance clipmap's bounce part carries
+  // the rest. sky_rays 0 takes sky and emitters from the clipmap's direct part instead (the
+  // seed's "indirect lighting + sky light" map): cheaper, but `direct` then carries the voxel
+  // approximation (voxelised occlusion, trilinear cells), not the contract's exact light.
+  VoxelClipmapSettings() { sky_rays = 4; }
+  // ---- scene voxels (Enlisted GDC 2019, 4.1-4.3)
+  uint32_t levels = 4;            // nested levels, voxel size doubling per level
+  uint32_t grid = 32;             // voxels per axis per level (cells: grid / 2)
+  float voxel_size = 0.25f;       // level-0 voxel edge (m); irradiance cells are twice that
+  uint32_t feed_pixels = 32768;   // K: G-buffer pixels fed into the voxels per frame
+  float feed_weight = 0.2f;       // exponential-average weight of a new sample (never-fed voxels: 1)
+  bool geometry_fill = true;      // new voxels take opacity from the scene's triangles (the talk's collision model)
+  bool invalidate = true;         // voxels in the box of moved geometry are cleared and refilled
+  bool semi_transparent = true;   // alpha-tested surfaces give voxels their mean opacity (< 1)
+  bool multi_bounce = true;       // fed pixels add albedo x the irradiance clipmap's bounce (0: one bounce)
+  // ---- irradiance clipmap (3.1)
+  uint32_t queue_a = 1024;        // capacity of queue A (cells with geometry), A' included
+  uint32_t queue_a_new = 128;     // capacity of queue A' (cells with geometry never relit)
+  uint32_t queue_b = 128;         // capacity of queue B (empty cells)
+  uint32_t rays_per_cell = 64;    // one thread per ray: 32, 64, 128 or 256
+  uint32_t march_steps = 256;     // voxels a ray visits at most
+  float history_frames = 8.0f;    // age-weighted temporal weight: min(1, age / history_frames)
+  // ---- shading (5.1)
+  bool convex_offset = true;      // lookup moved along the normal, corners behind the surface dropped
+};
+
+}  // namespace gib

@@ -1,0 +1,267 @@
+// The voxel-clipmap technique (renderer/techniques/voxel_clipmap/): its CPU mirror
+// (renderer/codecs/voxel_clipmap.h) against known answers, and the GLSL it mirrors
+// (vc_common.glsl, vc_voxelize.glsl via tests/voxel_clipmap_test.comp) against the CPU.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "renderer/codecs/voxel_clipmap.h"
+#include "tests/gpu_fixture.h"
+#include "tests/voxel_clipmap_test_shared.h"
+
+namespace gib {
+namespace {
+
+using namespace codecs;
+
+TEST(VoxelClipmapCpu, ToroidalAddressingKnownAnswers) {
+  EXPECT_EQ(vc_wrap({-1, -33, 65}, 32), (Int3{31, 31, 1}));
+  EXPECT_EQ(vc_slot_index({1, 2, 3}, 32), 3u * 32 * 32 + 2u * 32 + 1u);
+  EXPECT_EQ(vc_voxel_index(2, {-1, 0, 0}, 32), 2u * 32 * 32 * 32 + 31u);
+  // A box scrolled by one voxel keeps every slot but one plane: the slot of the cell that left
+  // now holds the cell that entered.
+  const Int3 o{-16, -16, -16}, moved{-15, -16, -16};
+  EXPECT_EQ(vc_slot_world({16, 0, 0}, o, 32), (Int3{-16, 0, 0}));  // -16 mod 32 = 16
+  EXPECT_EQ(vc_slot_world(vc_wrap({-16, 3, 4}, 32), moved, 32), (Int3{16, 3, 4}));
+  // Every slot maps to a distinct cell of the box, and back to itself.
+  std::vector<int> seen(8 * 8 * 8, 0);
+  for (int s = 0; s < 512; ++s) {
+    const Int3 slot{s % 8, (s / 8) % 8, s / 64};
+    const Int3 g = vc_slot_world(slot, {100, -7, 3}, 8);
+    ASSERT_TRUE(vc_in_box(g, {100, -7, 3}, 8));
+    ASSERT_EQ(vc_wrap(g, 8), slot);
+    ++seen[vc_slot_index(vc_wrap(g, 8), 8)];
+  }
+  for (int c : seen) EXPECT_EQ(c, 1);
+}
+
+TEST(VoxelClipmapCpu, LevelSelectionNestsAroundTheCamera) {
+  const Float3 cam{10000.3f, 1.7f, -2.2f};
+  Int3 origins[4];
+  for (uint32_t l = 0; l < 4; ++l) origins[l] = vc_origin_around(cam, 0.25f * float(1u << l), 32);
+  EXPECT_EQ(vc_voxel_level(cam, origins, 4, 0.25f, 32), 0u);
+  // Level 0 spans 8 m, level 1 16 m, level 3 64 m around the camera.
+  EXPECT_EQ(vc_voxel_level({cam.x + 5.0f, cam.y, cam.z}, origins, 4, 0.25f, 32), 1u);
+  EXPECT_EQ(vc_voxel_level({cam.x, cam.y + 20.0f, cam.z}, origins, 4, 0.25f, 32), 3u);
+  EXPECT_EQ(vc_voxel_level({cam.x, cam.y, cam.z - 40.0f}, origins, 4, 0.25f, 32), 4u);
+}
+
+TEST(VoxelClipmapCpu, AmbientCubeKnownAnswers) {
+  AmbientAxis x{}, y{}, z{};
+  // Constant cube: every unit normal reads the constant (the squared components sum to 1).
+  for (AmbientAxis* a : {&x, &y, &z})
+    for (int i = 0; i < 12; ++i) (*a)[i] = i < 6 ? 0.5f : 2.0f;
+  std::mt19937 rng(3);
+  std::normal_distribution<float> g;
+  for (int i = 0; i < 1000; ++i) {
+    Float3 n{g(rng), g(rng), g(rng)};
+    const float len = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+    n = {n.x / len, n.y / len, n.z / len};
+    const CubeValue v = vc_cube_eval(x, y, z, n);
+    EXPECT_NEAR(v.bounce.x, 0.5f, 1e-6f);
+    EXPECT_NEAR(v.sky.z, 2.0f, 4e-6f);
+  }
+  // Axis normals read their own direction only: -y reads the -y bounce / sky entries.
+  y = {0, 0, 0, 1, 2, 3, 0, 0, 0, 4, 5, 6};
+  const CubeValue v = vc_cube_eval(x, y, z, {0, -1, 0});
+  EXPECT_EQ(v.bounce.x, 1.0f);
+  EXPECT_EQ(v.bounce.z, 3.0f);
+  EXPECT_EQ(v.sky.y, 5.0f);
+}
+
+TEST(VoxelClipmapCpu, TriangleBoxOverlapKnownAnswers) {
+  const Float3 h{0.5f, 0.5f, 0.5f};
+  // A wall in the plane z = 0.5 touches the box face: overlap (walls on boundaries fill both sides).
+  EXPECT_TRUE(vc_triangle_box_overlap({-5, -5, 0.5f}, {5, -5, 0.5f}, {0, 5, 0.5f}, {0, 0, 0}, h));
+  EXPECT_FALSE(vc_triangle_box_overlap({-5, -5, 0.51f}, {5, -5, 0.51f}, {0, 5, 0.51f}, {0, 0, 0}, h));
+  // A triangle whose bounding box covers the box but whose hypotenuse passes beside its corner.
+  EXPECT_FALSE(vc_triangle_box_overlap({0.6f, -2, 0}, {3, -2, 0}, {3, 0.4f, 0}, {0, 0, 0}, h));
+  // A tiny triangle inside the box.
+  EXPECT_TRUE(vc_triangle_box_overlap({0.1f, 0.1f, 0.1f}, {0.2f, 0.1f, 0.1f}, {0.1f, 0.2f, 0.1f}, {0, 0, 0}, h));
+  EXPECT_EQ(vc_opacity_byte(0.0f), 1u);
+  EXPECT_EQ(vc_opacity_byte(0.47f), 120u);  // 119.85 rounds to 120
+  EXPECT_EQ(vc_opacity_byte(1.5f), 255u);
+}
+
+// ---------------------------------------------------------------- GPU agrees with the CPU
+class VoxelClipmapGpu : public test::GpuTest {
+ protected:
+  static constexpr uint32_t kLevels = 4;
+  static constexpr int32_t kN = 16;
+  std::shared_ptr<Buffer> buffer(const void* data, uint64_t bytes, const char* name) {
+    auto b = gpu().create_buffer(bytes, BufferUsage::storage, name);
+    if (data) gpu().upload(*b, data, bytes);
+    return b;
+  }
+  glsl::VcState state{};
+  Int3 origins[kLevels];
+  std::vector<AmbientAxis> cube[3];
+  glsl::VcParams params() const {
+    glsl::VcParams p{};
+    p.grid = {uint32_t(kN), kLevels, 0, 0};
+    p.sizes = {0.25f, 0.2f, 8.0f, 0.0f};
+    return p;
+  }
+  void SetUp() override {
+    test::GpuTest::SetUp();
+    for (uint32_t l = 0; l < kLevels; ++l) {
+      origins[l] = vc_origin_around({3.3f, -1.2f, 7.9f}, 0.25f * float(1u << l), kN);
+      state.voxel_origin[l] = {origins[l].x, origins[l].y, origins[l].z, 1};
+      state.cell_origin[l] = state.voxel_origin[l];
+    }
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(0.0f, 4.0f);
+    for (auto& axis : cube) {
+      axis.resize(64);
+      for (auto& c : axis)
+        for (float& f : c) f = u(rng);
+    }
+  }
+  std::vector<glsl::VcTestOut> run(const std::vector<glsl::VcTestIn>& in, uint32_t mode) {
+    using namespace glsl;
+    const uint32_t count = uint32_t(in.size());
+    auto st = buffer(&state, sizeof(state), "vc_test.state");
+    std::shared_ptr<Buffer> axes[3];
+    for (int a = 0; a < 3; ++a) axes[a] = buffer(cube[a].data(), cube[a].size() * sizeof(AmbientAxis), "vc_test.cube");
+    std::vector<uint32_t> cells(64, kVcCellUpdated);
+    auto cell_buf = buffer(cells.data(), cells.size() * 4, "vc_test.cells");
+    auto in_buf = buffer(in.data(), in.size() * sizeof(VcTestIn), "vc_test.in");
+    auto out_buf = buffer(nullptr, uint64_t(count) * sizeof(VcTestOut), "vc_test.out");
+    ComputePipelineDesc desc{"voxel_clipmap_test.comp",
+                             {{kVcTestBindState, DescriptorKind::storage_buffer},
+                              {kVcTestBindX, DescriptorKind::storage_buffer},
+                              {kVcTestBindY, DescriptorKind::storage_buffer},
+                              {kVcTestBindZ, DescriptorKind::storage_buffer},
+                              {kVcTestBindCells, DescriptorKind::storage_buffer},
+                              {kVcTestBindIn, DescriptorKind::storage_buffer},
+                              {kVcTestBindOut, DescriptorKind::storage_buffer}},
+                             sizeof(VcTestPush)};
+    auto pipeline = gpu().compute_pipeline(desc);
+    const Bind binds[] = {{kVcTestBindState, st.get()},       {kVcTestBindX, axes[0].get()},
+                          {kVcTestBindY, axes[1].get()},      {kVcTestBindZ, axes[2].get()},
+                          {kVcTestBindCells, cell_buf.get()}, {kVcTestBindIn, in_buf.get()},
+                          {kVcTestBindOut, out_buf.get()}};
+    const VcTestPush push{params(), {mode, count, 0, 0}};
+    auto cmd = gpu().begin();
+    cmd->bind(*pipeline, binds, &push, sizeof(push));
+    cmd->dispatch((count + kVcTestGroup - 1) / kVcTestGroup);
+    gpu().submit(std::move(cmd));
+    std::vector<VcTestOut> out(count);
+    gpu().download(*out_buf, out.data(), out.size() * sizeof(VcTestOut));
+    return out;
+  }
+};
+
+float int_bits(int32_t i) { return std::bit_cast<float>(i); }
+
+TEST_F(VoxelClipmapGpu, AddressingMatchesCpu) {
+  std::mt19937 rng(9);
+  std::uniform_int_distribution<int32_t> g(-100000, 100000), s(0, kN * kN * kN - 1), l(0, kLevels - 1);
+  std::vector<glsl::VcTestIn> in(4096);
+  for (auto& t : in) {
+    t.a = {g(rng) % 50, g(rng), g(rng) % 7, l(rng)};
+    t.p0 = {int_bits(g(rng)), int_bits(g(rng) % 20), int_bits(-g(rng)), int_bits(s(rng))};
+  }
+  in[0].a = {0, 0, 0, 0};  // inside the box below
+  in[0].p0 = {int_bits(-3), int_bits(-3), int_bits(-3), int_bits(0)};
+  const auto out = run(in, glsl::kVcTestAddressing);
+  uint32_t inside = 0;
+  for (size_t i = 0; i < in.size(); ++i) {
+    const Int3 gi{in[i].a.x, in[i].a.y, in[i].a.z};
+    const Int3 o{std::bit_cast<int32_t>(in[i].p0.x), std::bit_cast<int32_t>(in[i].p0.y), std::bit_cast<int32_t>(in[i].p0.z)};
+    const int32_t slot = std::bit_cast<int32_t>(in[i].p0.w);
+    ASSERT_EQ(out[i].u.x, vc_voxel_index(uint32_t(in[i].a.w), gi, kN)) << i;
+    ASSERT_EQ(out[i].u.y, vc_slot_index(vc_wrap(gi, kN), kN)) << i;
+    ASSERT_EQ(out[i].u.z, vc_in_box(gi, o, kN) ? 1u : 0u) << i;
+    const Int3 w = vc_slot_world({slot % kN, (slot / kN) % kN, slot / (kN * kN)}, o, kN);
+    ASSERT_EQ((Int3{out[i].i.x, out[i].i.y, out[i].i.z}), w) << i;
+    inside += out[i].u.z;
+  }
+  EXPECT_GE(inside, 1u);
+}
+
+TEST_F(VoxelClipmapGpu, LevelSelectionMatchesCpu) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-12.0f, 18.0f);
+  std::vector<glsl::VcTestIn> in(4096);
+  for (auto& t : in) t.p0 = {u(rng), u(rng), u(rng), 0};
+  const auto out = run(in, glsl::kVcTestLevel);
+  uint32_t per_level[kLevels + 1] = {}, skipped = 0;
+  for (size_t i = 0; i < in.size(); ++i) {
+    const Float3 x{in[i].p0.x, in[i].p0.y, in[i].p0.z};
+    // A point within float error of a voxel boundary may fall either side on a device whose
+    // division is not correctly rounded (Vulkan allows 2.5 ulp): skipped.
+    bool near = false;
+    for (uint32_t l = 0; l < kLevels; ++l)
+      for (float c : {x.x, x.y, x.z}) {
+        const double q = double(c) / (0.25 * double(1u << l));
+        near = near || std::fabs(q - std::round(q)) < 1e-4;
+      }
+    if (near) { ++skipped; continue; }
+    const uint32_t l = vc_voxel_level(x, origins, kLevels, 0.25f, kN);
+    ASSERT_EQ(out[i].u.x, l) << i;
+    const Int3 o = vc_origin_around(x, 0.5f, kN);
+    ASSERT_EQ((Int3{out[i].i.x, out[i].i.y, out[i].i.z}), o) << i;
+    ++per_level[l];
+  }
+  for (uint32_t l = 0; l <= kLevels; ++l) EXPECT_GT(per_level[l], 0u) << "level " << l;
+  EXPECT_LT(skipped, 64u);
+}
+
+TEST_F(VoxelClipmapGpu, AmbientCubeMatchesCpu) {
+  std::mt19937 rng(13);
+  std::normal_distribution<float> g;
+  std::vector<glsl::VcTestIn> in(2048);
+  for (size_t i = 0; i < in.size(); ++i) {
+    Float3 n{g(rng), g(rng), g(rng)};
+    const float len = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+    in[i].a = {int32_t(i % 64), 0, 0, 0};
+    in[i].p0 = {n.x / len, n.y / len, n.z / len, 0};
+  }
+  in[0].p0 = {0.0f, -1.0f, 0.0f, 0.0f};
+  const auto out = run(in, glsl::kVcTestCube);
+  for (size_t i = 0; i < in.size(); ++i) {
+    const size_t c = size_t(in[i].a.x);
+    const CubeValue v = vc_cube_eval(cube[0][c], cube[1][c], cube[2][c], {in[i].p0.x, in[i].p0.y, in[i].p0.z});
+    // Three products summed: the device may fuse them (1 ulp each at values below 4).
+    ASSERT_NEAR(out[i].f0.x, v.bounce.x, 4e-6f) << i;
+    ASSERT_NEAR(out[i].f0.z, v.bounce.z, 4e-6f) << i;
+    ASSERT_NEAR(out[i].f1.y, v.sky.y, 4e-6f) << i;
+  }
+  EXPECT_EQ(out[0].f0.y, cube[1][0][4]);  // -y reads the -y bounce entry exactly
+}
+
+TEST_F(VoxelClipmapGpu, VoxelizationAndOpacityMatchCpu) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> u(-1.5f, 1.5f), o(-0.2f, 1.2f);
+  std::vector<glsl::VcTestIn> in(8192);
+  for (auto& t : in) {
+    t.p0 = {u(rng), u(rng), u(rng), o(rng)};
+    t.p1 = {u(rng), u(rng), u(rng), 0};
+    t.p2 = {u(rng), u(rng), u(rng), 0};
+    t.p3 = {u(rng) * 0.3f, u(rng) * 0.3f, u(rng) * 0.3f, 0.25f};
+  }
+  const auto overlap = run(in, glsl::kVcTestOverlap);
+  const auto opacity = run(in, glsl::kVcTestOpacity);
+  uint32_t hits = 0, misses = 0, differ = 0;
+  for (size_t i = 0; i < in.size(); ++i) {
+    const auto& t = in[i];
+    const bool cpu = vc_triangle_box_overlap({t.p0.x, t.p0.y, t.p0.z}, {t.p1.x, t.p1.y, t.p1.z},
+                                             {t.p2.x, t.p2.y, t.p2.z}, {t.p3.x, t.p3.y, t.p3.z},
+                                             {t.p3.w, t.p3.w, t.p3.w});
+    // Random triangles almost never graze the box to within float error; count any that do.
+    differ += (overlap[i].u.x != 0u) != cpu;
+    (cpu ? hits : misses) += 1;
+    ASSERT_EQ(opacity[i].u.x, vc_opacity_byte(t.p0.w)) << i;
+  }
+  EXPECT_LE(differ, 2u);
+  EXPECT_GT(hits, 500u);
+  EXPECT_GT(misses, 500u);
+}
+
+}  // namespace
+}  // namespace gib
