@@ -128,11 +128,11 @@ Scene load_scene_measured(const std::string& path, SceneLoad& load) {
   const uint64_t rss1 = peak_rss_bytes();
   load.peak_rss_known = rss0 > 0 && rss1 > 0;
   load.peak_rss_growth = load.peak_rss_known ? rss1 - rss0 : 0;
-  load.mesh_bytes = load.texture_bytes = 0;
+  load.mesh_bytes = 0;
   for (const Mesh& m : scene.meshes)
     load.mesh_bytes += m.positions.size() * sizeof(Vec3) + m.normals.size() * sizeof(Vec3) +
                        m.uvs.size() * sizeof(Vec2) + m.indices.size() * sizeof(uint32_t);
-  for (const Texture& t : scene.textures) load.texture_bytes += t.bytes();
+  load.texture_bytes = textures_bytes(scene.textures);
   return scene;
 }
 
@@ -211,10 +211,8 @@ int cmd_render(const RenderOptions& o) {
     for (auto& p : make_passes(t)) decls.push_back(p->declare(scene, settings));
     CompileOptions co{scene.features(), requested_outputs(o, t), settings.width, settings.height};
     Plan plan = compile(decls, co);
-    uint64_t texels = 0;
-    for (const Texture& tex : scene.textures) texels += tex.bytes();
     fmt::print("scene features: {}\nscene textures: {} ({:.1f} KiB with mips)\n{}", to_string(scene.features()),
-               scene.textures.size(), texels / 1024.0, plan.to_text());
+               scene.textures.size(), load.texture_bytes / 1024.0, plan.to_text());
     if (!o.dot.empty()) {
       std::ofstream(o.dot) << plan.to_dot();
       fmt::print("wrote {}\n", o.dot);

@@ -480,6 +480,7 @@ int cmd_bench(const BenchOptions& o) {
   std::vector<double> detectables;
   std::string worst_key;
   double worst = 0;
+  bool raster_explained = false;  // the fill-rate scaling is explained at the first raster pass
 
   for (auto& r : runs) {
     const Workload& w = r.workload;
@@ -541,10 +542,15 @@ int cmd_bench(const BenchOptions& o) {
       }
       fmt::print("{}\n", line);
       if (pr.raster) {
-        fmt::print("  {} rasterises: scaled by fill rate (this device {:.2f} Gpixel/s calibrated; a profile's ROPs x clock), "
-                   "not by the FLOP split. A GPU with few graphics-capable units (an H100) rasterises far below its "
-                   "compute rate, so its raster time says little about a console's.\n",
-                   pr.name, thr.fill_gpix);
+        if (!raster_explained)
+          fmt::print("  {} rasterises: scaled by fill rate (this device {:.2f} Gpixel/s calibrated; a profile's ROPs x "
+                     "clock), not by the FLOP split, as every rasterising pass below. A GPU with few graphics-capable "
+                     "units (an H100) rasterises far below its compute rate, so its raster time says little about a "
+                     "console's.\n",
+                     pr.name, thr.fill_gpix);
+        else
+          fmt::print("  {} rasterises: scaled by fill rate\n", pr.name);
+        raster_explained = true;
         if (!raster_fallback.empty())
           fmt::print("  {}: no fill rate for {} (no ROP count in the profile, or no raster calibration): scaled like "
                      "compute there\n", pr.name, fmt::join(raster_fallback, ", "));

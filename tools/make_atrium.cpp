@@ -216,8 +216,7 @@ int main(int argc, char** argv) {
   try {
     const Scene s = build();
     const GltfExportReport r = export_gltf(s, argv[1]);
-    uint64_t bytes = 0;
-    for (const Texture& t : s.textures) bytes += t.bytes();
+    const uint64_t bytes = textures_bytes(s.textures);
     std::printf("%s: %u meshes, %u nodes, %u materials, %zu textures (%llu bytes with mips)\n", argv[1], r.meshes,
                 r.nodes, r.materials, s.textures.size(), static_cast<unsigned long long>(bytes));
     for (const std::string& l : r.lossy) std::printf("  not exported: %s\n", l.c_str());

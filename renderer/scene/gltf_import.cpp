@@ -296,8 +296,7 @@ int32_t Importer::texture_for(int index, const std::string& ref, bool srgb) {
   const DecodedImage d = decode_image(data, size);
   if (!d.ok) w_.fail(ip, fmt::format("an image stb_image can decode, at most {} texels a side", kTextureMaxSize), d.reason);
   Texture t = make_texture(w_.file + ": " + ip, d.width, d.height, d.rgba.data(), srgb);
-  uint64_t bytes = t.bytes();
-  for (const Texture& o : scene_.textures) bytes += o.bytes();
+  const uint64_t bytes = t.bytes() + textures_bytes(scene_.textures);
   if (bytes > kTextureMaxBytes)
     w_.fail(ip, fmt::format("at most {} MiB of textures and mips in a scene", kTextureMaxBytes >> 20),
             fmt::format("{} bytes with this one", bytes));

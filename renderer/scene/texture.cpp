@@ -160,12 +160,17 @@ Texture make_texture(std::string name, uint32_t width, uint32_t height, const ui
   return t;
 }
 
+uint64_t textures_bytes(const std::vector<Texture>& textures) {
+  uint64_t bytes = 0;
+  for (const Texture& t : textures) bytes += t.bytes();
+  return bytes;
+}
+
 std::vector<uint32_t> pack_textures(const std::vector<Texture>& textures) {
   if (textures.size() > kTextureMaxCount)
     throw std::invalid_argument("expected at most " + std::to_string(kTextureMaxCount) + " textures in a scene, got " +
                                 std::to_string(textures.size()));
-  uint64_t bytes = 0;
-  for (const Texture& t : textures) bytes += t.bytes();
+  const uint64_t bytes = textures_bytes(textures);
   if (bytes > kTextureMaxBytes)
     throw std::invalid_argument("expected at most " + std::to_string(kTextureMaxBytes >> 20) +
                                 " MiB of textures and mips in a scene, got " + std::to_string(bytes) + " bytes");

@@ -33,6 +33,8 @@ struct Texture {
   std::vector<std::vector<uint32_t>> mips;  // RGBA8 words, level 0 first, down to 1x1
   uint64_t bytes() const;                   // texel bytes of every level
 };
+// Texel bytes of every texture and mip (what kTextureMaxBytes bounds).
+uint64_t textures_bytes(const std::vector<Texture>& textures);
 
 inline constexpr uint32_t kTextureMaxSize = 4096;                 // texels per side
 inline constexpr uint32_t kTextureMaxCount = 1024;                // per scene

@@ -61,25 +61,24 @@ vec3 gib_direct_light(ivec2 p, uint sky_rays, bool nan_guards, bool translucent_
   GibRng rng = gib_rng(gib_seed(), gib_frame_index(), uvec2(p), 1u);
   vec3 result = em.rgb;
 
+  if (kHasSun && gib_frame.sun_irradiance.w > 0.0) {
 #ifdef GIB_SUN_VISIBILITY
-  // The sun's visibility from a shadow pass of the technique: light from the sun's centre, scaled.
-  if (kHasSun && gib_frame.sun_irradiance.w > 0.0) {
+    // The sun's visibility from a shadow pass of the technique: light from the sun's centre, scaled.
     vec3 wi = gib_frame.sun_dir.xyz;
-    vec3 resp = diffuse_response(albedo, translucency, n, wi);
-    if (sheen > 0.0) resp += gib_sheen_lobe(sheen, normal_rough.a, n, wi, wo) * max(dot(n, wi), 0.0);
-    result += resp * gib_frame.sun_irradiance.rgb * clamp(GIB_SUN_VISIBILITY(p), 0.0, 1.0);
-  }
 #else
-  if (kHasSun && gib_frame.sun_irradiance.w > 0.0) {
     vec3 wi = gib_uniform_cone(gib_frame.sun_dir.xyz, gib_frame.sun_dir.w, gib_next2(rng));
+#endif
     vec3 resp = diffuse_response(albedo, translucency, n, wi);
     if (sheen > 0.0) resp += gib_sheen_lobe(sheen, normal_rough.a, n, wi, wo) * max(dot(n, wi), 0.0);
+#ifdef GIB_SUN_VISIBILITY
+    result += resp * gib_frame.sun_irradiance.rgb * clamp(GIB_SUN_VISIBILITY(p), 0.0, 1.0);
+#else
     if (any(greaterThan(resp, vec3(0.0)))) {
       vec3 side = dot(n, wi) > 0.0 ? n : -n;
       if (!trace_any(gib_offset_ray(x, side), wi, 0.0, kShadowMax)) result += resp * gib_frame.sun_irradiance.rgb;
     }
-  }
 #endif
+  }
   if ((kHasSky || kHasEmissive) && sky_rays > 0u) {
     // Cosine-distributed rays: each carries albedo * the radiance it finds straight away, the
     // sky's where it escapes, an emissive surface's emission where it hits one (light that
