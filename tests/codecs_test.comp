@@ -24,7 +24,7 @@ void packing(uint i) {
   o.half_zw = gib_pack_half2x16(f.zw);
   o.native_half_xy = packHalf2x16(f.xy);
   o.native_half_zw = packHalf2x16(f.zw);
-  o.pad0 = 0u;
+  o.rgb9e5_dither = gib_pack_rgb9e5_dither(f.xyz, w.w);
   vec3 e5 = gib_unpack_rgb9e5(w.x);
   vec3 r11 = gib_unpack_r11g11b10(w.y);
   vec2 h = gib_unpack_half2x16(w.z);
@@ -36,7 +36,7 @@ void packing(uint i) {
   out_words[b + 4] = o.half_zw;
   out_words[b + 5] = o.native_half_xy;
   out_words[b + 6] = o.native_half_zw;
-  out_words[b + 7] = 0u;
+  out_words[b + 7] = o.rgb9e5_dither;
   // Floats go out as bits, so no float store can canonicalise a NaN.
   out_words[b + 8] = floatBitsToUint(e5.x);
   out_words[b + 9] = floatBitsToUint(e5.y);

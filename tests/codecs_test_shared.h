@@ -43,7 +43,7 @@ struct CodecsTestOut {  // 64 bytes
   uint half_zw;         // gib_pack_half2x16(z, w)
   uint native_half_xy;  // packHalf2x16(x, y): the device's conversion
   uint native_half_zw;
-  uint pad0;
+  uint rgb9e5_dither;   // gib_pack_rgb9e5_dither(float bits x, y, z; dither = bits w)
   float e5_r, e5_g, e5_b;     // gib_unpack_rgb9e5(x)
   float r11_r, r11_g, r11_b;  // gib_unpack_r11g11b10(y)
   float half_lo, half_hi;     // gib_unpack_half2x16(z)

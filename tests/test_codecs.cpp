@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdio>
@@ -314,6 +315,59 @@ TEST(CodecsCpu, Rgb9e5MatchesSpecFormula) {
   EXPECT_EQ(d[2], 0.25f);
 }
 
+// Stochastic rounding (encode_rgb9e5_dither): each channel decodes to the floor or the ceiling of
+// its value in units of the shared exponent, and over dither values spread evenly across the
+// 32-bit range the mean decoded value is the input (what keeps a temporal filter's store
+// unbiased). Known answers: half-way dither equals round-half-up whenever the exponents agree.
+TEST(CodecsCpu, Rgb9e5DitherIsUnbiased) {
+  Rng rng(11);
+  constexpr int kDithers = 4096;
+  double worst_bias = 0, worst_step = 0;
+  uint64_t same_as_nearest = 0, comparable = 0;
+  for (int i = 0; i < 3000; ++i) {
+    // Values over 12 octaves around 1, channels within 2^-6 of the largest (>= 2^-7 units).
+    float c[3];
+    const float scale = std::ldexp(1.0f, int(rng.below(12)) - 6);
+    for (float& v : c) v = scale * (0.02f + 0.98f * rng.uniform());
+    const uint32_t exp_dither = encode_rgb9e5_dither(c, 0) >> 27;
+    double sum[3] = {0, 0, 0};
+    for (int k = 0; k < kDithers; ++k) {
+      const uint32_t dither = uint32_t((uint64_t(k) << 32) / kDithers) + rng.below(1u << 20);
+      const uint32_t p = encode_rgb9e5_dither(c, dither);
+      ASSERT_EQ(p >> 27, exp_dither) << "the shared exponent does not depend on the dither";
+      const double unit = std::ldexp(1.0, int(p >> 27) - 24);
+      float d[3];
+      decode_rgb9e5(p, d);
+      for (int j = 0; j < 3; ++j) {
+        sum[j] += d[j];
+        worst_step = std::max(worst_step, std::fabs(double(d[j]) - c[j]) / unit);  // < 1 unit
+      }
+    }
+    const double unit = std::ldexp(1.0, int(exp_dither) - 24);
+    for (int j = 0; j < 3; ++j) worst_bias = std::max(worst_bias, std::fabs(sum[j] / kDithers - c[j]) / unit);
+    const uint32_t nearest = encode_rgb9e5(c);
+    if (nearest >> 27 == exp_dither) {
+      ++comparable;
+      same_as_nearest += encode_rgb9e5_dither(c, 0x80000000u) == nearest;
+    }
+  }
+  std::printf("[codecs] rgb9e5 stochastic rounding: mean error %.2e units over %d dithers, largest step %.4f units; "
+              "half-way dither = round-half-up in %llu of %llu\n", worst_bias, kDithers, worst_step,
+              (unsigned long long)same_as_nearest, (unsigned long long)comparable);
+  EXPECT_LT(worst_bias, 2.0 / kDithers);  // stratified dithers: the mean is exact up to the strata
+  EXPECT_LT(worst_step, 1.0);
+  EXPECT_EQ(same_as_nearest, comparable);
+  EXPECT_GT(comparable, 2500u);
+  // Clamping as encode_rgb9e5: NaN and negatives give 0, the maximum stays 65408.
+  EXPECT_EQ(encode_rgb9e5_dither(std::array<float, 3>{-1.0f, std::numeric_limits<float>::quiet_NaN(), 0.0f}.data(),
+                                 0xffffffffu),
+            0u);
+  float d[3];
+  decode_rgb9e5(encode_rgb9e5_dither(std::array<float, 3>{65408.0f, 1e30f, 1.0f}.data(), 0xffffffffu), d);
+  EXPECT_EQ(d[0], 65408.0f);
+  EXPECT_EQ(d[1], 65408.0f);
+}
+
 // Angle in degrees between two unit vectors (stable for small angles).
 double angle_deg(Vec3 a, Vec3 b) {
   const Vec3 c = cross(a, b);
@@ -572,7 +626,7 @@ TEST_F(CodecsGpu, PackingMatchesCpuBitForBit) {
   constexpr uint32_t kCount = 1u << 20;
   const std::vector<CodecsTestIn> in = make_inputs(kCount, 7);
   const std::vector<CodecsTestOut> out = run_codecs<CodecsTestOut>(in, CODECS_TEST_MODE_PACKING, kCount);
-  uint64_t bad_e5 = 0, bad_r11 = 0, bad_r11_rne = 0, bad_half = 0, bad_e5_dec = 0, bad_r11_dec = 0,
+  uint64_t bad_e5 = 0, bad_e5_dither = 0, bad_r11 = 0, bad_r11_rne = 0, bad_half = 0, bad_e5_dec = 0, bad_r11_dec = 0,
            bad_half_dec = 0, native_rne = 0, native_rtz = 0, native_neither = 0;
   int reported = 0;
   uint64_t native_nan = 0, native_nan_same = 0, native_nan_is_nan = 0;
@@ -589,6 +643,7 @@ TEST_F(CodecsGpu, PackingMatchesCpuBitForBit) {
       above_max_in += std::fabs(v) > 65024.0f && std::isfinite(v);
     }
     bad_e5 += o.rgb9e5 != encode_rgb9e5(f);
+    bad_e5_dither += o.rgb9e5_dither != encode_rgb9e5_dither(f, w.w);
     bad_r11 += o.r11g11b10 != encode_r11g11b10(f);
     bad_r11_rne += o.r11g11b10_rne != encode_r11g11b10_rne(f);
     bad_half += o.half_xy != pack_half2x16(f[0], f[1]);
@@ -630,11 +685,14 @@ TEST_F(CodecsGpu, PackingMatchesCpuBitForBit) {
               "decode rgb9e5 %llu, r11g11b10 %llu, half %llu\n", (unsigned long long)bad_e5, (unsigned long long)bad_r11,
               (unsigned long long)bad_r11_rne, (unsigned long long)bad_half, 2 * kCount, (unsigned long long)bad_e5_dec,
               (unsigned long long)bad_r11_dec, (unsigned long long)bad_half_dec);
+  std::printf("[codecs] GPU vs CPU mismatches: rgb9e5 with stochastic rounding %llu (of %u)\n",
+              (unsigned long long)bad_e5_dither, kCount);
   std::printf("[codecs] device packHalf2x16 (non-NaN floats): equals RNE %llu, equals RTZ %llu, neither %llu; NaN "
               "floats %llu: same bits %llu, a NaN %llu\n", (unsigned long long)native_rne, (unsigned long long)native_rtz,
               (unsigned long long)native_neither, (unsigned long long)native_nan, (unsigned long long)native_nan_same,
               (unsigned long long)native_nan_is_nan);
   EXPECT_EQ(bad_e5, 0u);
+  EXPECT_EQ(bad_e5_dither, 0u);
   EXPECT_EQ(bad_r11, 0u);
   EXPECT_EQ(bad_r11_rne, 0u);
   EXPECT_EQ(bad_half, 0u);

@@ -397,5 +397,49 @@ TEST_F(RadianceCacheWorld, LocalLightReachesCellsThroughLightGrid) {
   EXPECT_LT(c.max_radiance, 0.5);
 }
 
+// Which cascade a frame updates (issue 19's ladder): schedule 0 each in turn; schedule 1 the
+// finest on every even frame and the others in turn on odd frames.
+TEST(RadianceCacheSchedule, UpdatedCascadeByScheduleKnownAnswers) {
+  std::vector<uint32_t> in_turn, finest_first, two;
+  for (uint32_t f = 0; f < 12; ++f) {
+    in_turn.push_back(rc_updated_cascade(0, 4, f));
+    finest_first.push_back(rc_updated_cascade(1, 4, f));
+    two.push_back(rc_updated_cascade(1, 2, f));
+    EXPECT_EQ(rc_updated_cascade(1, 1, f), 0u);
+    EXPECT_EQ(rc_updated_cascade(0, 1, f), 0u);
+  }
+  EXPECT_EQ(in_turn, (std::vector<uint32_t>{0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3}));
+  EXPECT_EQ(finest_first, (std::vector<uint32_t>{0, 1, 0, 2, 0, 3, 0, 1, 0, 2, 0, 3}));
+  EXPECT_EQ(two, (std::vector<uint32_t>{0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1}));
+  // Every cascade of 6 is updated within 2 x 5 frames under schedule 1.
+  std::set<uint32_t> seen;
+  for (uint32_t f = 100; f < 110; ++f) seen.insert(rc_updated_cascade(1, 6, f));
+  EXPECT_EQ(seen.size(), 6u);
+}
+
+// high and ultra keep medium's probe noise: rays x (1 + h) / (1 - h) ray samples per texel.
+TEST(RadianceCacheSchedule, PresetsKeepMediumProbeSamples) {
+  const Technique& t = find_technique("radiance-cache");
+  auto samples = [](const RadianceCacheSettings& r) {
+    return float(r.rays_per_probe) * (1.0f + r.probe_hysteresis) / (1.0f - r.probe_hysteresis);
+  };
+  const Settings medium = apply_preset(t, "medium", Settings{});
+  EXPECT_NEAR(samples(rc(medium)), 394.67f, 0.01f);
+  EXPECT_EQ(rc(medium).probe_schedule, 0u);
+  EXPECT_FALSE(rc(medium).dither_stores);
+  EXPECT_EQ(rc(apply_preset(t, "low", Settings{})).probe_schedule, 0u);
+  EXPECT_FLOAT_EQ(rc(apply_preset(t, "low", Settings{})).probe_hysteresis, 0.85f);
+  for (const char* p : {"high", "ultra"}) {
+    const Settings s = apply_preset(t, p, Settings{});
+    EXPECT_EQ(rc(s).probe_schedule, 1u) << p;
+    EXPECT_TRUE(rc(s).dither_stores) << p;
+    EXPECT_NEAR(samples(rc(s)), samples(rc(medium)), 0.05f) << p;
+    EXPECT_NEAR(rc(s).probe_hysteresis, 0.7211f, 1e-3f) << p;
+  }
+  // A case's option still overrides the preset.
+  const Settings o = apply_options(t, apply_preset(t, "high", Settings{}), {{"probe_hysteresis", 0.5}});
+  EXPECT_FLOAT_EQ(rc(o).probe_hysteresis, 0.5f);
+}
+
 }  // namespace
 }  // namespace gib

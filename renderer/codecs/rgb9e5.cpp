@@ -24,7 +24,26 @@ uint32_t round_half_up(uint32_t u, int unit_exp) {
   if (shift > 24) return 0;               // c < 2^(unit_exp - 1): below half a unit
   return (m + (1u << (shift - 1))) >> shift;
 }
+
+// floor(c * 2^-unit_exp + dither * 2^-32): stochastic rounding.
+uint32_t round_dither(uint32_t u, int unit_exp, uint32_t dither) {
+  if (u < 0x00800000u) return 0;
+  const uint32_t m = (u & 0x7fffffu) | 0x800000u;
+  const int shift = unit_exp - (int(u >> 23) - 127 - 23);
+  if (shift > 31) return 0;  // c < 2^(unit_exp - 7)
+  return (m + (dither >> (32 - shift))) >> shift;
+}
 }  // namespace
+
+uint32_t encode_rgb9e5_dither(const float rgb[3], uint32_t dither) {
+  const uint32_t r = clamp_bits(rgb[0]), g = clamp_bits(rgb[1]), b = clamp_bits(rgb[2]);
+  const uint32_t mx = std::max(r, std::max(g, b));
+  int exp_shared = std::max(int(mx >> 23) - 127, -16) + 16;
+  if (round_dither(mx, exp_shared - 24, 0xffffffffu) == 512u) exp_shared += 1;
+  const int unit = exp_shared - 24;
+  return round_dither(r, unit, dither) | (round_dither(g, unit, dither) << 9) | (round_dither(b, unit, dither) << 18) |
+         (uint32_t(exp_shared) << 27);
+}
 
 uint32_t encode_rgb9e5(const float rgb[3]) {
   const uint32_t r = clamp_bits(rgb[0]), g = clamp_bits(rgb[1]), b = clamp_bits(rgb[2]);

@@ -28,4 +28,10 @@ inline uint32_t encode_rgb9e5(float r, float g, float b) {
   return encode_rgb9e5(v);
 }
 
+// Stochastic rounding (gib_pack_rgb9e5_dither): r_s = floor(r' / 2^(exp_s - 24) + dither / 2^32),
+// same for g, b (channels below 2^-7 units give 0); exp_s is the smallest exponent whose largest
+// channel cannot reach 512 for any dither. Over uniform dither the decoded value's expectation is
+// the clamped input, which keeps a temporal filter's store unbiased.
+uint32_t encode_rgb9e5_dither(const float rgb[3], uint32_t dither);
+
 }  // namespace gib::codecs

@@ -6,6 +6,8 @@
 // RGB9E5 (E5B9G9R9_UFLOAT_PACK32 layout, stored in R32_UINT images): Vulkan spec shared
 // exponent, round half up; NaN / negatives -> 0; clamp to 65408.
 //   uint gib_pack_rgb9e5(vec3 rgb); vec3 gib_unpack_rgb9e5(uint p);
+// gib_pack_rgb9e5_dither(rgb, dither): stochastic rounding, floor(c / unit + dither / 2^32), for
+// stores that blend with their own last value (see the function).
 // R11G11B10F (B10G11R11_UFLOAT_PACK32 layout): rounding toward zero, like an imageStore to a
 // B10G11R11 image on lavapipe and NVIDIA; negatives -> 0; finite above max -> max finite
 // (65024 / 64512); +Inf -> Inf; NaN -> NaN (0x7e0 / 0x3f0). gib_pack_r11g11b10_rne rounds to
@@ -129,6 +131,35 @@ uint gib_pack_rgb9e5(vec3 rgb) {
   int unit = exp_shared - 24;
   return gib_rgb9e5_round(r, unit) | (gib_rgb9e5_round(g, unit) << 9) |
          (gib_rgb9e5_round(b, unit) << 18) | (uint(exp_shared) << 27);
+}
+
+// floor(c / 2^unit_exp + dither / 2^32) for the clamped channel with bits u: the stochastic
+// rounding of gib_pack_rgb9e5_dither. A channel below 2^-7 units (shift > 31) gives 0.
+uint gib_rgb9e5_round_dither(uint u, int unit_exp, uint dither) {
+  if (u < 0x00800000u) return 0u;
+  uint m = (u & 0x7fffffu) | 0x800000u;
+  int shift = unit_exp - (int(u >> 23) - 150);
+  if (shift > 31) return 0u;
+  return (m + (dither >> uint(32 - shift))) >> uint(shift);
+}
+
+// RGB9E5 with stochastic rounding: each channel rounds up with probability equal to its
+// fraction of a unit (dither uniform over uint), so the decoded value's expectation is the input
+// (channels of at least 2^-7 units). For a store that blends with its own last value (a temporal
+// filter): round-to-nearest there stops moving once a frame's change is below half a unit, so a
+// slowly converging value sticks short of (or beyond) its limit; dithered, it keeps moving on
+// average. The shared exponent is the smallest whose largest channel cannot round up to 512.
+// CPU mirror: codecs::encode_rgb9e5_dither.
+uint gib_pack_rgb9e5_dither(vec3 rgb, uint dither) {
+  uint r = gib_rgb9e5_clamp_bits(rgb.r);
+  uint g = gib_rgb9e5_clamp_bits(rgb.g);
+  uint b = gib_rgb9e5_clamp_bits(rgb.b);
+  uint mx = max(r, max(g, b));
+  int exp_shared = max(int(mx >> 23) - 127, -16) + 16;
+  if (gib_rgb9e5_round_dither(mx, exp_shared - 24, 0xffffffffu) == 512u) exp_shared += 1;
+  int unit = exp_shared - 24;
+  return gib_rgb9e5_round_dither(r, unit, dither) | (gib_rgb9e5_round_dither(g, unit, dither) << 9) |
+         (gib_rgb9e5_round_dither(b, unit, dither) << 18) | (uint(exp_shared) << 27);
 }
 
 vec3 gib_unpack_rgb9e5(uint p) {

@@ -15,6 +15,7 @@ struct RadianceCacheSettings : TechniqueSettingsOf<RadianceCacheSettings>, Direc
   // direct_lighting must not trace them again.
   RadianceCacheSettings() { sky_rays = 0; }
   uint32_t cascades = 3;            // irradiance-volume cascades (16^3 probes each), one updated per frame
+  uint32_t probe_schedule = 0;      // 0: cascade frame % cascades; 1: the finest every other frame (rc_updated_cascade)
   float probe_spacing = 0.5f;       // metres between cascade-0 probes; doubles per cascade
   uint32_t rays_per_probe = 32;     // visibility rays per updated probe (16 / 32 / 64)
   float probe_hysteresis = 0.85f;   // weight of last frame's probe texel when blending
@@ -37,6 +38,7 @@ struct RadianceCacheSettings : TechniqueSettingsOf<RadianceCacheSettings>, Direc
   uint32_t denoise_radius = 3;      // bilateral half-width in gather pixels
   uint32_t denoise_hit_weight = 0;  // gi_denoise: 1 = SH taps also weigh hit-distance similarity (the seed's; biased, radiance_cache.md)
   bool multi_bounce = true;         // 0: no cache feeds back on itself (single bounce; white-furnace negative control)
+  bool dither_stores = false;       // RGB9E5 probe atlas and GI history round stochastically (unbiased blends)
   bool pre_exposure = true;         // screen-space GI works on radiance x P (exposure pass); 0: P = 1 (negative control)
   uint32_t volume_kernel = 0;       // irradiance_volume_update: 0 by device (GPU per-probe, CPU split), 1 per-probe, 2 split
 };

@@ -12,12 +12,22 @@ namespace gib {
 // Probes per irradiance-volume cascade (16^3); one cascade is updated per frame.
 inline constexpr uint32_t kProbesPerCascade = glsl::kProbeGridDim * glsl::kProbeGridDim * glsl::kProbeGridDim;
 
+// The cascade whose probes frame `frame` traces and updates. Schedule 0: each in turn
+// (frame % cascades). Schedule 1 (high, ultra): the finest on even frames, the others in turn on
+// odd frames, so the finest cascade (the surroundings of the camera) is updated every other
+// frame however many cascades there are, and cascade c > 0 every 2 (cascades - 1) frames.
+inline uint32_t rc_updated_cascade(uint32_t schedule, uint32_t cascades, uint32_t frame) {
+  if (cascades <= 1) return 0;
+  if (schedule == 0 || cascades == 2) return frame % cascades;
+  return frame % 2 == 0 ? 0 : 1 + (frame / 2) % (cascades - 1);
+}
+
 static_assert(sizeof(glsl::RcParams) == 80, "RcParams: 80 bytes in every radiance-cache push block");
 
 inline glsl::RcParams make_rc_params(const Settings& s, uint32_t frame) {
   const RadianceCacheSettings& r = s.params<RadianceCacheSettings>();
   glsl::RcParams p{};
-  p.grid = {r.probe_spacing, float(r.cascades), float(r.rays_per_probe), float(frame % r.cascades)};
+  p.grid = {r.probe_spacing, float(r.cascades), float(r.rays_per_probe), float(rc_updated_cascade(r.probe_schedule, r.cascades, frame))};
   p.cache = {r.cache_cell_size, r.cache_lod_distance, float(r.cache_log2_cells), float(r.cache_max_probe)};
   p.bias = {r.normal_bias, r.view_bias, r.visibility_test ? 1.0f : 0.0f, r.probe_hysteresis};
   p.misc = {frame, r.cache_reuse_frames, r.gather_divisor, r.light_grid_cascades};

@@ -4,6 +4,7 @@
 #include "frame.glsl"
 #include "sampling.glsl"
 #include "packing.glsl"
+#include "hash.glsl"
 #include "sh.glsl"
 #include "finite.glsl"
 
@@ -30,12 +31,18 @@ layout(set = 0, binding = kUpscaleBindExposure, std430) readonly buffer Exposure
 // returns: values are quantised here with a known rounding (the codec's or packHalf2x16), so
 // the image's own conversion on store is exact.
 #if GI_HISTORY_FORMAT == 0
+// The dither of a pixel's RGB9E5 history store (option dither_stores; stochastic rounding keeps
+// the temporal filter's expectation moving when a frame's change is below half a unit:
+// radiance_cache.md, "Quantised stores").
+uint gi_history_dither(ivec2 p) {
+  return gib_pcg(uint(p.x) ^ gib_pcg(uint(p.y) ^ gib_pcg(push.frame ^ 0x2545f491u)));
+}
 #define GI_HISTORY_IO(PREV, OUT, PREV_BIND, OUT_BIND, LOAD, STORE)                            \
   layout(set = 0, binding = PREV_BIND, r32ui) uniform readonly uimage2D PREV;                 \
   layout(set = 0, binding = OUT_BIND, r32ui) uniform writeonly uimage2D OUT;                  \
   vec3 LOAD(ivec2 q) { return gib_unpack_rgb9e5(imageLoad(PREV, q).x); }                      \
   vec3 STORE(ivec2 p, vec3 v) {                                                               \
-    uint e = gib_pack_rgb9e5(v);                                                              \
+    uint e = push.dither != 0u ? gib_pack_rgb9e5_dither(v, gi_history_dither(p)) : gib_pack_rgb9e5(v); \
     imageStore(OUT, p, uvec4(e, 0u, 0u, 0u));                                                 \
     return gib_unpack_rgb9e5(e);                                                              \
   }

@@ -38,7 +38,9 @@ struct UpscalePush {
   uint disocclusion;   // 1: depth/normal tests reject history
   uint history_valid;  // 0 on the first frame: last frame's images were never written
   uint nan_guards;     // 1: non-finite taps, history texels and results are rejected
-  uint pad0, pad1, pad2;
+  uint dither;         // 1: an RGB9E5 history rounds stochastically (option dither_stores)
+  uint frame;          // frame index: the dither's seed
+  uint pad0;
 };
 GIB_SHARED_END
 #endif

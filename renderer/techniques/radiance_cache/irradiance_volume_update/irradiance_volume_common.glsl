@@ -6,6 +6,21 @@
 #ifndef GIB_IRRADIANCE_VOLUME_COMMON_GLSL
 #define GIB_IRRADIANCE_VOLUME_COMMON_GLSL
 
+#include "hash.glsl"
+layout(constant_id = kIvSpecDither) const bool kIvDither = false;
+
+// The irradiance texel's RGB9E5 store: rounded to nearest, or (kIvDither, option dither_stores)
+// stochastically, with a dither drawn from the interior texel `at` and the frame, so a border
+// texel and the interior texel it mirrors store the same bits. Blended at hysteresis h, a texel
+// moves by (1 - h) x (new - last) per update; rounded to nearest it stops once that is below
+// half a unit (about 0.1% of the value), which holds a slowly converging probe (the multi-bounce
+// feedback of a closed room) short of its limit. Dithered, its expectation keeps moving.
+uint iv_pack_irradiance(ivec2 at, vec3 irradiance) {
+  if (!kIvDither) return gib_pack_rgb9e5(irradiance);
+  uint dither = gib_pcg(uint(at.x) ^ gib_pcg(uint(at.y) ^ gib_pcg(rc.misc.x ^ 0x632be5abu)));
+  return gib_pack_rgb9e5_dither(irradiance, dither);
+}
+
 #ifdef IV_SHADE_RAYS
 // Radiance arriving at the probe along ray d that hit h at p (its cell was not found).
 vec3 iv_fallback_radiance(ProbeHit h, vec3 p, vec3 d) {

@@ -83,7 +83,7 @@ void main() {
   uvec2 origin = rc_tile_origin(c, rc_probe_slot(c, ijk));
   ivec2 at = ivec2(origin) + texel + 1;
   iv_blend_with_last_frame(at, irradiance, moments);
-  s_irradiance[tid] = gib_pack_rgb9e5(irradiance);
+  s_irradiance[tid] = iv_pack_irradiance(at, irradiance);
   s_moments[tid] = moments;
   barrier();
 

@@ -60,6 +60,6 @@ void main() {
   uvec2 origin = rc_tile_origin(c, rc_probe_slot(c, ijk));
   ivec2 at = ivec2(origin) + texel + 1;
   iv_blend_with_last_frame(at, irradiance, moments);
-  imageStore(out_irradiance, ivec2(origin) + local, uvec4(gib_pack_rgb9e5(irradiance)));
+  imageStore(out_irradiance, ivec2(origin) + local, uvec4(iv_pack_irradiance(at, irradiance)));
   imageStore(out_visibility, ivec2(origin) + local, vec4(moments, 0.0, 0.0));
 }

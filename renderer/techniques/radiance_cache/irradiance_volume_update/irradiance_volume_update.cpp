@@ -37,12 +37,14 @@ class IrradianceVolumeUpdatePass final : public Pass {
     const RadianceCacheSettings& r = ctx.settings.params<RadianceCacheSettings>();
     using namespace glsl;
     // Both ray-shading kernels: cache fallback on; alpha testing (probe rays) when the scene has it.
-    const std::vector<SpecConstant> ray_specs = {
-        {kIvSpecCacheFallback, 1}, {kIvSpecAlpha, ctx.scene.features().has(Feature::alpha_tested) ? 1u : 0u}};
+    const uint32_t dither = r.dither_stores ? 1u : 0u;
+    const std::vector<SpecConstant> ray_specs = {{kIvSpecCacheFallback, 1},
+                                                 {kIvSpecAlpha, ctx.scene.features().has(Feature::alpha_tested) ? 1u : 0u},
+                                                 {kIvSpecDither, dither}};
     // Cascades not updated this frame carry over from last frame's copy; the updated one is
     // rewritten whole by the convolve below.
     ctx.cmd.begin_label("irradiance_volume_update/carry");
-    IvCarryPush carry{ctx.frame % r.cascades, 0, 0, 0};
+    IvCarryPush carry{rc_updated_cascade(r.probe_schedule, r.cascades, ctx.frame), 0, 0, 0};
     const Image& atlas = ctx.image("probe_irradiance");
     record_compute(ctx, {.shader = "irradiance_volume_carry.comp",
                          .images = {{kIvBindPrevIrradiance, "probe_irradiance", true},
@@ -99,6 +101,7 @@ class IrradianceVolumeUpdatePass final : public Pass {
                          .groups_x = div_up(kProbesPerCascade * kProbeTileSize * kProbeTileSize, kIvConvolveGroup),
                          .push = &push,
                          .push_bytes = sizeof(push),
+                         .spec_constants = {{kIvSpecDither, dither}},
                          .buffers = {{kIvBindRays, "probe_ray_radiance"}}});
     ctx.cmd.end_label();
   }

@@ -17,6 +17,7 @@ GIB_CONST(uint, kIvBindVisibility, 13)          // this frame's probe_visibility
 GIB_CONST(uint, kIvBindRays, 14)                // probe_ray_radiance: vec4 (rgb, distance) per ray
 GIB_CONST(uint, kIvSpecCacheFallback, 0)        // 1: hits without a shaded cell use last frame's volumes
 GIB_CONST(uint, kIvSpecAlpha, 1)                // 1: the scene has alpha-tested materials (probe rays test them)
+GIB_CONST(uint, kIvSpecDither, 2)               // 1: the atlas store rounds stochastically (option dither_stores)
 // Exponent k of the max(0, n.d)^k weight of the distance moments.
 GIB_CONST(float, kIvDistanceSharpness, 16.0)
 struct IvPush {
