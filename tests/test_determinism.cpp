@@ -33,7 +33,7 @@ std::vector<FloatImage> render(Gpu& gpu, const Scene& scene, const Config& cfg, 
   std::map<std::string, double> opts(cfg.options.begin(), cfg.options.end());
   s = apply_options(t, s, opts);
   std::vector<std::string> res;
-  for (auto& a : contract_aov_names(t)) res.push_back(contract_resource(t, a));
+  for (auto& a : contract_aov_names(t, scene.features())) res.push_back(contract_resource(t, a));
   Executor ex(gpu, scene, s, make_passes(t), res);
   for (uint32_t f = 0; f < frames; ++f) ex.run_frame();
   std::vector<FloatImage> out;
