@@ -24,6 +24,8 @@ Technique reference_technique() {
   t.output = "radiance";
   t.aovs = {"direct", "indirect_diffuse", "reflection"};
   t.contract_aovs = {{"direct", "direct"}, {"indirect_diffuse", "indirect_diffuse"}, {"reflection", "reflection"}};
+  // reflection is 0 without a glossy material: references of such scenes keep no file of it.
+  t.contract_aov_needs = {{"reflection", Feature::glossy}};
   define_settings<ReferenceSettings>(t, kPresets, apply_preset_row);
   t.options = with_common_options(
       {
