@@ -64,7 +64,7 @@ CaseRender render(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::s
                                          t.name, aov, fmt::join(contract_aov_names(t), ", ")));
   std::vector<std::string> outputs{out_name};
   if (reference)
-    for (auto& a : contract_aov_names(t))
+    for (auto& a : contract_aov_names(t, c.scene.features()))
       if (std::find(outputs.begin(), outputs.end(), contract_resource(t, a)) == outputs.end())
         outputs.push_back(contract_resource(t, a));
 
@@ -126,7 +126,7 @@ CaseRender render(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::s
   r.scanned = scan;
   if (scan) r.stability = ex.stability();
   if (reference)
-    for (auto& a : contract_aov_names(t)) {
+    for (auto& a : contract_aov_names(t, c.scene.features())) {
       std::string res = contract_resource(t, a);
       r.aovs[a] = res == out_name ? r.image : ex.read(res);
     }

@@ -171,6 +171,12 @@ RenderRun render(const RenderOptions& o) {
   for (auto& r : results) totals.push_back(r.total_ms);
   run.frame_median_ms = median(totals);
   run.output = ex.read(t.output);
+  for (const TechniqueStat& st : t.stats) {
+    if (!ex.plan().find(st.resource)) continue;
+    const std::vector<uint8_t> raw = ex.read_buffer(st.resource);
+    const double v = buffer_word(raw, st.word), of = st.of_word == UINT32_MAX ? 0.0 : buffer_word(raw, st.of_word);
+    run.stats[st.name] = st.of_word == UINT32_MAX ? v : (of > 0 ? v / of : 0.0);
+  }
   for (auto& d : o.dumps) write_exr(stem_path(o.out, "." + d + ".exr"), ex.read(d));
   run.validation_messages = gpu->validation_messages();
   return run;
@@ -235,6 +241,7 @@ int cmd_render(const RenderOptions& o) {
              run.plan.total_bytes() / 1048576.0, run.texture_bytes / 1048576.0);
   const NonFinite bad = count_non_finite(run.output);
   fmt::print("output {}: {} NaN, {} Inf values ({} pixels)\n", t.output, bad.nan, bad.inf, bad.pixels);
+  for (auto& [name, v] : run.stats) fmt::print("stat {}: {:.4f}\n", name, v);
   write_exr(o.out, run.output);
   write_png_preview(stem_path(o.out, ".png"), run.output);
   fmt::print("wrote {} and {}\n", o.out, stem_path(o.out, ".png"));
@@ -265,6 +272,7 @@ int cmd_render(const RenderOptions& o) {
         if (s.name == p.name) pj.update({{"ms", s.median_ms}, {"min_ms", s.min_ms}, {"max_ms", s.max_ms}});
       passes.push_back(pj);
     }
+    j["stats"] = run.stats;
     j["validation_messages"] = run.validation_messages;
     std::ofstream(o.json) << j.dump(2) << "\n";
   }

@@ -57,6 +57,9 @@ struct RenderRun {
   double frame_median_ms = 0;
   uint64_t texture_bytes = 0;  // the scene's packed image textures on the GPU (0 without any)
   FloatImage output;
+  // The technique's GPU counters (Technique::stats) whose buffer the plan kept, after the last
+  // frame: e.g. gow-ragnarok's reflection sample shares, with --dump reflection.
+  std::map<std::string, double> stats;
   std::vector<std::string> validation_messages;
 };
 

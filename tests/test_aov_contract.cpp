@@ -147,7 +147,7 @@ TEST_F(AovContract, EveryTechniqueDeclaresOnlyContractNamesAndRadianceIsItsOutpu
     }
   }
   EXPECT_EQ(contract_aov_names(find_technique("reference")),
-            (std::vector<std::string>{"radiance", "direct", "indirect_diffuse"}));
+            (std::vector<std::string>{"radiance", "direct", "indirect_diffuse", "reflection"}));
 }
 
 // Per pixel, to float precision: direct + indirect_diffuse == radiance (the cornell box has
@@ -158,7 +158,7 @@ TEST_F(AovContract, DirectPlusIndirectIsRadiancePerPixel) {
   for (const char* file : {"cornell.json", "thin_wall_005.json"}) {
     Scene scene = load_scene(std::string(GIB_SOURCE_DIR) + "/cases/scenes/" + file);
     for (const Technique& t : techniques()) {
-      std::vector<std::string> names = contract_aov_names(t);
+      std::vector<std::string> names = contract_aov_names(t, scene.features());
       std::vector<std::string> res;
       for (auto& a : names) res.push_back(contract_resource(t, a));
       // Three frames: temporal techniques past their first frame; the reference at 48 spp.
@@ -224,17 +224,19 @@ TEST_F(AovContract, OneSourceDirectAgreesWithReference) {
 }
 
 // A grey plane (albedo 0.5) under a constant sky (radiance 2): every pixel's direct is
-// albedo x sky = 1 and indirect_diffuse is 0 (nothing else to bounce from), for every technique
+// albedo x sky = 1 and indirect_diffuse and reflection are 0 (nothing else to bounce from, no
+// specular lobe), for every technique
 // and every AOV it declares.
 TEST_F(AovContract, SkyLitPlaneMatchesAnalyticValues) {
   Scene scene = load_scene(std::string(GIB_SOURCE_DIR) + "/cases/scenes/sky_plane.json");
   for (const Technique& t : techniques()) {
     std::vector<std::string> res;  // distinct resources (direct's radiance is its direct)
-    for (auto& a : contract_aov_names(t))
+    for (auto& a : contract_aov_names(t, scene.features()))
       if (std::find(res.begin(), res.end(), contract_resource(t, a)) == res.end()) res.push_back(contract_resource(t, a));
     auto imgs = render_mean(gpu(), scene, t.name, res, 3, 1, "low");
-    for (auto& a : contract_aov_names(t)) {
-      double expect = a == "indirect_diffuse" ? 0.0 : 1.0;
+    for (auto& a : contract_aov_names(t, scene.features())) {
+      // reflection: the plane is Lambertian (no specular lobe), so 0.
+      double expect = a == "indirect_diffuse" || a == "reflection" ? 0.0 : 1.0;
       const FloatImage& img = imgs.at(contract_resource(t, a));
       double worst = 0;
       for (uint32_t y = 0; y < img.height; ++y)

@@ -560,11 +560,11 @@ TEST(CaseOptions, ApplyOptions) {
   EXPECT_NE(message(direct, {{"sky_rays", std::numeric_limits<double>::quiet_NaN()}}).find("got NaN"),
             std::string::npos);
   EXPECT_EQ(check_option(direct, "sky_rays", 64), "");
-  // Their own options (1 and 2), then the same shared ones (nan_guards, inject_*, ...).
+  // Their own options (1 and 3), then the same shared ones (nan_guards, inject_*, ...).
   EXPECT_EQ(technique_options(direct)[0].name, "sky_rays");
   EXPECT_EQ(technique_options(reference)[1].name, "spp_per_frame");
   EXPECT_EQ(technique_options(direct)[1].name, "nan_guards");
-  EXPECT_EQ(technique_options(direct).size() + 1, technique_options(reference).size());
+  EXPECT_EQ(technique_options(direct).size() + 2, technique_options(reference).size());
 }
 
 // ---------------------------------------------------------------- directories

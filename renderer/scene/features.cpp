@@ -15,6 +15,7 @@ std::string_view feature_name(Feature f) {
     case Feature::decals: return "decals";
     case Feature::cloth: return "cloth";
     case Feature::indoor_volumes: return "indoor_volumes";
+    case Feature::glossy: return "glossy";
   }
   return "unknown";  // a value cast from an integer that names no feature
 }

@@ -18,8 +18,9 @@ enum class Feature : uint32_t {
   decals = 1u << 8,  // projected decals (Scene::decals) with some opacity
   cloth = 1u << 9,   // a material of the cloth BRDF class
   indoor_volumes = 1u << 10,  // Scene::indoor_volumes (probe-volume's indoor/outdoor classes)
+  glossy = 1u << 11,          // a material of the glossy BRDF class (a GGX specular layer)
 };
-inline constexpr uint32_t kFeatureCount = 11;
+inline constexpr uint32_t kFeatureCount = 12;
 
 struct SceneFeatures {
   uint32_t bits = 0;

@@ -154,6 +154,7 @@ class Exporter {
     if (mat.texture != TextureKind::none && mat.texture != TextureKind::image) r_.lossy.push_back(mat.name + ": procedural texture (albedo2, texture_scale) not exported");
     if (mat.translucency > 0) r_.lossy.push_back(mat.name + ": translucency not exported");
     if (mat.brdf == BrdfKind::cloth) r_.lossy.push_back(mat.name + ": cloth BRDF (sheen) exported as standard");
+    if (mat.brdf == BrdfKind::glossy) r_.lossy.push_back(mat.name + ": glossy BRDF exported as metallic-roughness (its Fresnel split differs)");
     m_.materials.push_back(std::move(g));
     ++r_.materials;
   }

@@ -54,6 +54,26 @@ float sheen_lobe(float sheen, float roughness, Vec3 n, Vec3 wi, Vec3 wo);
 // The Charlie distribution alone (a = max(roughness^2, 0.01)), for its normalisation test.
 float sheen_distribution(float roughness, float cos_h);
 
+// brdf.glsl's glossy class (GGX specular layer over a Lambertian base), same formulas and
+// operation order as gib_ggx_* / gib_glossy_*; GlossyLobes.spec and .diffuse are f (1/sr).
+inline constexpr float kGgxMinAlpha = 0.002f;
+float ggx_alpha(float roughness);
+float ggx_d(float a, float nh);
+float ggx_v(float a, float nl, float nv);  // G2 / (4 nl nv), height-correlated Smith
+float ggx_g1(float a, float nv);
+Vec3 schlick(Vec3 f0, float c);
+struct GlossyLobes {
+  Vec3 spec{0, 0, 0}, diffuse{0, 0, 0};
+};
+GlossyLobes glossy_eval(Vec3 n, Vec3 wo, Vec3 wi, Vec3 albedo, float roughness, float metalness);
+float glossy_spec_probability(Vec3 n, Vec3 wo, Vec3 albedo, float metalness);
+Vec3 ggx_sample_vndf(Vec3 n, Vec3 wo, float a, float u0, float u1);  // a microfacet normal
+float glossy_pdf(Vec3 n, Vec3 wo, Vec3 wi, float roughness, float p_spec);
+Vec3 glossy_sample(Vec3 n, Vec3 wo, float roughness, float p_spec, float u0, float u1, float pick);
+// The specular lobe's directional albedo E(n.wo) = integral of D V cos over wi (Fresnel 1, a
+// white metal), by midpoint quadrature over (theta, phi) of wi: `steps` x 2 `steps` cells.
+double ggx_directional_albedo(float roughness, float cos_view, int steps = 512);
+
 // decals.glsl: gib_decal_weight and gib_decals_at (albedo' = albedo * k + c; returns c, k in w).
 float decal_weight(const GpuDecal& d, Vec3 x, Vec3 n);
 Vec4 decals_at(const std::vector<GpuDecal>& decals, Vec3 x, Vec3 n);

@@ -116,6 +116,7 @@ GpuMaterial material_to_gpu(const Material& m) {
   g.metallic_roughness_texture = index(m.metallic_roughness_texture);
   g.normal_texture = index(m.normal_texture);
   g.normal_scale = m.normal_scale;
+  g.brdf = m.brdf == BrdfKind::glossy ? uint32_t(BrdfKind::glossy) : 0u;
   return g;
 }
 
@@ -145,6 +146,7 @@ SceneFeatures Scene::features() const {
         m.metallic_roughness_texture >= 0 || m.normal_texture >= 0)
       f |= Feature::textured;
     if (m.brdf == BrdfKind::cloth && m.sheen > 0) f |= Feature::cloth;
+    if (m.brdf == BrdfKind::glossy) f |= Feature::glossy;
   }
   if (std::any_of(decals.begin(), decals.end(), [](const Decal& d) { return d.opacity > 0; })) f |= Feature::decals;
   if (!indoor_volumes.empty()) f |= Feature::indoor_volumes;

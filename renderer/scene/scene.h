@@ -19,9 +19,10 @@ enum class TextureKind : uint32_t { none = 0, checker = 1, value_noise = 2, imag
 // colour texture's alpha, against alpha_cutoff; texture_opacity: glTF BLEND with a texture, the
 // same product as stochastic coverage.
 enum class AlphaKind : uint32_t { none = 0, leaf_mask = 1, checker_mask = 2, opacity = 3, texture_mask = 4, texture_opacity = 5 };
-// BRDF classes: standard (Lambertian, with thin translucency) and cloth (Lambertian plus a
-// Charlie sheen lobe; renderer/shaders/include/brdf.glsl, CPU mirror material_eval.h).
-enum class BrdfKind : uint32_t { standard = 0, cloth = 1 };
+// BRDF classes: standard (Lambertian, with thin translucency), cloth (Lambertian plus a
+// Charlie sheen lobe) and glossy (a GGX specular layer over a Lambertian base, metalness and
+// roughness read); renderer/shaders/include/brdf.glsl, CPU mirror material_eval.h.
+enum class BrdfKind : uint32_t { standard = 0, cloth = 1, glossy = 2 };
 
 struct Material {
   std::string name;
@@ -40,7 +41,7 @@ struct Material {
   float sheen = 0.0f;  // cloth: sheen lobe strength (grey), > 0; its roughness is `roughness`
   // Image textures (indices into Scene::textures, -1: none): base colour (sRGB, TextureKind::image
   // and the texture alphas read it), emissive (sRGB, multiplies `emissive`), metallic-roughness
-  // (linear; recorded: no BRDF here reads metalness, and roughness only shapes cloth sheen),
+  // (linear; recorded: only the glossy class reads metalness and roughness, the texture is not read),
   // normal (linear, tangent space, glTF's convention: every pass's shading normal, normal_map.h;
   // normal_scale scales its x and y).
   int32_t base_color_texture = -1;
@@ -190,7 +191,7 @@ struct GpuInstance {  // 16 bytes
   uint32_t triangle_count;
   uint32_t pad;
 };
-struct GpuMaterial {  // 96 bytes
+struct GpuMaterial {  // 112 bytes
   float albedo[3];
   float roughness;
   float emissive[3];
@@ -212,6 +213,8 @@ struct GpuMaterial {  // 96 bytes
   uint32_t emissive_texture;
   uint32_t metallic_roughness_texture;
   uint32_t normal_texture;  // tangent-space normal map (linear; normal_map.h)
+  uint32_t brdf;            // BrdfKind (standard and cloth read as 0: cloth is sheen > 0)
+  uint32_t pad[3];
 };
 struct GpuLight {  // 64 bytes
   float position[3];

@@ -191,7 +191,7 @@ Material parse_material(const Node& n, const std::string& name) {
       m.texture);
   m.albedo2 = get_vec3(n["albedo2"], kUnit, m.albedo2);
   m.texture_scale = get_float(n["texture_scale"], kPositive, m.texture_scale);
-  m.brdf = get_enum<BrdfKind>(n["brdf"], {{"standard", BrdfKind::standard}, {"cloth", BrdfKind::cloth}}, m.brdf);
+  m.brdf = get_enum<BrdfKind>(n["brdf"], {{"standard", BrdfKind::standard}, {"cloth", BrdfKind::cloth}, {"glossy", BrdfKind::glossy}}, m.brdf);
   Node sheen = n["sheen"];
   if (m.brdf == BrdfKind::cloth) {
     // The sheen lobe is the cloth class; a cloth without one is the standard BRDF by another name.
@@ -200,9 +200,13 @@ Material parse_material(const Node& n, const std::string& name) {
     if (m.translucency > 0)
       n["translucency"].fail("0 for brdf \"cloth\" (cloth does not transmit)", describe(*n["translucency"].v));
   } else if (sheen.present()) {
-    sheen.fail("no sheen for brdf \"standard\" (sheen is the cloth class's lobe: set \"brdf\": \"cloth\")",
-               describe(*sheen.v));
+    const char* kind = m.brdf == BrdfKind::glossy ? "no sheen for brdf \"glossy\" (sheen is the cloth class's lobe: set \"brdf\": \"cloth\")"
+                                                  : "no sheen for brdf \"standard\" (sheen is the cloth class's lobe: set \"brdf\": \"cloth\")";
+    sheen.fail(kind, describe(*sheen.v));
   }
+  // The glossy class's base is opaque: the thin-translucency model is the standard class's.
+  if (m.brdf == BrdfKind::glossy && m.translucency > 0)
+    n["translucency"].fail("0 for brdf \"glossy\" (glossy does not transmit)", describe(*n["translucency"].v));
   return m;
 }
 

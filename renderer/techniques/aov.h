@@ -10,7 +10,18 @@
 //   indirect_diffuse  radiance - direct: light that bounced at least once more before it
 //                     reached the first visible surface.
 //
+//   reflection        light the first visible surface's specular lobe reflects (glossy BRDF
+//                     class, brdf.glsl) along its reflection rays: the sky, emissive surfaces
+//                     and other surfaces' outgoing light those rays see, not the sun and local
+//                     lights sampled at that surface (their highlights are in direct). 0 on
+//                     surfaces without a specular lobe. It overlaps direct (the sky and emitters
+//                     it sees straight away) and indirect_diffuse (light that bounced before it
+//                     met the lobe): it is what a reflection pass computes, not a term of the sum.
+//
 // So radiance == direct + indirect_diffuse per pixel, for every technique that declares both.
+// (For a glossy first hit, direct holds the sky and emitters both lobes see straight away and
+// the lights both lobes reflect; indirect_diffuse holds everything that bounced before the first
+// hit, whichever lobe reflected it: the name stays, the meaning is "not direct".)
 // The reference path tracer splits its paths this way (path_trace.comp: a path's contribution
 // is direct while it has at most one vertex after the camera's hit, the hit itself included).
 #pragma once
@@ -22,6 +33,8 @@ namespace gib {
 inline constexpr std::string_view kAovRadiance = "radiance";
 inline constexpr std::string_view kAovDirect = "direct";
 inline constexpr std::string_view kAovIndirectDiffuse = "indirect_diffuse";
-inline constexpr std::array<std::string_view, 3> kContractAovs = {kAovRadiance, kAovDirect, kAovIndirectDiffuse};
+inline constexpr std::string_view kAovReflection = "reflection";
+inline constexpr std::array<std::string_view, 4> kContractAovs = {kAovRadiance, kAovDirect, kAovIndirectDiffuse,
+                                                                   kAovReflection};
 
 }  // namespace gib

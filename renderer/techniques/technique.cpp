@@ -84,6 +84,15 @@ std::vector<std::string> contract_aov_names(const Technique& t) {
   return names;
 }
 
+std::vector<std::string> contract_aov_names(const Technique& t, SceneFeatures scene) {
+  std::vector<std::string> names;
+  for (std::string& a : contract_aov_names(t)) {
+    auto it = t.contract_aov_needs.find(a);
+    if (it == t.contract_aov_needs.end() || scene.contains(it->second)) names.push_back(std::move(a));
+  }
+  return names;
+}
+
 std::vector<TechniqueOption> with_common_options(std::vector<TechniqueOption> opts, std::vector<double> targets) {
   opts.push_back(common_option("nan_guards",
                                "drop or repair non-finite values wherever history is read, blended or accumulated "

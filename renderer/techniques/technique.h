@@ -89,6 +89,10 @@ struct Technique {
   // The contract AOVs (aov.h) it produces exactly, each with the resource holding it; radiance
   // is always `output` and need not be listed. An AOV not listed is not comparable.
   std::map<std::string, std::string> contract_aovs;
+  // Contract AOVs whose passes need scene features (e.g. gow-ragnarok's reflection: glossy): in a
+  // scene without them the graph culls those passes and the AOV is not produced (by the contract
+  // it would be 0 there). AOVs not listed are produced in every scene.
+  std::map<std::string, SceneFeatures> contract_aov_needs;
   std::vector<std::string> presets;  // in order of quality: low, medium, high, ultra
   std::vector<TechniqueOption> options;  // in a stable order
   std::vector<TechniqueStat> stats;      // GPU counters reported per row
@@ -135,6 +139,8 @@ std::vector<TechniqueOption> with_common_options(std::vector<TechniqueOption> ow
 std::string contract_resource(const Technique& t, const std::string& aov);
 // The contract AOVs `t` declares, radiance first.
 std::vector<std::string> contract_aov_names(const Technique& t);
+// Those of them produced in a scene with these features (contract_aov_needs met).
+std::vector<std::string> contract_aov_names(const Technique& t, SceneFeatures scene);
 
 const std::vector<Technique>& techniques();
 // Throws std::invalid_argument naming the known techniques when `name` is unknown.

@@ -63,7 +63,7 @@ struct GpuInstance {  // 16 bytes
   uint pad;
 };
 
-struct GpuMaterial {  // 96 bytes
+struct GpuMaterial {  // 112 bytes
   vec3 albedo;
   float roughness;
   vec3 emissive;
@@ -82,6 +82,8 @@ struct GpuMaterial {  // 96 bytes
   uint emissive_texture;    // GIB_TEXTURE_NO_INDEX (textures.glsl)
   uint metallic_roughness_texture;
   uint normal_texture;      // tangent-space normal map (linear), sampled by gib_surface
+  uint brdf;                // GIB_BRDF_GLOSSY: the glossy class (brdf.glsl); else 0
+  uint brdf_pad0, brdf_pad1, brdf_pad2;
 };
 
 struct GpuLight {  // 64 bytes

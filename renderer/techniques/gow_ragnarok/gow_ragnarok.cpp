@@ -2,11 +2,17 @@
 // and G-buffer path of `direct`: cascaded shadow maps, a dilated min/max depth map, and the sun's
 // visibility by Poisson-style PCF (the baseline) or contact-hardening shadows marched through the
 // shadow map; direct_lighting takes the sun's visibility from the selected pass instead of
-// tracing a shadow ray. The screen-space terms and ray-traced cubemaps of issue 17 come later.
+// tracing a shadow ray. In scenes with a glossy material, ray-traced cube-map reflections
+// (cubemap_capture, reflections_rt_cubemap, reflections_resolve) give the AOV `reflection`.
+// The screen-space terms (SSDO, SSGI) of issue 17 come later.
 #include "renderer/techniques/gow_ragnarok/gow_ragnarok.h"
 
 #include "renderer/passes/gbuffer/gbuffer.h"
 #include "renderer/passes/visibility/visibility.h"
+#include "renderer/techniques/gow_ragnarok/cubemap_capture/cubemap_capture.h"
+#include "renderer/techniques/gow_ragnarok/reflections_resolve/reflections_resolve.h"
+#include "renderer/techniques/gow_ragnarok/reflections_rt_cubemap/reflections_rt_cubemap.h"
+#include "renderer/techniques/gow_ragnarok/reflections_rt_cubemap/reflections_rt_cubemap_shared.h"
 #include "renderer/techniques/gow_ragnarok/shadow_maps/shadow_maps.h"
 #include "renderer/techniques/gow_ragnarok/shadow_minmax/shadow_minmax.h"
 #include "renderer/techniques/gow_ragnarok/shadows_contact_hardening/shadows_contact_hardening.h"
@@ -51,12 +57,32 @@ Technique gow_ragnarok_technique() {
               {"shadow_minmax", make_shadow_minmax_pass},
               {"shadows_pcf", make_shadows_pcf_pass},
               {"shadows_contact_hardening", make_shadows_contact_hardening_pass},
-              {"direct_lighting", make_direct_lighting_pass}};
+              {"direct_lighting", make_direct_lighting_pass},
+              {"cubemap_capture", make_cubemap_capture_pass},
+              {"reflections_rt_cubemap", make_reflections_rt_cubemap_pass},
+              {"reflections_resolve", make_reflections_resolve_pass}};
   t.output = "direct_light";
   // Only direct light (sun through the shadow map, sky and local lights as `direct`).
-  t.contract_aovs = {{"direct", "direct_light"}};
+  // reflection: glossy surfaces' specular lobe (gow_ragnarok.md "Reflections"; scenes with a glossy material).
+  t.contract_aovs = {{"direct", "direct_light"}, {"reflection", "reflection"}};
+  t.contract_aov_needs = {{"reflection", Feature::glossy}};
   t.aovs = {"vbuffer",          "depth",         "gbuffer_albedo", "gbuffer_normal", "gbuffer_position",
-            "gbuffer_emissive", "shadow_map",    "shadow_minmax",  "shadow_pcf",     "shadow_contact_hardening"};
+            "gbuffer_emissive", "shadow_map",    "shadow_minmax",  "shadow_pcf",     "shadow_contact_hardening",
+            "reflection",       "reflection_trace", "reflection_cubemap"};
+  {
+    using namespace glsl;
+    // The seed's debug colours: where each reflection sample's colour came from.
+    t.stats = {{"reflection_screen", "share of reflection samples hit on screen by the screen-space trace (cyan)",
+                "reflection_stats", kReflStatScreen, kReflStatSamples},
+               {"reflection_bvh_screen", "share of reflection samples hit in the BVH and read from the screen (purple)",
+                "reflection_stats", kReflStatBvhScreen, kReflStatSamples},
+               {"reflection_cubemap", "share of reflection samples read from the cube map (yellow)", "reflection_stats",
+                kReflStatCubemap, kReflStatSamples},
+               {"reflection_sky", "share of reflection samples whose BVH ray left the scene (the sky)",
+                "reflection_stats", kReflStatSky, kReflStatSamples},
+               {"reflection_masked", "share of reflection samples below the surface (weight 0)", "reflection_stats",
+                kReflStatMasked, kReflStatSamples}};
+  }
   define_settings<GowRagnarokSettings>(t, kPresets, apply_row);
   TechniqueOption filter{"shadow_filter", "sun shadows: 0 PCF (the baseline), 1 contact hardening", 0, 1, true};
   filter.apply = [](Settings& s, double v) {
@@ -87,6 +113,15 @@ Technique gow_ragnarok_technique() {
           option("march_steps", "contact-hardening steps over the march distance", 1, 256, &G::march_steps),
           option("minmax_early_out", "skip fully lit / shadowed pixels and shorten marches by the dilated min/max", 0, 1,
                  &G::minmax_early_out),
+          option("reflection_mode", "glossy reflections: 0 the parallax-corrected cube map alone (baseline), 1 ray-traced "
+                 "cube maps (screen, then BVH, then cube map)", 0, 1, &G::reflection_mode),
+          option("cubemap_size", "texels per side of a reflection cube-map face", 4, 512, &G::cubemap_size),
+          option("cubemap_bounces", "path vertices of the cube map's baked light", 1, 64, &G::cubemap_bounces),
+          option("ssr_steps", "screen-space steps per reflection ray (0: BVH only)", 0, 1024, &G::ssr_steps),
+          option("ssr_thickness", "m behind the depth buffer a screen-space hit may lie", 0, 100, &G::ssr_thickness),
+          option("reflection_distance", "m a reflection ray marches on screen", 0.01, 1e5, &G::reflection_distance),
+          option("reflection_history", "frames the reflections' temporal resolve averages at most", 1, 4096,
+                 &G::reflection_history),
       },
       {0, 1});
   return t;

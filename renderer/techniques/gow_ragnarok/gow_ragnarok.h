@@ -2,12 +2,13 @@
 #pragma once
 #include "renderer/graph/settings.h"
 #include "renderer/passes/direct_lighting/direct_lighting.h"
+#include "renderer/techniques/gow_ragnarok/gow_reflection_params.h"
 
 namespace gib {
 
 enum class ShadowFilter : uint32_t { pcf = 0, contact_hardening = 1 };
 
-struct GowRagnarokSettings : TechniqueSettingsOf<GowRagnarokSettings>, DirectLightingParams {
+struct GowRagnarokSettings : TechniqueSettingsOf<GowRagnarokSettings>, DirectLightingParams, GowReflectionParams {
   uint32_t shadow_filter = uint32_t(ShadowFilter::contact_hardening);
   uint32_t cascades = 3;             // 1..kShadowMaxCascades
   uint32_t shadow_resolution = 1024; // texels per side of one cascade (rounded up to kShadowMinMaxTile)

@@ -14,6 +14,7 @@ inline constexpr uint32_t kPathTracerCpuRevision = 1;
 struct ReferenceSettings : TechniqueSettingsOf<ReferenceSettings> {
   uint32_t spp_per_frame = 1;  // samples per pixel added each frame
   uint32_t max_bounces = 8;    // path length cap (Russian roulette after 3)
+  uint32_t glossy_masking = 1;  // 0: the glossy lobe without Smith masking (a negative control)
 };
 
 }  // namespace gib

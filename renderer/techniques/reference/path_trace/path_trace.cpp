@@ -16,7 +16,8 @@ class PathTracePass final : public Pass {
     sum.values = non_negative_values();  // rgb radiance sums, a sample count
     d.slots = {{"pt_radiance_sum", Access::read_write, sum},
                {"pt_direct_sum", Access::read_write, sum},
-               {"pt_indirect_sum", Access::read_write, sum}};
+               {"pt_indirect_sum", Access::read_write, sum},
+               {"pt_reflection_sum", Access::read_write, sum}};
     d.work = {{"camera_samples", double(s.width) * s.height * s.params<ReferenceSettings>().spp_per_frame}};
     return d;
   }
@@ -33,12 +34,13 @@ class PathTracePass final : public Pass {
                        dbg.injects(3, ctx.frame) ? 1u : 0u,
                        dbg.inject_x,
                        dbg.inject_y,
-                       0};
+                       r.glossy_masking};
     static_assert(sizeof(push) == 32, "PathTracePush must match path_trace.comp's push block");
     record_compute(ctx, {.shader = "path_trace.comp",
                          .images = {{kPathTraceBindRadiance, "pt_radiance_sum"},
                                     {kPathTraceBindDirect, "pt_direct_sum"},
-                                    {kPathTraceBindIndirect, "pt_indirect_sum"}},
+                                    {kPathTraceBindIndirect, "pt_indirect_sum"},
+                                    {kPathTraceBindReflection, "pt_reflection_sum"}},
                          .groups_x = div_up(ctx.width("pt_radiance_sum"), kPathTraceGroup),
                          .groups_y = div_up(ctx.height("pt_radiance_sum"), kPathTraceGroup),
                          .push = &push,

@@ -8,13 +8,24 @@
 // roulette from the fourth vertex on, survival = max throughput (albedo-1 paths never die).
 // Alpha-tested surfaces are tested for real at every candidate hit (any-hit in traversal).
 // Seeded from (seed, sample index, pixel): the same command gives the same image.
+// Glossy materials (BrdfKind::glossy, brdf.glsl): NEE evaluates both lobes; the continuation
+// picks the GGX lobe (visible-normal sampling) with probability p_spec (the lobes' luminance
+// weights at the view angle), else the cosine lobe, and weighs f cos by the mixture's density
+// p_spec pdf_ggx + (1 - p_spec) pdf_cos (one-sample MIS, balance heuristic). A direction below
+// the shading hemisphere ends the path (masked: single-scattering GGX loses that energy).
 // AOVs: radiance; direct = emission seen + light arriving at the first hit straight from
 // sun, sky and local lights; indirect_diffuse = the rest (light that bounced at least once),
-// reflected at the first hit (albedo included). Sky pixels count as direct.
-// Slots: read_write pt_radiance_sum, pt_direct_sum, pt_indirect_sum (persistent, rgba32f).
+// reflected at the first hit (albedo included). Sky pixels count as direct. reflection = what
+// the first hit's specular lobe reflects along its sampled rays (aov.h): a second throughput
+// carries the specular share f_spec cos / pdf of the first hit's continuation.
+// Slots: read_write pt_radiance_sum, pt_direct_sum, pt_indirect_sum, pt_reflection_sum
+// (persistent, rgba32f).
 // Seed: none (the ground truth; docs/architecture.md "Techniques").
-// Limits: Lambertian BRDF only (no specular lobes); no MIS, since no light is sampled by two
-// strategies.
+// Limits: Lambertian and glossy BRDFs (no transmission through glossy surfaces); no MIS between
+// light sampling and BSDF sampling, since no light is sampled by both (the sun and local lights
+// by NEE only, the sky and emissive surfaces by the continuation only), so a near-mirror's
+// reflection of the small sun is NEE-sampled and noisy. Option glossy_masking 0 (a control)
+// drops the specular lobe's Smith masking.
 // NaN guard (Settings::nan_guards): a sample with a non-finite contribution is neither added nor
 // counted. Debug: inject_nan 3 makes the first sample of pixel (inject_x, inject_y) NaN on frame
 // inject_frame.

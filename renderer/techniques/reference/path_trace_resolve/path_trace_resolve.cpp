@@ -6,7 +6,10 @@ namespace gib {
 namespace {
 
 constexpr std::pair<const char*, const char*> kAovs[] = {
-    {"pt_radiance_sum", "radiance"}, {"pt_direct_sum", "direct"}, {"pt_indirect_sum", "indirect_diffuse"}};
+    {"pt_radiance_sum", "radiance"},
+    {"pt_direct_sum", "direct"},
+    {"pt_indirect_sum", "indirect_diffuse"},
+    {"pt_reflection_sum", "reflection"}};
 
 class PathTraceResolvePass final : public Pass {
  public:
