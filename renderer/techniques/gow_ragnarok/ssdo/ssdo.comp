@@ -19,7 +19,7 @@ layout(push_constant) uniform Push { ScreenSpacePush push; };
 #include "renderer/techniques/gow_ragnarok/include/gow_screen_space.glsl"
 
 // Visibility towards wi from the marched directions: their open (1) / blocked (0) results
-// weighted by a lobe around wi, exp((cos - 1) / kLobe) (0.14 at 45 degrees, 0.001 at 90), so a
+// weighted by a lobe around wi, exp((cos - 1) / kLobe) (0.03 at 45 degrees, 4e-6 at 90), so a
 // light above a table top reads the blocked directions near it, not a mean of the hemisphere
 // (a bent cone misreads such a ring of open directions round a blocked top). Where no direction
 // is near wi (a light at the horizon), the open fraction.
