@@ -138,8 +138,11 @@ TEST(CaseLoad, WhiteFurnace) {
   ASSERT_TRUE(c.analytic_value);
   EXPECT_EQ(*c.analytic_value, 1.0);
   // The reference's row, then voxel-clipmap's (per-pixel sky rays, and sky through its clipmap),
-  // which converge over frames: held to the analytic value in both ROIs.
-  ASSERT_EQ(c.techniques.size(), 3u);
+  // which converge over frames: held to the analytic value in both ROIs; then gow-ragnarok's
+  // (one frame: SSGI must add no energy), held to the same band.
+  ASSERT_EQ(c.techniques.size(), 4u);
+  EXPECT_EQ(c.techniques[3].technique, "gow-ragnarok");
+  EXPECT_EQ(c.techniques[3].thresholds[0].against, "analytic");
   for (size_t i : {1u, 2u}) {
     EXPECT_EQ(c.techniques[i].technique, "voxel-clipmap");
     EXPECT_EQ(c.techniques[i].frames, 256u);

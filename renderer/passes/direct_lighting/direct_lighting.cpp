@@ -42,7 +42,7 @@ class DirectLightingPass final : public Pass {
                          .push_bytes = sizeof(push),
                          .spec_constants = {{kDirectSpecSun, f.has(Feature::sun)},
                                             {kDirectSpecSky, f.has(Feature::sky)},
-                                            {kDirectSpecLocal, f.has(Feature::local_lights)},
+                                            {kDirectSpecLocal, f.has(Feature::local_lights) && params.local_lights},
                                             {kDirectSpecAlpha, f.has(Feature::alpha_tested)},
                                             {kDirectSpecEmissive, f.has(Feature::emissive)}}});
   }

@@ -1,7 +1,8 @@
 // direct_lighting: lights every G-buffer pixel from the sun (one shadow ray per pixel into a
 // cone of the sun's angular radius), the sky and emissive surfaces (`sky_rays` cosine-distributed
 // rays: the sky where one escapes, the emission of what it hits) and every local light (point
-// and spot, one shadow ray each), plus emission: the `direct` AOV of the contract
+// and spot, one shadow ray each; left to another pass where DirectLightingParams::local_lights is
+// false), plus emission: the `direct` AOV of the contract
 // (renderer/techniques/aov.h) exactly, for every light type. Lambertian, with
 // diffuse transmission for translucent materials (light from the back face scaled by
 // translucency). Sky pixels get the sky radiance. Output is linear HDR (RGBA32F).
@@ -30,6 +31,9 @@ struct DirectLightingParams {
   // size, visibility in [0, 1]) another pass of the technique writes: the sun light is scaled by
   // it instead of traced (a shadow-map technique's filtered shadows), from the sun's centre.
   std::string_view sun_visibility;
+  // false: direct_lighting leaves the local lights out; another pass of the technique lights
+  // them (gow-ragnarok's ssdo: lights without shadow maps, occluded in screen space).
+  bool local_lights = true;
 };
 
 // The sky-ray ladder of every technique whose quality is direct_lighting's (direct, deferred).

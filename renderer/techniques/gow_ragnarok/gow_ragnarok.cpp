@@ -2,9 +2,10 @@
 // and G-buffer path of `direct`: cascaded shadow maps, a dilated min/max depth map, and the sun's
 // visibility by Poisson-style PCF (the baseline) or contact-hardening shadows marched through the
 // shadow map; direct_lighting takes the sun's visibility from the selected pass instead of
-// tracing a shadow ray. In scenes with a glossy material, ray-traced cube-map reflections
-// (cubemap_capture, reflections_rt_cubemap, reflections_resolve) give the AOV `reflection`.
-// The screen-space terms (SSDO, SSGI) of issue 17 come later.
+// tracing a shadow ray. Local lights have no shadow maps: ssdo lights them through screen-space
+// directional occlusion; ssgi adds a screen-space bounce. In scenes with a glossy material,
+// ray-traced cube-map reflections (cubemap_capture, reflections_rt_cubemap, reflections_resolve)
+// give the AOV `reflection`.
 #include "renderer/techniques/gow_ragnarok/gow_ragnarok.h"
 
 #include "renderer/passes/gbuffer/gbuffer.h"
@@ -17,6 +18,9 @@
 #include "renderer/techniques/gow_ragnarok/shadow_minmax/shadow_minmax.h"
 #include "renderer/techniques/gow_ragnarok/shadows_contact_hardening/shadows_contact_hardening.h"
 #include "renderer/techniques/gow_ragnarok/shadows_pcf/shadows_pcf.h"
+#include "renderer/techniques/gow_ragnarok/include/gow_screen_space_shared.h"
+#include "renderer/techniques/gow_ragnarok/ssdo/ssdo.h"
+#include "renderer/techniques/gow_ragnarok/ssgi/ssgi.h"
 #include "renderer/techniques/technique.h"
 
 namespace gib {
@@ -25,9 +29,12 @@ namespace {
 struct Preset {
   const char* name;
   uint32_t cascades, resolution, taps, march_steps, sky_rays;
+  uint32_t ssdo_directions, ssdo_steps, ssgi_directions, ssgi_steps;  // ssdo/, ssgi/
 };
-constexpr Preset kPresets[] = {
-    {"low", 2, 512, 8, 6, 1}, {"medium", 3, 1024, 16, 10, 4}, {"high", 4, 2048, 24, 14, 16}, {"ultra", 4, 4096, 32, 20, 64}};
+constexpr Preset kPresets[] = {{"low", 2, 512, 8, 6, 1, 4, 4, 4, 8},
+                               {"medium", 3, 1024, 16, 10, 4, 8, 6, 8, 12},
+                               {"high", 4, 2048, 24, 14, 16, 12, 8, 16, 16},
+                               {"ultra", 4, 4096, 32, 20, 64, 16, 12, 32, 24}};
 
 // The slot direct_lighting reads the sun's visibility from: the selected filter's output.
 std::string_view visibility_slot(uint32_t filter) {
@@ -40,6 +47,10 @@ void apply_row(GowRagnarokSettings& s, const Preset& p) {
   s.taps = p.taps;
   s.march_steps = p.march_steps;
   s.sky_rays = p.sky_rays;
+  s.ssdo_directions = p.ssdo_directions;
+  s.ssdo_steps = p.ssdo_steps;
+  s.ssgi_directions = p.ssgi_directions;
+  s.ssgi_steps = p.ssgi_steps;
   s.sun_visibility = visibility_slot(s.shadow_filter);
 }
 
@@ -58,16 +69,24 @@ Technique gow_ragnarok_technique() {
               {"shadows_pcf", make_shadows_pcf_pass},
               {"shadows_contact_hardening", make_shadows_contact_hardening_pass},
               {"direct_lighting", make_direct_lighting_pass},
+              {"ssdo", make_ssdo_pass},
+              {"ssgi", make_ssgi_pass},
               {"cubemap_capture", make_cubemap_capture_pass},
               {"reflections_rt_cubemap", make_reflections_rt_cubemap_pass},
               {"reflections_resolve", make_reflections_resolve_pass}};
-  t.output = "direct_light";
-  // Only direct light (sun through the shadow map, sky and local lights as `direct`).
-  // reflection: glossy surfaces' specular lobe (gow_ragnarok.md "Reflections"; scenes with a glossy material).
-  t.contract_aovs = {{"direct", "direct_light"}, {"reflection", "reflection"}};
+  t.output = "gow_radiance";
+  // direct: sun through the shadow map, sky by rays, local lights through SSDO (their only
+  // visibility, gow_ragnarok.md "The AOV contract"); indirect_diffuse: SSGI's one bounce;
+  // reflection: glossy surfaces' specular lobe (gow_ragnarok.md "Reflections"; scenes with a
+  // glossy material; not part of radiance, as the reference's).
+  t.contract_aovs = {{"radiance", "gow_radiance"},
+                     {"direct", "gow_direct"},
+                     {"indirect_diffuse", "ssgi_indirect"},
+                     {"reflection", "reflection"}};
   t.contract_aov_needs = {{"reflection", Feature::glossy}};
-  t.aovs = {"vbuffer",          "depth",         "gbuffer_albedo", "gbuffer_normal", "gbuffer_position",
-            "gbuffer_emissive", "shadow_map",    "shadow_minmax",  "shadow_pcf",     "shadow_contact_hardening",
+  t.aovs = {"vbuffer",          "depth",         "gbuffer_albedo",   "gbuffer_normal",   "gbuffer_position",
+            "gbuffer_emissive", "shadow_map",    "shadow_minmax",    "shadow_pcf",       "shadow_contact_hardening",
+            "direct_light",     "ssdo_cone",     "ssdo_local_light", "ssgi_indirect",    "gow_direct",
             "reflection",       "reflection_trace", "reflection_cubemap"};
   {
     using namespace glsl;
@@ -113,6 +132,21 @@ Technique gow_ragnarok_technique() {
           option("march_steps", "contact-hardening steps over the march distance", 1, 256, &G::march_steps),
           option("minmax_early_out", "skip fully lit / shadowed pixels and shorten marches by the dilated min/max", 0, 1,
                  &G::minmax_early_out),
+          option("local_shadows", "local lights: 1 shadow rays (direct_lighting), 0 no shadow maps (ssdo occludes them)",
+                 0, 1, &DirectLightingParams::local_lights),
+          option("ssdo", "screen-space directional occlusion of the unshadowed local lights (0: they leak)", 0, 1,
+                 &G::ssdo),
+          option("ssdo_radius", "metres ssdo marches per direction", 0.01, 100, &G::ssdo_radius),
+          option("ssdo_thickness", "metres a surface in front of ssdo's march may be and still block it", 0.001, 100,
+                 &G::ssdo_thickness),
+          option("ssdo_directions", "ssdo directions per pixel", 1, glsl::kSsMaxDirections, &G::ssdo_directions),
+          option("ssdo_steps", "ssdo steps per direction", 1, glsl::kSsMaxSteps, &G::ssdo_steps),
+          option("ssgi", "screen-space one-bounce indirect light (0: none)", 0, 1, &G::ssgi),
+          option("ssgi_radius", "metres ssgi marches per direction", 0.01, 100, &G::ssgi_radius),
+          option("ssgi_thickness", "metres a surface in front of ssgi's march may be and still be its hit", 0.001, 100,
+                 &G::ssgi_thickness),
+          option("ssgi_directions", "ssgi directions per pixel", 1, glsl::kSsMaxDirections, &G::ssgi_directions),
+          option("ssgi_steps", "ssgi steps per direction", 1, glsl::kSsMaxSteps, &G::ssgi_steps),
           option("reflection_mode", "glossy reflections: 0 the parallax-corrected cube map alone (baseline), 1 ray-traced "
                  "cube maps (screen, then BVH, then cube map)", 0, 1, &G::reflection_mode),
           option("cubemap_size", "texels per side of a reflection cube-map face", 4, 512, &G::cubemap_size),

@@ -22,7 +22,23 @@ struct GowRagnarokSettings : TechniqueSettingsOf<GowRagnarokSettings>, DirectLig
   uint32_t taps = 16;                // PCF taps / contact-hardening rays per pixel (1..32)
   uint32_t march_steps = 12;         // contact-hardening steps over the march distance
   bool minmax_early_out = true;      // shadow_minmax: skip fully lit / shadowed pixels, shorten marches
-  GowRagnarokSettings() { sun_visibility = "shadow_contact_hardening"; }  // the selected filter's output
+  // Screen-space terms (ssdo/, ssgi/; gow_ragnarok.md "SSDO and SSGI"). Local lights have no
+  // shadow maps (DirectLightingParams::local_lights false, option local_shadows 0): ssdo lights
+  // them through its directional occlusion.
+  bool ssdo = true;                  // off: unshadowed local lights light everything in reach (the leak)
+  float ssdo_radius = 1.0f;          // m marched per direction
+  float ssdo_thickness = 1.0f;       // m: a depth-buffer surface nearer than this in front of the march blocks it
+  uint32_t ssdo_directions = 8;      // cosine-weighted directions per pixel (1..kSsMaxDirections)
+  uint32_t ssdo_steps = 6;           // steps per direction (1..kSsMaxSteps)
+  bool ssgi = true;                  // off: no indirect light (indirect_diffuse 0)
+  float ssgi_radius = 2.0f;
+  float ssgi_thickness = 0.5f;
+  uint32_t ssgi_directions = 8;
+  uint32_t ssgi_steps = 12;
+  GowRagnarokSettings() {
+    sun_visibility = "shadow_contact_hardening";  // the selected filter's output
+    local_lights = false;                         // unshadowed: ssdo lights them
+  }
 };
 
 }  // namespace gib
