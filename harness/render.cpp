@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/image_io.h"
+#include "renderer/image/format.h"
 #include "renderer/scene/scene_loader.h"
 #include "renderer/techniques/reference/reference.h"
 #include "renderer/techniques/technique.h"
@@ -259,6 +260,12 @@ int cmd_render(const RenderOptions& o) {
     j["spp"] = run.frames * spp_per_frame(run.settings);
     j["frame_median_ms"] = run.frame_median_ms;
     j["resource_bytes"] = run.plan.total_bytes();
+    auto& resources = j["resources"] = nlohmann::json::array();  // memory by buffer / image
+    for (const ResolvedResource& r : run.plan.resources) {
+      const std::string producer = r.producer >= 0 ? run.plan.passes[size_t(r.producer)].name : "";
+      resources.push_back({{"name", r.name}, {"format", format_name(r.desc.format)}, {"bytes", r.bytes},
+                           {"copies", r.copies}, {"producer", producer}});
+    }
     j["texture_bytes"] = run.texture_bytes;
     j["scene_load"] = {{"ms", run.scene_load.ms}, {"mesh_bytes", run.scene_load.mesh_bytes},
                        {"texture_bytes", run.scene_load.texture_bytes}};

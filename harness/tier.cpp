@@ -140,6 +140,7 @@ std::string scene_content_hash(const Scene& s) {
     raw(&i.material, sizeof i.material);
     raw(&i.transform, sizeof i.transform);
     vec(i.animation);
+    raw(&i.removed_at, sizeof i.removed_at);
   }
   for (const Material& m : s.materials) {
     bytes += m.name;

@@ -364,6 +364,30 @@ TEST(SceneAnimation, InstanceKeysInterpolateAndClamp) {
   EXPECT_THROW(s.instance_transform(7, 0.0f), std::out_of_range);
 }
 
+TEST(SceneAnimation, RemovedAtCollapsesTheInstanceFromThatTimeOn) {
+  Scene s = minimal_scene();
+  s.instances[0].transform = Mat4::trs({1, 2, 3}, {0, 0, 0}, {2, 2, 2});
+  EXPECT_FALSE(s.instances[0].changes());
+  s.instances[0].removed_at = 0.5f;
+  EXPECT_TRUE(s.instances[0].changes());
+  EXPECT_TRUE(s.features().has(Feature::motion));
+  expect_near(s.instance_transform(0, 0.49f).transform_point({1, 0, 0}), {3, 2, 3});
+  // At and after the removal every vertex sits on the instance's origin: zero-area triangles.
+  for (float t : {0.5f, 7.0f}) {
+    const Mat4 m = s.instance_transform(0, t);
+    expect_near(m.transform_point({1, 0, 0}), {1, 2, 3});
+    expect_near(m.transform_point({-4, 5, 6}), {1, 2, 3});
+  }
+  // With keys, the collapse happens where the keys put the instance at the removal time.
+  s.instances[0].animation = {Keyframe{0.0f, {0, 0, 0}}, Keyframe{1.0f, {10, 0, 0}}};
+  expect_near(s.instance_transform(0, 3.0f).transform_point({1, 1, 1}), {5, 0, 0});
+  FlatScene f = flatten(s, 1.0f);
+  for (const GpuVertex& v : f.vertices) {
+    EXPECT_TRUE(std::isfinite(v.nx) && std::isfinite(v.ny) && std::isfinite(v.nz));
+    EXPECT_NEAR(v.px, 5.0f, 1e-6f);
+  }
+}
+
 TEST(SceneAnimation, CameraKeys) {
   Scene s = minimal_scene();
   s.camera.animation = {CameraKey{0.0f, {0, 0, 0}, {0, 0, -1}, 40.0f}, CameraKey{1.0f, {10, 0, 0}, {10, 0, -1}, 60.0f}};
@@ -572,6 +596,17 @@ TEST(SceneLoader, AnimationChannelsDefaultToStaticTransform) {
   EXPECT_TRUE(s.features().has(Feature::motion));
 }
 
+TEST(SceneLoader, RemovedAt) {
+  json doc = minimal_doc();
+  Scene kept = parse_scene(doc, "kept.json");
+  EXPECT_FALSE(kept.instances[0].removable());
+  EXPECT_FALSE(kept.features().has(Feature::motion));
+  doc["objects"][0]["removed_at"] = 0.25;
+  Scene s = parse_scene(doc, "removed.json");
+  EXPECT_FLOAT_EQ(s.instances[0].removed_at, 0.25f);
+  EXPECT_TRUE(s.features().has(Feature::motion));
+}
+
 // A valid one-triangle mesh primitive for object 0; returns it for edits.
 json& set_mesh(json& d) {
   d["objects"][0]["primitive"] =
@@ -669,6 +704,10 @@ const BadCase kBadCases[] = {
      "/objects/0/transform/translate/0", "expected finite number"},
     {"empty animation", [](json& d) { d["objects"][0]["animation"] = json::array(); }, "/objects/0/animation",
      "expected non-empty array, got empty array"},
+    {"removed_at negative", [](json& d) { d["objects"][0]["removed_at"] = -1; }, "/objects/0/removed_at",
+     "expected number >= 0, got -1"},
+    {"removed_at not a number", [](json& d) { d["objects"][0]["removed_at"] = "soon"; }, "/objects/0/removed_at",
+     "got \"soon\""},
     {"keys out of order",
      [](json& d) { d["objects"][0]["animation"] = json::parse(R"([{"time": 1}, {"time": 0.5}])"); },
      "/objects/0/animation/1/time", "expected time > 1 (the previous key's), got 0.5"},

@@ -254,6 +254,7 @@ class Exporter {
     const Mat4 m = s_.instance_transform(i, time_);
     if (!is_identity(m)) node.matrix = column_major(m);
     if (!inst.animation.empty()) r_.lossy.push_back(inst.name + ": animation written as its transform at the export time");
+    if (inst.removable()) r_.lossy.push_back(inst.name + ": removed_at written as its transform at the export time");
     add_node(std::move(node));
   }
 

@@ -158,16 +158,14 @@ SceneFeatures Scene::features() const {
     camera_moves = !(a.position == b.position) || !(a.target == b.target) || a.fov_y_deg != b.fov_y_deg;
   }
   bool object_moves = std::any_of(instances.begin(), instances.end(),
-                                  [](const Instance& inst) { return inst.animation.size() > 1; });
+                                  [](const Instance& inst) { return inst.changes(); });
   if (camera_moves || object_moves) f |= Feature::motion;
   return f;
 }
 
-Mat4 Scene::instance_transform(uint32_t instance, float time) const {
-  if (instance >= instances.size())
-    throw std::out_of_range("instance_transform: instance " + std::to_string(instance) + " of " +
-                            std::to_string(instances.size()));
-  const Instance& inst = instances[instance];
+namespace {
+// The keyframed (or static) transform of one instance, removal aside.
+Mat4 keyed_transform(const Instance& inst, float time) {
   if (inst.animation.empty()) return inst.transform;
   size_t i0, i1;
   float w;
@@ -178,6 +176,18 @@ Mat4 Scene::instance_transform(uint32_t instance, float time) const {
   // that this matches what the scene author means, and it allows spins past 180 degrees.
   return Mat4::trs(lerp(a.translation, b.translation, w), lerp(a.rotation_deg, b.rotation_deg, w),
                    lerp(a.scale, b.scale, w));
+}
+}  // namespace
+
+Mat4 Scene::instance_transform(uint32_t instance, float time) const {
+  if (instance >= instances.size())
+    throw std::out_of_range("instance_transform: instance " + std::to_string(instance) + " of " +
+                            std::to_string(instances.size()));
+  const Instance& inst = instances[instance];
+  // Removed (`removed_at`): the transform at the removal time squeezed to the instance's origin,
+  // finite, every triangle of zero area.
+  if (time >= inst.removed_at) return keyed_transform(inst, inst.removed_at) * Mat4::scaling({0, 0, 0});
+  return keyed_transform(inst, time);
 }
 
 Camera Scene::camera_at(float time) const {

@@ -4,6 +4,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -98,6 +99,12 @@ struct Instance {
   uint32_t material = 0;
   Mat4 transform = Mat4::identity();  // static transform (or base when animated)
   std::vector<Keyframe> animation;    // empty: static; else overrides transform
+  // Scene key `removed_at` (seconds): from this time on the instance is collapsed to its origin
+  // (scale 0: no area, so no raster, no BVH triangle), a step, not a fade. Infinity: never.
+  float removed_at = std::numeric_limits<float>::infinity();
+  bool removable() const { return removed_at < std::numeric_limits<float>::infinity(); }
+  // Its transform can differ between two times (keyframed motion or a removal).
+  bool changes() const { return animation.size() > 1 || removable(); }
 };
 
 enum class LightKind : uint32_t { point = 0, spot = 1 };

@@ -405,7 +405,7 @@ float get_key_time(const Node& n, size_t index, float previous) {
 
 Instance parse_object(const Node& n, size_t index, const std::map<std::string, uint32_t>& material_index,
                       std::map<std::string, uint32_t>& mesh_index, std::vector<Mesh>& meshes) {
-  check_object(n, {"type", "name", "primitive", "material", "transform", "animation"});
+  check_object(n, {"type", "name", "primitive", "material", "transform", "animation", "removed_at"});
   Instance inst;
   inst.name = get_string(n["name"], "object" + std::to_string(index));
 
@@ -450,6 +450,7 @@ Instance parse_object(const Node& n, size_t index, const std::map<std::string, u
       inst.animation.push_back(kf);
     }
   }
+  if (n["removed_at"].present()) inst.removed_at = get_float(n["removed_at"], kNonNegative, std::nullopt);
   return inst;
 }
 

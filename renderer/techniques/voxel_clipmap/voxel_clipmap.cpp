@@ -72,6 +72,10 @@ std::vector<TechniqueOption> own_options() {
       option("queue_b", "empty irradiance cells relit per frame at most (queue B)", 0, 65536, &S::queue_b),
       option("rays_per_cell", "rays per relit cell, one thread each (32, 64, 128 or 256)", 32, 256, &S::rays_per_cell),
       option("march_steps", "voxels a ray visits at most", 1, 4096, &S::march_steps),
+      option("select_per_queue",
+             "irradiance_select adapts one threshold P for cells with geometry (towards queue A's capacity) and one for "
+             "empty cells (towards queue B's), instead of one P for both (0/1)",
+             0, 1, &S::select_per_queue),
       option("history_frames", "relight temporal weight min(1, age / history_frames)", 1, 1024, &S::history_frames),
       option("convex_offset",
              "leak mitigation: lookup moved along the normal, cells behind the surface's plane dropped (0/1)", 0, 1,

@@ -33,6 +33,7 @@ struct VoxelClipmapSettings : TechniqueSettingsOf<VoxelClipmapSettings>, DirectL
   uint32_t rays_per_cell = 64;    // one thread per ray: 32, 64, 128 or 256
   uint32_t march_steps = 256;     // voxels a ray visits at most
   float history_frames = 8.0f;    // age-weighted temporal weight: min(1, age / history_frames)
+  bool select_per_queue = false;  // one P for cells with geometry (queue A), one for empty cells (queue B)
   // ---- shading (5.1)
   bool convex_offset = true;      // lookup moved along the normal, corners behind the surface dropped
 };

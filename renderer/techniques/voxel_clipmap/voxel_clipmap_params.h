@@ -42,7 +42,7 @@ inline glsl::VcParams make_vc_params(const Settings& s, uint32_t frame) {
   const uint32_t flags = (s.nan_guards ? kVcFlagNanGuards : 0) | (p.convex_offset ? kVcFlagConvexOffset : 0) |
                          (p.geometry_fill ? kVcFlagGeometryFill : 0) | (p.semi_transparent ? kVcFlagSemiTransparent : 0) |
                          (p.sky_rays == 0 ? kVcFlagSkyFromCubes : 0) | (p.invalidate ? kVcFlagInvalidate : 0) |
-                         (p.multi_bounce ? kVcFlagMultiBounce : 0);
+                         (p.multi_bounce ? kVcFlagMultiBounce : 0) | (p.select_per_queue ? kVcFlagSelectPerQueue : 0);
   VcParams r{};
   r.grid = {p.grid, p.levels, frame, flags};
   r.sizes = {p.voxel_size, p.feed_weight, p.history_frames, 0};

@@ -42,6 +42,7 @@ GIB_CONST(uint, kVcFlagSemiTransparent, 8)
 GIB_CONST(uint, kVcFlagSkyFromCubes, 16)   // direct_lighting traces no sky rays: the cubes' direct part (sky, emitters) lights pixels
 GIB_CONST(uint, kVcFlagInvalidate, 32)
 GIB_CONST(uint, kVcFlagMultiBounce, 64)    // the feed adds albedo x the clipmap's bounce (0: one bounce, a control)
+GIB_CONST(uint, kVcFlagSelectPerQueue, 128)  // irradiance_select keeps one P for cells with geometry, one for empty cells
 
 struct VcParams {
   uvec4 grid;    // x: N voxels per axis per level, y: levels, z: frame, w: kVcFlag*
@@ -57,7 +58,7 @@ struct VcState {
   ivec4 voxel_prev[kVcMaxLevels];
   ivec4 cell_origin[kVcMaxLevels];
   ivec4 cell_prev[kVcMaxLevels];
-  vec4 select;   // x: threshold P of age x random > P, y: candidates that passed last frame, z,w: unused
+  vec4 select;   // x: threshold P of age x random > P (cells with geometry under select_per_queue), y: candidates that passed last frame, z: P of empty cells (select_per_queue), w: unused
   uvec4 stats;   // x: voxels entered (moved in or invalidated), y: voxels fed, z: voxels given geometry opacity, w: cells entered
 };
 GIB_CONST(uint, kVcOriginValid, 1)

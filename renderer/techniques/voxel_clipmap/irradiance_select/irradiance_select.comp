@@ -22,6 +22,7 @@ layout(local_size_x = kIrrSelectGroup) in;
 shared uint s_subgroup[kIrrSelectGroup];
 shared uint s_count[3];  // candidates so far: A', A, B
 shared uint s_passed;
+shared uint s_passed_geometry;  // of them, cells with geometry
 
 uint cap_total() { return vc.budget.y + vc.budget.w; }
 // Scratch list q (0: A', 1: A, 2: B) after the final list.
@@ -72,8 +73,11 @@ void main() {
   uint tid = gl_LocalInvocationIndex;
   if (tid < 3u) s_count[tid] = 0u;
   if (tid == 0u) s_passed = 0u;
+  if (tid == 0u) s_passed_geometry = 0u;
   barrier();
+  const bool per_queue = vc_flag(kVcFlagSelectPerQueue);
   float P = vc_state.select.x;
+  float P_empty = per_queue ? vc_state.select.z : P;
   uint cells = vc_levels() * vc_cells_per_level();
   int m = vc_m();
   for (uint base = 0u; base < cells; base += kIrrSelectGroup) {
@@ -93,11 +97,12 @@ void main() {
            (vis ? kVcCellVisible : 0u);
       cell_state[cell] = st;
       GibRng rng = gib_rng(vc.rays.z, vc_frame(), uvec2(cell, 7u), 11u);
-      bool pass = vis && float(age) * gib_next(rng) > P;
+      bool pass = vis && float(age) * gib_next(rng) > (geometry ? P : P_empty);
       qa_new = vis && geometry && (st & kVcCellRelit) == 0u;
       qa = pass && geometry && !qa_new;
       qb = pass && !geometry;
       if (qa || qb) atomicAdd(s_passed, 1u);
+      if (qa) atomicAdd(s_passed_geometry, 1u);
     }
     append(qa_new, 0u, cell);
     append(qa, 1u, cell);
@@ -117,8 +122,18 @@ void main() {
     queue.counts = uvec4(n_new, n_a, n_b, s_passed);
     // P for the next frame: towards passing about the queues' capacity (the seed's "chosen
     // based on the previous frame cells passed count").
-    float target = float(max(vc.budget.y - n_new, 1u) + vc.budget.w);
-    float ratio = clamp(float(s_passed) / target, 0.5, 2.0);
-    vc_state.select = vec4(clamp(max(P, 0.01) * ratio, 0.01, 65535.0), float(s_passed), 0.0, 0.0);
+    // select_per_queue: empty cells far outnumber cells with geometry, so one P tuned to the
+    // queues' total capacity is set by empty cells that queue B mostly drops, and cells with
+    // geometry starve; then each P follows its own queue's count and capacity.
+    if (per_queue) {
+      float ratio_a = clamp(float(s_passed_geometry) / float(max(vc.budget.y - n_new, 1u)), 0.5, 2.0);
+      float ratio_b = clamp(float(s_passed - s_passed_geometry) / float(max(vc.budget.w, 1u)), 0.5, 2.0);
+      vc_state.select = vec4(clamp(max(P, 0.01) * ratio_a, 0.01, 65535.0), float(s_passed),
+                             clamp(max(P_empty, 0.01) * ratio_b, 0.01, 65535.0), 0.0);
+    } else {
+      float target = float(max(vc.budget.y - n_new, 1u) + vc.budget.w);
+      float ratio = clamp(float(s_passed) / target, 0.5, 2.0);
+      vc_state.select = vec4(clamp(max(P, 0.01) * ratio, 0.01, 65535.0), float(s_passed), 0.0, 0.0);
+    }
   }
 }

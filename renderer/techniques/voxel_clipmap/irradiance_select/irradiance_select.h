@@ -7,10 +7,13 @@
 // capacity(QueueA) - occupied(QueueA')"), B (empty cells that passed, at most queue_b). The
 // result is one list, A' then A then B, and the indirect arguments of irradiance_relight (one
 // workgroup per cell). One workgroup appends in cell order with subgroup ballots, so the
-// selection is the same on every run.
+// selection is the same on every run. select_per_queue 1 keeps two thresholds, P for cells
+// with geometry (towards queue A's capacity less A') and P for empty cells (towards queue B's).
 // Slots: read_write voxel_clip_state, irradiance_cell_state; read scene_voxel_data;
 // writes irradiance_queue.
-// Limits: no hierarchical-Z occlusion test (frustum only); one workgroup walks every cell.
+// Limits: no hierarchical-Z occlusion test (frustum only); one workgroup walks every cell; with
+// one P (select_per_queue 0, the default) the far more numerous empty cells set it and cells
+// with geometry can starve for frames (voxel_clipmap.md, "Limits").
 #pragma once
 #include <memory>
 

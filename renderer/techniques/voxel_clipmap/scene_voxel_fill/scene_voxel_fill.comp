@@ -26,6 +26,9 @@ void voxelize(uint tid) {
   GpuTriangle t = gib_triangles[tri];
   vec3 a = gib_vertices[t.i0].position, b = gib_vertices[t.i1].position, c = gib_vertices[t.i2].position;
   if (!gib_finite(a) || !gib_finite(b) || !gib_finite(c)) return;
+  // Zero-area triangles are left out, as the BVH leaves them out (a removed instance, scene key
+  // removed_at, is collapsed to a point and must not keep an opaque voxel there).
+  if (all(equal(cross(b - a, c - a), vec3(0.0)))) return;
   GpuMaterial m = gib_materials[gib_instances[t.instance].material];
   float opacity = (m.alpha != GIB_ALPHA_NONE && vc_flag(kVcFlagSemiTransparent)) ? m.avg_opacity : 1.0;
   uint op8 = vc_opacity_byte(opacity);

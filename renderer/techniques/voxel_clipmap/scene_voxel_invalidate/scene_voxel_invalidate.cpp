@@ -29,7 +29,7 @@ std::vector<Box> moved_boxes(const Scene& scene, uint32_t frame, Vec3 offset) {
   const float now = float(frame) * scene.frame_time, before = float(frame - 1) * scene.frame_time;
   for (uint32_t i = 0; i < scene.instances.size(); ++i) {
     const Instance& inst = scene.instances[i];
-    if (inst.animation.empty()) continue;
+    if (!inst.changes()) continue;
     const Mat4 a = scene.instance_transform(i, before), b = scene.instance_transform(i, now);
     if (same(a, b)) continue;
     Box box;
