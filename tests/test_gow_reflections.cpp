@@ -166,8 +166,9 @@ TEST(GowReflectionGraph, GlossyMaterialsRunTheReflectionPasses) {
   Plan cube = plan(hall, apply_options(t, s, {{"reflection_mode", 0}}), {"reflection"});
   for (const char* name : kReflectionPasses) EXPECT_TRUE(find(cube, name)->runs) << name;
   EXPECT_FALSE(find(cube, "direct_lighting")->runs) << "the cube map alone reads no lit screen";
-  EXPECT_EQ(contract_aov_names(t, furnace.features()), (std::vector<std::string>{"radiance", "direct"}));
-  EXPECT_EQ(contract_aov_names(t, hall.features()), (std::vector<std::string>{"radiance", "direct", "reflection"}));
+  EXPECT_EQ(contract_aov_names(t, furnace.features()), (std::vector<std::string>{"radiance", "direct", "indirect_diffuse"}));
+  EXPECT_EQ(contract_aov_names(t, hall.features()),
+            (std::vector<std::string>{"radiance", "direct", "indirect_diffuse", "reflection"}));
 }
 
 }  // namespace

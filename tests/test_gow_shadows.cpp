@@ -15,6 +15,7 @@
 #include "renderer/techniques/gow_ragnarok/gow_ragnarok.h"
 #include "renderer/techniques/gow_ragnarok/shadow_cascades.h"
 #include "renderer/techniques/technique.h"
+#include "tests/gow_render.h"
 #include "tests/gpu_fixture.h"
 
 namespace gib {
@@ -206,14 +207,7 @@ Settings shadow_settings(uint32_t filter, const std::map<std::string, double>& o
   return apply_options(t, s, o);
 }
 
-std::map<std::string, FloatImage> render(Gpu& gpu, const Scene& scene, const Settings& s,
-                                         const std::vector<std::string>& resources) {
-  Executor ex(gpu, scene, s, make_passes(find_technique("gow-ragnarok")), resources);
-  ex.run_frame();
-  std::map<std::string, FloatImage> out;
-  for (auto& r : resources) out[r] = ex.read(r);
-  return out;
-}
+using test::render_gow;
 
 const char* vis_slot(uint32_t filter) { return filter ? "shadow_contact_hardening" : "shadow_pcf"; }
 
@@ -226,7 +220,7 @@ TEST_F(GowShadowGpu, ShadowMapMatchesCpuProjection) {
   const Vec3 sun = normalize(Vec3{1.0f, 1.0f, 0.3f});
   Scene scene = shadow_scene(sun, 1.0f);
   Settings s = shadow_settings(1, {{"shadow_resolution", 256}});
-  FloatImage map = render(gpu(), scene, s, {"shadow_map"})["shadow_map"];
+  FloatImage map = render_gow(gpu(), scene, s, {"shadow_map"})["shadow_map"];
   const glsl::ShadowCascadePush p = shadow_cascade_push(s.params<GowRagnarokSettings>(), scene.camera.near_plane);
   const float tan_y = std::tan(30.0f * float(kPi) / 180.0f);
   const ShadowCameraCpu cam{scene.camera.position, normalize(scene.camera.target - scene.camera.position), tan_y,
@@ -265,7 +259,7 @@ TEST_F(GowShadowGpu, OpenPlaneIsFullyLit) {
     for (uint32_t filter : {0u, 1u})
       for (double minmax : {0.0, 1.0}) {
         Settings s = shadow_settings(filter, {{"minmax_early_out", minmax}, {"sky_rays", 0}});
-        auto img = render(gpu(), scene, s, {vis_slot(filter), "direct_light"});
+        auto img = render_gow(gpu(), scene, s, {vis_slot(filter), "direct_light"});
         double lo = 1, worst = 0;
         const double expect = 0.5 * 3.0 * sun.y / kPi;
         for (uint32_t y = 0; y < kH; ++y)
@@ -289,7 +283,7 @@ TEST_F(GowShadowGpu, RoofedPlaneIsFullyShadowed) {
   for (uint32_t filter : {0u, 1u})
     for (double minmax : {0.0, 1.0}) {
       Settings s = shadow_settings(filter, {{"minmax_early_out", minmax}});
-      FloatImage v = render(gpu(), scene, s, {vis_slot(filter)})[vis_slot(filter)];
+      FloatImage v = render_gow(gpu(), scene, s, {vis_slot(filter)})[vis_slot(filter)];
       double hi = 0;
       for (float x : v.pixels) hi = std::max(hi, double(x));
       EXPECT_EQ(hi, 0.0) << vis_slot(filter) << " minmax " << minmax;
@@ -330,7 +324,7 @@ TEST_F(GowShadowGpu, PenumbraWidthUnderAStraightEdge) {
   const double truth = 2 * a10() * h * tan_t, pcf_expect = 2 * a10() * 2.0 * tan_t;
   for (uint32_t filter : {0u, 1u}) {
     Settings s = shadow_settings(filter, {{"taps", 32}, {"march_steps", 64}});
-    auto img = render(gpu(), scene, s, {vis_slot(filter), "gbuffer_position"});
+    auto img = render_gow(gpu(), scene, s, {vis_slot(filter), "gbuffer_position"});
     const double w = measured_width(img[vis_slot(filter)], img["gbuffer_position"]);
     const double expect = filter ? truth : pcf_expect;
     std::printf("%-26s penumbra 10-90 %% width %.4f m, expected %.4f m (true %.4f m), error %+.1f %%\n",
@@ -347,7 +341,7 @@ TEST_F(GowShadowGpu, HugeBiasLeaksUnderTheOccluder) {
     double dark[2];
     for (int leak = 0; leak < 2; ++leak) {
       Settings s = shadow_settings(filter, {{"shadow_bias", leak ? 0.6 : 0.02}});
-      FloatImage v = render(gpu(), scene, s, {vis_slot(filter)})[vis_slot(filter)];
+      FloatImage v = render_gow(gpu(), scene, s, {vis_slot(filter)})[vis_slot(filter)];
       dark[leak] = 0;
       for (uint32_t y = 0; y < kH; ++y)
         for (uint32_t x = 0; x < kW / 4; ++x) dark[leak] += v.at(x, y, 0) / (kH * kW / 4);  // left quarter: x < -0.15 m

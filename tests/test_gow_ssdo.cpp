@@ -17,6 +17,7 @@
 #include "renderer/techniques/gow_ragnarok/screen_space_pattern.h"
 #include "renderer/techniques/technique.h"
 #include "tests/gow_ss_test_shared.h"
+#include "tests/gow_render.h"
 #include "tests/gpu_fixture.h"
 
 namespace gib {
@@ -137,14 +138,7 @@ Settings ss_settings(const std::map<std::string, double>& opts = {}) {
   return apply_options(t, s, opts);
 }
 
-std::map<std::string, FloatImage> render(Gpu& gpu, const Scene& scene, const Settings& s,
-                                         const std::vector<std::string>& resources) {
-  Executor ex(gpu, scene, s, make_passes(find_technique("gow-ragnarok")), resources);
-  ex.run_frame();
-  std::map<std::string, FloatImage> out;
-  for (auto& r : resources) out[r] = ex.read(r);
-  return out;
-}
+using test::render_gow;
 
 // Nothing but the floor on screen: every direction is open (visible fraction 1) and the local
 // light is albedo I cos / (pi d^2) at every floor pixel, ssdo on or off.
@@ -152,7 +146,7 @@ TEST_F(GowSsGpu, OpenFloorIsUnoccluded) {
   const Vec3 light{0.3f, 1.0f, -0.2f};
   Scene scene = room_scene(light);
   for (double on : {1.0, 0.0}) {
-    auto img = render(gpu(), scene, ss_settings({{"ssdo", on}}), {"ssdo_cone", "ssdo_local_light", "gbuffer_position"});
+    auto img = render_gow(gpu(), scene, ss_settings({{"ssdo", on}}), {"ssdo_cone", "ssdo_local_light", "gbuffer_position"});
     double worst = 0, lo = 1;
     uint32_t floor_px = 0;
     for (uint32_t y = 0; y < kH; ++y)
@@ -186,7 +180,7 @@ TEST_F(GowSsGpu, BoxOccludesTheFloorBehindIt) {
   Scene scene = room_scene({0.0f, 0.6f, -1.5f}, json::array({box}));
   double behind[2] = {0, 0}, open[2] = {0, 0};
   for (int on : {0, 1}) {
-    auto img = render(gpu(), scene, ss_settings({{"ssdo", on}}), {"ssdo_local_light", "gbuffer_position"});
+    auto img = render_gow(gpu(), scene, ss_settings({{"ssdo", on}}), {"ssdo_local_light", "gbuffer_position"});
     uint32_t nb = 0, no = 0;
     for (uint32_t y = 0; y < kH; ++y)
       for (uint32_t x = 0; x < kW; ++x) {
@@ -223,7 +217,7 @@ TEST_F(GowSsGpu, SsgiFindsNothingOnAnOpenFloor) {
               {"sky", {{"type", "constant"}, {"radiance", {1, 1, 1}}}},
               {"camera", {{"position", {0, 2.5, 3}}, {"target", {0, 0, 0}}, {"fov_y_deg", 60}}}};
   Scene scene = parse_scene(doc, "ssgi-open");
-  auto img = render(gpu(), scene, ss_settings(), {"ssgi_indirect", "gow_direct", "gow_radiance"});
+  auto img = render_gow(gpu(), scene, ss_settings(), {"ssgi_indirect", "gow_direct", "gow_radiance"});
   double hi = 0, diff = 0;
   for (uint32_t y = 0; y < kH; ++y)
     for (uint32_t x = 0; x < kW; ++x)
