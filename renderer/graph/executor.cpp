@@ -76,11 +76,14 @@ void record_compute(RecordContext& ctx, const ComputeDispatch& d) {
     binds.push_back({bb.binding, bb.prev ? &ctx.prev_buffer(bb.slot) : &ctx.buffer(bb.slot), nullptr});
   }
   auto pipeline = ctx.gpu.compute_pipeline(desc);
+  if (d.label) ctx.cmd.begin_label(d.label);
   ctx.cmd.bind(*pipeline, binds, d.push, d.push_bytes);
   if (d.indirect)
     ctx.cmd.dispatch_indirect(ctx.buffer(d.indirect), d.indirect_offset);
   else
     ctx.cmd.dispatch(d.groups_x, d.groups_y, d.groups_z);
+  if (d.label) ctx.cmd.end_label();
+  if (d.barrier_after) ctx.cmd.barrier(kStageCompute, kStageCompute);
 }
 
 // ---------------------------------------------------------------- Executor

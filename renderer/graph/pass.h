@@ -101,6 +101,8 @@ struct ComputeDispatch {
   std::vector<BufferBinding> buffers;
   const char* indirect = nullptr;  // buffer slot holding VkDispatchIndirectCommand: replaces groups_*
   uint64_t indirect_offset = 0;
+  const char* label = nullptr;  // debug label around the dispatch (a pass's sub-dispatch: "pass/step")
+  bool barrier_after = false;   // compute -> compute barrier after it (the next dispatch reads its writes)
 };
 void record_compute(RecordContext& ctx, const ComputeDispatch& d);
 

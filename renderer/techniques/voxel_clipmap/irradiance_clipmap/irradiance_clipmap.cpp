@@ -26,7 +26,6 @@ class IrradianceClipmapPass final : public Pass {
     const VoxelClipmapSettings& p = ctx.settings.params<VoxelClipmapSettings>();
     IrrClipmapPush push{make_vc_params(ctx.settings, ctx.frame)};
     auto dispatch = [&](uint32_t kernel, const char* label, uint32_t groups) {
-      ctx.cmd.begin_label(label);
       record_compute(ctx, {.shader = "irradiance_clipmap.comp",
                            .groups_x = groups,
                            .push = &push,
@@ -36,9 +35,9 @@ class IrradianceClipmapPass final : public Pass {
                                        {kIrrClipmapBindX, "irradiance_x"},
                                        {kIrrClipmapBindY, "irradiance_y"},
                                        {kIrrClipmapBindZ, "irradiance_z"},
-                                       {kIrrClipmapBindCells, "irradiance_cell_state"}}});
-      ctx.cmd.end_label();
-      ctx.cmd.barrier(kStageCompute, kStageCompute);
+                                       {kIrrClipmapBindCells, "irradiance_cell_state"}},
+                           .label = label,
+                           .barrier_after = true});
     };
     dispatch(kIrrClipmapOrigins, "irradiance_clipmap/origins", 1);
     dispatch(kIrrClipmapScroll, "irradiance_clipmap/scroll", div_up(uint32_t(vc_cell_count(p)), kIrrClipmapGroup));

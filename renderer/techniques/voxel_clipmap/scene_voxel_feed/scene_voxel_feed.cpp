@@ -45,7 +45,6 @@ class SceneVoxelFeedPass final : public Pass {
     ctx.cmd.fill(ctx.buffer("voxel_feed_owner"), 0);
     ctx.cmd.barrier(kStageTransfer, kStageCompute);
     for (uint32_t kernel : {kScFeedClaim, kScFeedWrite}) {
-      ctx.cmd.begin_label(kernel == kScFeedClaim ? "scene_voxel_feed/claim" : "scene_voxel_feed/write");
       record_compute(ctx, {.shader = "scene_voxel_feed.comp",
                            .images = {{kScFeedBindVbuffer, "vbuffer"},
                                       {kScFeedBindAlbedo, "gbuffer_albedo"},
@@ -63,9 +62,9 @@ class SceneVoxelFeedPass final : public Pass {
                                        {kScFeedBindX, "irradiance_x"},
                                        {kScFeedBindY, "irradiance_y"},
                                        {kScFeedBindZ, "irradiance_z"},
-                                       {kScFeedBindCells, "irradiance_cell_state"}}});
-      ctx.cmd.end_label();
-      ctx.cmd.barrier(kStageCompute, kStageCompute);
+                                       {kScFeedBindCells, "irradiance_cell_state"}},
+                           .label = kernel == kScFeedClaim ? "scene_voxel_feed/claim" : "scene_voxel_feed/write",
+                           .barrier_after = true});
     }
   }
 };

@@ -30,15 +30,14 @@ class SceneVoxelFillPass final : public Pass {
                                              {kScFillBindVoxels, "scene_voxel_data"},
                                              {kScFillBindGeometry, "voxel_geometry"}};
     auto dispatch = [&](uint32_t kernel, const char* label, uint32_t items) {
-      ctx.cmd.begin_label(label);
       record_compute(ctx, {.shader = "scene_voxel_fill.comp",
                            .groups_x = div_up(items, kScFillGroup),
                            .push = &push,
                            .push_bytes = sizeof(push),
                            .spec_constants = {{kScFillSpecKernel, kernel}},
-                           .buffers = buffers});
-      ctx.cmd.end_label();
-      ctx.cmd.barrier(kStageCompute, kStageCompute);
+                           .buffers = buffers,
+                           .label = label,
+                           .barrier_after = true});
     };
     if (p.geometry_fill && ctx.scene_gpu.triangle_count > 0)
       dispatch(kScFillVoxelize, "scene_voxel_fill/voxelize", ctx.scene_gpu.triangle_count * p.levels);

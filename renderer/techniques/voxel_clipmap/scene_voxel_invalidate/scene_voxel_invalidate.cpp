@@ -81,14 +81,13 @@ class SceneVoxelInvalidatePass final : public Pass {
     for (uint32_t target : {1u, 2u}) {
       push.count = {uint32_t(boxes.size()), target, 0, 0};
       const uint32_t items = uint32_t(target == 1 ? vc_voxel_count(p) : vc_cell_count(p));
-      ctx.cmd.begin_label(target == 1 ? "scene_voxel_invalidate/voxels" : "scene_voxel_invalidate/cells");
       record_compute(ctx, {.shader = "scene_voxel_invalidate.comp",
                            .groups_x = div_up(items, kScInvalidateGroup),
                            .push = &push,
                            .push_bytes = sizeof(push),
-                           .buffers = buffers});
-      ctx.cmd.end_label();
-      ctx.cmd.barrier(kStageCompute, kStageCompute);
+                           .buffers = buffers,
+                           .label = target == 1 ? "scene_voxel_invalidate/voxels" : "scene_voxel_invalidate/cells",
+                           .barrier_after = true});
     }
   }
 };

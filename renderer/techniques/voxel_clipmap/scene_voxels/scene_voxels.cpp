@@ -24,15 +24,14 @@ class SceneVoxelsPass final : public Pass {
     const VoxelClipmapSettings& p = ctx.settings.params<VoxelClipmapSettings>();
     ScVoxelsPush push{make_vc_params(ctx.settings, ctx.frame)};
     auto dispatch = [&](uint32_t kernel, const char* label, uint32_t groups) {
-      ctx.cmd.begin_label(label);
       record_compute(ctx, {.shader = "scene_voxels.comp",
                            .groups_x = groups,
                            .push = &push,
                            .push_bytes = sizeof(push),
                            .spec_constants = {{kScVoxelsSpecKernel, kernel}},
-                           .buffers = {{kScVoxelsBindState, "voxel_clip_state"}, {kScVoxelsBindVoxels, "scene_voxel_data"}}});
-      ctx.cmd.end_label();
-      ctx.cmd.barrier(kStageCompute, kStageCompute);
+                           .buffers = {{kScVoxelsBindState, "voxel_clip_state"}, {kScVoxelsBindVoxels, "scene_voxel_data"}},
+                           .label = label,
+                           .barrier_after = true});
     };
     dispatch(kScVoxelsOrigins, "scene_voxels/origins", 1);
     dispatch(kScVoxelsScroll, "scene_voxels/scroll", div_up(uint32_t(vc_voxel_count(p)), kScVoxelsGroup));
