@@ -63,8 +63,10 @@ Live& live(const Technique& t, uint32_t w, uint32_t h) {
   if (l.key != key) {
     l.ex.reset();
     l.scene = std::make_unique<Scene>(load_scene(scene_path()));
+    // Every contract AOV the scene supports, as `gibench bench` plans (perf::bench_outputs), so
+    // passes feeding only an AOV such as `reflection` are benchmarked too.
     l.ex = std::make_unique<Executor>(bench_gpu(), *l.scene, settings_for(t, w, h), make_passes(t),
-                                      std::vector<std::string>{t.output});
+                                      perf::bench_outputs(t, l.scene->features()).resources);
     uint32_t warm = env_u32("GIB_BENCH_WARMUP", bench_gpu().info().is_software() ? 1 : 5);
     for (uint32_t i = 0; i < warm; ++i) l.ex->run_frame();
     l.key = key;
@@ -128,7 +130,7 @@ int register_passes() {
       Settings s = settings_for(t, w, h);
       std::vector<PassDecl> decls;
       for (auto& p : make_passes(t)) decls.push_back(p->declare(scene, s));
-      Plan plan = compile(decls, {scene.features(), {t.output}, w, h});
+      Plan plan = compile(decls, {scene.features(), perf::bench_outputs(t, scene.features()).resources, w, h});
       for (auto* pp : plan.running()) {
         const Technique* tp = &t;
         std::string pass = pp->name;

@@ -76,8 +76,12 @@ uint32_t samples_per_frame(uint32_t spp) {
   return 1;
 }
 
-std::vector<std::string> requested_outputs(const RenderOptions& o, const Technique& t) {
+// The output, the contract AOVs the scene supports (so passes that feed only an AOV such as
+// `reflection` run and are timed, as in `gibench bench`), then the --dump resources.
+std::vector<std::string> requested_outputs(const RenderOptions& o, const Technique& t, SceneFeatures features) {
   std::vector<std::string> out{t.output};
+  for (auto& a : contract_aov_names(t, features))
+    if (std::string r = contract_resource(t, a); std::find(out.begin(), out.end(), r) == out.end()) out.push_back(r);
   for (auto& d : o.dumps)
     if (std::find(out.begin(), out.end(), d) == out.end()) out.push_back(d);
   return out;
@@ -157,7 +161,7 @@ RenderRun render(const RenderOptions& o) {
     if (!o.frames) frames = spp / per_frame;
   }
   auto gpu = Gpu::create({o.device, o.validate});
-  Executor ex(*gpu, scene, settings, make_passes(t), requested_outputs(o, t));
+  Executor ex(*gpu, scene, settings, make_passes(t), requested_outputs(o, t, scene.features()));
   RenderRun run;
   run.scene_load = load;
   run.device = gpu->info();
@@ -216,7 +220,7 @@ int cmd_render(const RenderOptions& o) {
     Settings settings = make_settings(o, t);
     std::vector<PassDecl> decls;
     for (auto& p : make_passes(t)) decls.push_back(p->declare(scene, settings));
-    CompileOptions co{scene.features(), requested_outputs(o, t), settings.width, settings.height};
+    CompileOptions co{scene.features(), requested_outputs(o, t, scene.features()), settings.width, settings.height};
     Plan plan = compile(decls, co);
     fmt::print("scene features: {}\nscene textures: {} ({:.1f} KiB with mips)\n{}", to_string(scene.features()),
                scene.textures.size(), load.texture_bytes / 1024.0, plan.to_text());

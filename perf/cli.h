@@ -21,6 +21,9 @@ inline void add_perf_commands(CLI::App& app, PerfCli& c) {
   b->add_option("--technique", c.bench.techniques, "only this technique (repeatable; default: all)");
   b->add_option("--case", c.bench.case_name, "case or scene name (cases/, cases/scenes/) or JSON path");
   b->add_option("--preset", c.bench.preset, "low | medium | high | ultra");
+  b->add_option("--aov", c.bench.aovs,
+                "plan only this contract AOV (repeatable; default: every contract AOV the scene supports, so passes "
+                "feeding only reflection or another AOV are timed too)");
   b->add_option("--variant", c.bench.variants,
                 "LABEL:NAME=VALUE[,NAME=VALUE...]: also time each technique with these options, side by side with "
                 "the plain run, and print the per-pass change (repeatable)");

@@ -24,6 +24,7 @@
 #include "revision.h"
 #include "renderer/graph/executor.h"
 #include "renderer/scene/scene_loader.h"
+#include "renderer/techniques/aov.h"
 #include "renderer/techniques/technique.h"
 
 #ifndef GIB_SOURCE_DIR
@@ -40,6 +41,31 @@ PassBytes pass_bytes(const Plan& plan, const PlannedPass& pass) {
     if (const ResolvedResource* r = plan.find(s.name)) b.read += r->bytes_per_copy ? r->bytes_per_copy : r->bytes;
   }
   return b;
+}
+
+BenchOutputs bench_outputs(const Technique& t, SceneFeatures features, const std::vector<std::string>& only) {
+  for (const std::string& a : only)
+    if (std::find(kContractAovs.begin(), kContractAovs.end(), a) == kContractAovs.end())
+      throw PerfError(fmt::format("--aov {}: expected a contract AOV ({}), got '{}'", a, fmt::join(kContractAovs, ", "), a));
+  BenchOutputs out;
+  const std::vector<std::string> declared = contract_aov_names(t), supported = contract_aov_names(t, features);
+  auto has = [](const std::vector<std::string>& v, const std::string& a) { return std::find(v.begin(), v.end(), a) != v.end(); };
+  for (const std::string& a : declared) {
+    if (!only.empty() && !has(only, a)) {
+      out.left_out.push_back(a + " (not asked for by --aov)");
+      continue;
+    }
+    if (!has(supported, a)) {
+      out.left_out.push_back(a + " (the scene lacks the features it needs)");
+      continue;
+    }
+    out.aovs.push_back(a);
+    const std::string r = contract_resource(t, a);
+    if (!has(out.resources, r)) out.resources.push_back(r);
+  }
+  for (const std::string& a : only)
+    if (!has(declared, a)) out.left_out.push_back(a + " (not in " + t.name + "'s contract)");
+  return out;
 }
 
 double parse_scale(const std::string& text) {
@@ -109,11 +135,18 @@ std::string resolve_scene(const std::string& c) {
 }
 
 struct Workload {
-  uint32_t width = 0, height = 0;                 // the profiles' target resolution
+  uint32_t width = 0, height = 0;                 // the profiles' target resolution (or a seed table's)
+  std::string seed_table;                         // "": the profiles' targets; else the table whose workload this is
+  std::string technique;                          // a seed table's workload: the only technique run at it
   uint32_t run_width = 0, run_height = 0;         // what was rendered
   std::vector<const ConsoleProfile*> profiles;
   std::string name() const { return fmt::format("{}x{}", width, height); }
   std::string run_name() const { return fmt::format("{}x{}", run_width, run_height); }
+  std::vector<std::string> profile_names() const {
+    std::vector<std::string> n;
+    for (auto* p : profiles) n.push_back(p->name);
+    return n;
+  }
 };
 
 struct PassRun {
@@ -134,6 +167,8 @@ struct TechniqueRun {
   Workload workload;
   Settings settings_run, settings_full;
   Plan plan_run, plan_full;
+  BenchOutputs outputs;              // the planned contract AOVs and their resources
+  std::set<std::string> aov_only;    // running passes that feed no radiance: only other AOVs
   std::vector<PassRun> passes;
   std::vector<double> frame_ms;
   std::vector<uint32_t> frame_repeat;
@@ -147,10 +182,10 @@ nlohmann::json work_counters(const PlannedPass& pass, const Settings& s) {
   return c;
 }
 
-Plan compile_for(const Technique& t, const Scene& scene, const Settings& s) {
+Plan compile_for(const Technique& t, const Scene& scene, const Settings& s, const std::vector<std::string>& outputs) {
   std::vector<PassDecl> decls;
   for (auto& p : make_passes(t)) decls.push_back(p->declare(scene, s));
-  return compile(decls, {scene.features(), {t.output}, s.width, s.height});
+  return compile(decls, {scene.features(), outputs, s.width, s.height});
 }
 
 std::string fmt_ms(double ms) {
@@ -187,34 +222,44 @@ std::string seed_column(const SeedTable& table, const TechniqueRun& r) {
 // Seed comparison of one run: per table row, our scaled cost of the passes that make it up.
 void add_seed_rows(const SeedTable& table, const TechniqueRun& r,
                    const std::map<std::string, std::map<std::string, double>>& scaled_by_pass, nlohmann::json& jseed) {
-  const std::string column = seed_column(table, r);
-  for (const ConsoleProfile* p : r.workload.profiles) {
-    const SeedPlatform* sp = table.find(p->name, column);
-    auto mine = scaled_by_pass.find(p->name);
-    if (!sp || mine == scaled_by_pass.end()) continue;
-    std::map<std::string, double> ours;
-    std::map<std::string, std::vector<std::string>> passes;
-    for (auto& [pass, ms] : mine->second)
-      if (auto k = table.pass_row.find(pass); k != table.pass_row.end()) {
-        ours[k->second] += ms;
-        passes[k->second].push_back(pass);
+  const std::string selected = seed_column(table, r);
+  for (const ConsoleProfile* p : r.workload.profiles)
+    for (const SeedPlatform& platform : table.platforms) {
+      // A table with a column option compares the column the run's settings pick; one without
+      // compares every column it holds for the profile (each its own capture).
+      if (platform.profile != p->name || (!table.column_option.empty() && platform.column != selected)) continue;
+      // A table at its own workload is compared only at that resolution.
+      if (table.own_workload && (platform.width != r.workload.width || platform.height != r.workload.height)) continue;
+      const SeedPlatform* sp = &platform;
+      const std::string& column = platform.column;
+      auto mine = scaled_by_pass.find(p->name);
+      if (mine == scaled_by_pass.end()) continue;
+      std::map<std::string, double> ours;
+      std::map<std::string, std::vector<std::string>> passes;
+      for (auto& [pass, ms] : mine->second)
+        if (auto k = table.pass_row.find(pass); k != table.pass_row.end()) {
+          ours[k->second] += ms;
+          passes[k->second].push_back(pass);
+        }
+      for (auto& [row, ms] : ours) {
+        auto it = sp->ms.find(row);
+        if (it == sp->ms.end()) continue;
+        jseed.push_back({{"table", table.name}, {"technique", r.name}, {"base_technique", r.technique->name},
+                         {"column", column}, {"profile", p->name}, {"seed_key", row}, {"passes", passes[row]},
+                         {"ours_ms", ms}, {"seed_ms", it->second}, {"ratio", it->second > 0 ? ms / it->second : 0.0},
+                         {"resolution", {r.workload.width, r.workload.height}},
+                         {"seed_resolution", {sp->width, sp->height}}});
       }
-    for (auto& [row, ms] : ours) {
-      auto it = sp->ms.find(row);
-      if (it == sp->ms.end()) continue;
-      jseed.push_back({{"table", table.name}, {"technique", r.name}, {"base_technique", r.technique->name},
-                       {"column", column}, {"profile", p->name}, {"seed_key", row}, {"passes", passes[row]},
-                       {"ours_ms", ms}, {"seed_ms", it->second}, {"ratio", it->second > 0 ? ms / it->second : 0.0},
-                       {"resolution", {r.workload.width, r.workload.height}},
-                       {"seed_resolution", {sp->width, sp->height}}});
     }
-  }
 }
 
 void print_seed_comparison(const std::vector<SeedTable>& seeds, const std::vector<const Technique*>& techs,
                            const nlohmann::json& jseed) {
   for (const SeedTable& table : seeds) {
     fmt::print("\n== seed comparison: {} ({}) ==\n", table.name, table.source);
+    if (table.own_workload && !table.platforms.empty())
+      fmt::print("compared only at the table's own workload, {}x{} (bench runs it as an extra workload for {})\n",
+                 table.platforms[0].width, table.platforms[0].height, table.technique);
     std::vector<const nlohmann::json*> rows;
     for (auto& e : jseed)
       if (e["table"] == table.name) rows.push_back(&e);
@@ -227,12 +272,12 @@ void print_seed_comparison(const std::vector<SeedTable>& seeds, const std::vecto
                  ran ? "no run at a profile the table has" : "not run", fmt::join(profiles, ", "));
       continue;
     }
-    fmt::print("{:<22} {:<14} {:<8} {:<32} {:>10} {:>10} {:>8}  {}\n", "technique", "profile", "column", "seed row",
+    fmt::print("{:<22} {:<14} {:<12} {:<32} {:>10} {:>10} {:>8}  {}\n", "technique", "profile", "column", "seed row",
                "ours ms", "seed ms", "ratio", "our passes");
     std::map<std::tuple<std::string, std::string, std::string>, std::pair<double, double>> sums;
     for (auto* e : rows) {
       const std::string column = (*e)["column"];
-      fmt::print("{:<22} {:<14} {:<8} {:<32} {:>10} {:>10} {:>7.2f}x  {}\n", (*e)["technique"].get<std::string>(),
+      fmt::print("{:<22} {:<14} {:<12} {:<32} {:>10} {:>10} {:>7.2f}x  {}\n", (*e)["technique"].get<std::string>(),
                  (*e)["profile"].get<std::string>(), column.empty() ? "-" : column,
                  (*e)["seed_key"].get<std::string>(), fmt_ms((*e)["ours_ms"]), fmt_ms((*e)["seed_ms"]),
                  (*e)["ratio"].get<double>(), fmt::join((*e)["passes"].get<std::vector<std::string>>(), "+"));
@@ -243,7 +288,7 @@ void print_seed_comparison(const std::vector<SeedTable>& seeds, const std::vecto
     for (auto& [k, s] : sums) {
       const SeedPlatform* sp = table.find(std::get<1>(k), std::get<2>(k));
       const bool total = sp && !table.total_row.empty() && sp->ms.count(table.total_row);
-      fmt::print("{:<22} {:<14} {:<8} {:<32} {:>10} {:>10} {:>7.2f}x  (seed {} {} ms)\n", std::get<0>(k), std::get<1>(k),
+      fmt::print("{:<22} {:<14} {:<12} {:<32} {:>10} {:>10} {:>7.2f}x  (seed {} {} ms)\n", std::get<0>(k), std::get<1>(k),
                  std::get<2>(k).empty() ? "-" : std::get<2>(k), "sum of matched rows", fmt_ms(s.first),
                  fmt_ms(s.second), s.second > 0 ? s.first / s.second : 0.0,
                  table.total_row.empty() ? "total" : table.total_row,
@@ -376,6 +421,37 @@ int cmd_bench(const BenchOptions& o) {
     }
     it->profiles.push_back(&p);
   }
+  // A seed table at its own resolution (GoW Ragnarok: PS5 at 4K, where the ps5 profile targets
+  // 2560x1440): an extra workload for the table's technique and the selected profiles it names.
+  for (const SeedTable& table : seeds) {
+    if (!table.own_workload ||
+        std::none_of(techs.begin(), techs.end(), [&](auto* t) { return t->name == table.technique; }))
+      continue;
+    for (const SeedPlatform& sp : table.platforms) {
+      auto p = std::find_if(profiles.begin(), profiles.end(), [&](auto& x) { return x.name == sp.profile; });
+      if (p == profiles.end() || (p->width == sp.width && p->height == sp.height)) continue;
+      auto it = std::find_if(workloads.begin(), workloads.end(), [&](auto& w) {
+        return w.seed_table == table.name && w.width == sp.width && w.height == sp.height;
+      });
+      if (it == workloads.end()) {
+        Workload w;
+        w.width = sp.width;
+        w.height = sp.height;
+        w.seed_table = table.name;
+        w.technique = table.technique;
+        w.run_width = std::max(8u, uint32_t(std::lround(sp.width * scale)));
+        w.run_height = std::max(8u, uint32_t(std::lround(sp.height * scale)));
+        workloads.push_back(w);
+        it = workloads.end() - 1;
+      }
+      if (std::find(it->profiles.begin(), it->profiles.end(), &*p) == it->profiles.end()) it->profiles.push_back(&*p);
+    }
+  }
+  for (auto& w : workloads)
+    if (!w.seed_table.empty())
+      fmt::print("seed table {}: {} also runs at {} for {} (the table's workload; the profile's target is the other "
+                 "run)\n",
+                 w.seed_table, w.technique, w.name(), fmt::join(w.profile_names(), ", "));
   fmt::print("case: {} (scene {}), preset {}, {} warm-up + {} timed frames x {} repeats; timing: {}\n", o.case_name,
              scene_path, o.preset, warmup, frames, repeats, cpu ? "host clock per pass (CPU device)" : "GPU timestamps");
   if (scale != 1)
@@ -391,8 +467,16 @@ int cmd_bench(const BenchOptions& o) {
   // Runs: each technique and workload, then its variants (base = the plain run's index);
   // timed repeat-major below, so the two halves of the noise floor are apart in time.
   std::vector<TechniqueRun> runs;
-  for (auto* t : techs)
-    for (auto& w : workloads)
+  for (auto* t : techs) {
+    const BenchOutputs outs = bench_outputs(*t, scene.features(), o.aovs);
+    if (outs.aovs.empty()) {
+      fmt::print("{}: nothing to time (no planned AOV: {})\n", t->name, fmt::join(outs.left_out, ", "));
+      continue;
+    }
+    fmt::print("{}: planned AOVs {}{}{}\n", t->name, fmt::join(outs.aovs, ", "), outs.left_out.empty() ? "" : "; left out: ",
+               fmt::join(outs.left_out, ", "));
+    for (auto& w : workloads) {
+      if (!w.technique.empty() && w.technique != t->name) continue;
       for (size_t vi = 0; vi <= variants.size(); ++vi) {
         TechniqueRun r;
         r.technique = t;
@@ -417,13 +501,23 @@ int cmd_bench(const BenchOptions& o) {
         r.settings_run = s;
         r.settings_run.width = w.run_width;
         r.settings_run.height = w.run_height;
-        r.plan_full = compile_for(*t, scene, r.settings_full);
+        r.outputs = outs;
+        r.plan_full = compile_for(*t, scene, r.settings_full, outs.resources);
+        // Passes that run only because an AOV other than radiance is planned: the frame total
+        // includes them (and says how much they are).
+        const Plan radiance_only = compile_for(*t, scene, r.settings_full, {t->output});
+        for (const PlannedPass* pp : r.plan_full.running())
+          if (std::none_of(radiance_only.passes.begin(), radiance_only.passes.end(),
+                           [&](const PlannedPass& q) { return q.name == pp->name && q.runs; }))
+            r.aov_only.insert(pp->name);
         runs.push_back(std::move(r));
       }
+    }
+  }
   auto t_start = std::chrono::steady_clock::now();
   for (uint32_t rep = 0; rep < repeats; ++rep)
     for (auto& r : runs) {
-      Executor ex(*gpu, scene, r.settings_run, make_passes(*r.technique), {r.technique->output});
+      Executor ex(*gpu, scene, r.settings_run, make_passes(*r.technique), r.outputs.resources);
       if (rep == 0) {
         r.plan_run = ex.plan();
         for (auto* pp : r.plan_run.running()) {
@@ -488,7 +582,20 @@ int cmd_bench(const BenchOptions& o) {
     for (size_t i = 0; i < w.profiles.size(); ++i) fmt::print("{}{}", i ? ", " : "", w.profiles[i]->name);
     fmt::print(")");
     if (scale != 1) fmt::print(" measured at {} (scale {}), pass times scaled to {} by work x", w.run_name(), scale_text(scale), w.name());
+    if (!w.seed_table.empty()) fmt::print(" [{}'s workload, not the profile's target]", w.seed_table);
     fmt::print(" ==\n");
+    fmt::print("planned AOVs: {}", fmt::join(r.outputs.aovs, ", "));
+    if (!r.outputs.left_out.empty()) fmt::print("; left out: {}", fmt::join(r.outputs.left_out, ", "));
+    fmt::print("\n");
+    nlohmann::json jculled = nlohmann::json::array();
+    for (const PlannedPass& pp : r.plan_run.passes)
+      if (!pp.runs) {
+        fmt::print("culled {}: {}\n", pp.name, pp.reason);
+        jculled.push_back({{"pass", pp.name}, {"reason", pp.reason}});
+      }
+    if (!r.aov_only.empty())
+      fmt::print("AOV-only passes (feed no radiance, marked *): {}\n",
+                 fmt::join(std::vector<std::string>(r.aov_only.begin(), r.aov_only.end()), ", "));
     bool has_probe_pass = false;
     for (auto& pr : r.passes) has_probe_pass |= pr.name.find("probe") != std::string::npos;
     // A technique with a per-frame probe budget (probe-volume's probe_budget) ran at its preset's
@@ -514,9 +621,16 @@ int cmd_bench(const BenchOptions& o) {
     nlohmann::json jr{{"technique", r.name},
                       {"workload", {{"width", w.width}, {"height", w.height}}},
                       {"run", {{"width", w.run_width}, {"height", w.run_height}}},
-                      {"profiles", nlohmann::json::array()}};
+                      {"profiles", nlohmann::json::array()},
+                      {"aovs", r.outputs.aovs},
+                      {"outputs", r.outputs.resources},
+                      {"aovs_left_out", r.outputs.left_out},
+                      {"culled", jculled},
+                      {"aov_only_passes", std::vector<std::string>(r.aov_only.begin(), r.aov_only.end())},
+                      {"seed_table_workload", w.seed_table}};
     for (auto* p : w.profiles) jr["profiles"].push_back(p->name);
-    std::map<std::string, double> scaled_total;
+    std::map<std::string, double> scaled_total, aov_only_scaled;
+    double aov_only_meas = 0;
     double meas_total = 0, full_total = 0, bytes_total = 0, mem_total = 0, comp_total = 0;
     std::map<std::string, std::map<std::string, double>> scaled_by_pass;  // profile -> pass -> ms
     std::map<std::string, std::vector<std::pair<std::string, double>>> pass_order;  // the same, in run order
@@ -524,7 +638,9 @@ int cmd_bench(const BenchOptions& o) {
       Summary s = summarize_samples(pr.samples);
       double full_ms = s.median * pr.work_scale;
       PassSplit split = split_pass(full_ms, double(pr.bytes_full.total()), thr);
-      std::string line = fmt::format("{:<26} {:>10} {:>21} {:>7.2f} {:>10} {:>9.2f} {:>9} {:>9} |", pr.name,
+      const bool aov_only = r.aov_only.count(pr.name) > 0;
+      if (aov_only) aov_only_meas += s.median;
+      std::string line = fmt::format("{:<26} {:>10} {:>21} {:>7.2f} {:>10} {:>9.2f} {:>9} {:>9} |", pr.name + (aov_only ? " *" : ""),
                                      fmt_ms(s.median), fmt::format("[{}, {}]", fmt_ms(s.q1), fmt_ms(s.q3)),
                                      pr.work_scale, fmt_ms(full_ms), pr.bytes_full.total() / 1e6,
                                      fmt_ms(split.memory_ms), fmt_ms(split.compute_ms));
@@ -536,6 +652,7 @@ int cmd_bench(const BenchOptions& o) {
         double ms = raster ? *raster : scale_to_profile(split, thr, *p);
         scaled[p->name] = ms;
         scaled_total[p->name] += ms;
+        if (aov_only) aov_only_scaled[p->name] += ms;
         line += fmt::format(" {:>13}", fmt_ms(ms));
         scaled_by_pass[p->name][pr.name] += ms;
         pass_order[p->name].push_back({pr.name, ms});
@@ -606,6 +723,7 @@ int cmd_bench(const BenchOptions& o) {
                               {"memory_ms", split.memory_ms},
                               {"compute_ms", split.compute_ms},
                               {"scaling", pr.raster ? "fill_rate" : "flop_bandwidth_split"},
+                              {"aov_only", aov_only},
                               {"scaled_ms", scaled},
                               {"counters", pr.counters}});
     }
@@ -614,6 +732,15 @@ int cmd_bench(const BenchOptions& o) {
                                    fmt_ms(comp_total));
     for (auto* p : w.profiles) line += fmt::format(" {:>13}", fmt_ms(scaled_total[p->name]));
     fmt::print("{}\n", line);
+    if (!r.aov_only.empty()) {
+      std::string l = fmt::format("{:<26} {:>10} {:>21} {:>7} {:>10} {:>9} {:>9} {:>9} |", "  of which AOV-only (*)",
+                                  fmt_ms(aov_only_meas), "", "", "", "", "", "");
+      for (auto* p : w.profiles) l += fmt::format(" {:>13}", fmt_ms(aov_only_scaled[p->name]));
+      fmt::print("{}\n", l);
+    }
+    fmt::print("the frame total includes every planned pass{}\n",
+               r.aov_only.empty() ? " (none of them feeds only an AOV other than radiance)"
+                                  : ", AOV-only passes (*) too: subtract their line for the radiance frame");
     Summary fs = summarize_samples(r.frame_ms);
     fmt::print("frame measured end to end: median {} ms, IQR [{}, {}] at {}\n", fmt_ms(fs.median), fmt_ms(fs.q1),
                fmt_ms(fs.q3), w.run_name());
@@ -621,10 +748,12 @@ int cmd_bench(const BenchOptions& o) {
     medians[fkey] = fs.median;
     jr["frame"] = {{"key", fkey}, {"samples_ms", r.frame_ms}, {"sample_repeat", r.frame_repeat},
                    {"median_ms", fs.median}, {"sum_of_pass_medians_ms", meas_total},
-                   {"device_ms_full", full_total}, {"scaled_ms", scaled_total}};
+                   {"device_ms_full", full_total}, {"scaled_ms", scaled_total},
+                   {"includes_aov_only_passes", !r.aov_only.empty()},
+                   {"aov_only_sum_of_pass_medians_ms", aov_only_meas}, {"aov_only_scaled_ms", aov_only_scaled}};
     // The seed's budget tree per profile that has budgets (GoW Ragnarok: PS4).
     for (auto* p : w.profiles) {
-      if (!budgets || !budgets->profiles.count(p->name)) continue;
+      if (!budgets || !budgets->profiles.count(p->name) || !w.seed_table.empty()) continue;
       BudgetTree tree = budget_tree(*budgets, p->name, pass_order[p->name]);
       fmt::print("\n-- {} budgets @ {} (console-scaled) --\n{}", r.name, p->name, format_budget_tree(tree));
       jr["budgets"].push_back(to_json(tree));

@@ -16,6 +16,10 @@
 
 #include "renderer/graph/graph.h"
 
+namespace gib {
+struct Technique;
+}
+
 namespace gib::perf {
 
 struct BenchOptions {
@@ -24,6 +28,10 @@ struct BenchOptions {
   // "LABEL:NAME=VALUE[,NAME=VALUE...]": every technique is also timed with these technique
   // options, interleaved with the plain run in each repeat, and compared with it per pass.
   std::vector<std::string> variants;
+  // Contract AOVs to plan (--aov, repeatable): empty plans every contract AOV of each technique
+  // that the scene supports (bench_outputs), so passes that only feed an AOV other than
+  // radiance are timed too.
+  std::vector<std::string> aovs;
   std::string case_name = "cornell";    // a case (cases/<name>.json), a scene, or a path
   std::string preset = "medium";
   uint32_t frames = 0;        // timed frames per repeat (0: 5 on a CPU device, 30 on a GPU)
@@ -48,6 +56,17 @@ struct BenchVariant {
   std::map<std::string, double> options;
 };
 BenchVariant parse_variant(const std::string& text);
+
+// What bench plans for technique `t` in a scene with `features`: the contract AOVs
+// (renderer/techniques/aov.h) the scene supports (contract_aov_names(t, features)), narrowed to
+// `only` when it is not empty (--aov; a name outside the contract is a PerfError naming the
+// flag; one the technique lacks or the scene cannot produce is left out and listed).
+struct BenchOutputs {
+  std::vector<std::string> aovs;       // planned, radiance first (empty: nothing to time)
+  std::vector<std::string> resources;  // the executor's outputs: the AOVs' resources, once each
+  std::vector<std::string> left_out;   // "NAME (why)" for asked or contract AOVs not planned
+};
+BenchOutputs bench_outputs(const Technique& t, SceneFeatures features, const std::vector<std::string>& only = {});
 
 struct DiffOptions {
   std::string base, next;

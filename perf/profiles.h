@@ -40,6 +40,10 @@ std::vector<ConsoleProfile> select_profiles(const std::vector<ConsoleProfile>& a
 //                           column per value of the technique's `vrcs` option
 //   ac_shadows_probe_update probe-volume; per platform (its probes_per_frame budget), at 2560x1440
 //   ac_shadows_diffuse_gi   probe-volume; per platform (its own resolution; quarter-res rays)
+//   god_of_war_ragnarok     gow-ragnarok; PS5 at 3840x2160 (the table's own workload, not the
+//                           ps5 profile's 2560x1440: bench runs it as an extra workload); columns
+//                           shot_1 / shot_2 (the shadow captions' two views) and rt_cubemaps
+//                           (the reflections' profiler capture), every column compared
 struct SeedPlatform {
   std::string profile;  // console-profiles.json name
   std::string column;   // "" (one column) or the column's name ("no_vrcs", "vrcs")
@@ -58,6 +62,12 @@ struct SeedTable {
   std::string column_option;
   std::map<double, std::string> column_of_value;
   std::string total_row;  // the row holding the seed's own total ("" : none)
+  // A table with no column option compares every column it holds for a profile (each is its own
+  // capture: GoW Ragnarok's two shadow views and its reflection capture).
+  // own_workload: the table's resolution is not the profile's target (GoW Ragnarok's PS5 at 4K):
+  // bench runs that resolution as an extra workload for the table's technique and profiles,
+  // and compares the table only there.
+  bool own_workload = false;
   std::vector<SeedPlatform> platforms;
   const SeedPlatform* find(const std::string& profile, const std::string& column = "") const;
 };

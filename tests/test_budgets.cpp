@@ -95,6 +95,15 @@ TEST(Budgets, ShippedFileMatchesTheSeed) {
   const std::vector<std::string> known = pass_names();
   for (auto& [pass, cat] : b.pass_category)
     EXPECT_NE(std::find(known.begin(), known.end(), pass), known.end()) << pass << " is no pass";
+  // Every gow-ragnarok pass has its category from the talk's tree (bench times the reflection
+  // passes too, now that it plans every contract AOV): shadow-map rendering and its min/max
+  // are Shadows; the filtered shadow resolve ("DeferredShadows"), SSDO/SSGI and the
+  // reflections (SSR and the environment maps are Lighting in the talk) are Lighting.
+  for (const char* pass : {"shadow_maps", "shadow_minmax"}) EXPECT_EQ(b.pass_category.at(pass), "shadows") << pass;
+  for (const char* pass : {"shadows_pcf", "shadows_contact_hardening", "ssdo", "ssgi", "direct_lighting",
+                           "cubemap_capture", "reflections_rt_cubemap", "reflections_resolve"})
+    EXPECT_EQ(b.pass_category.at(pass), "lighting") << pass;
+  for (const char* pass : {"visibility", "gbuffer"}) EXPECT_EQ(b.pass_category.at(pass), "art") << pass;
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <random>
 
 #include "metrics/image_metrics.h"
 #include "renderer/graph/executor.h"
@@ -15,6 +16,7 @@
 #include "renderer/techniques/gow_ragnarok/gow_ragnarok.h"
 #include "renderer/techniques/gow_ragnarok/shadow_cascades.h"
 #include "renderer/techniques/technique.h"
+#include "tests/gow_cascade_test_shared.h"
 #include "tests/gow_render.h"
 #include "tests/gpu_fixture.h"
 
@@ -392,6 +394,182 @@ TEST(GowShadowGraph, NoSunCullsTheShadowPasses) {
         EXPECT_TRUE(pp.runs);
       }
     }
+  }
+}
+
+// ---------------------------------------------------------------- cascade seams
+
+// The seam blend weight (shadow_cascades.h): 0 deep inside a cascade, rising monotonically to
+// (nearly) 1 where selection passes to the next cascade, so the blended result is continuous
+// there; 0 everywhere with the band 0 (the control) and in the last cascade.
+TEST(GowShadowCpu, SeamBlendWeightRisesToOneAtTheSeam) {
+  glsl::ShadowCascadePush p = test_push(4, 1024, 40.0f);
+  ASSERT_FLOAT_EQ(p.blend.x, 0.1f);  // the default band
+  const ShadowCameraCpu cam{{3.0f, 2.0f, -5.0f}, normalize(Vec3{0.3f, -0.2f, -1.0f}), 0.577f, 16.0f / 9.0f};
+  const ShadowBasisCpu b = shadow_basis(normalize(Vec3{0.4f, 1.0f, 0.2f}));
+  const float margin_m = 0.01f, margin_tex = 3.0f;
+  uint32_t seams = 0;
+  float prev_w = 0;
+  uint32_t prev = select_cascade(cam, b, p, cam.forward * 0.1f, margin_m, margin_tex);
+  EXPECT_EQ(prev, 0u);
+  EXPECT_EQ(cascade_blend_weight(cam, b, p, 0, cam.forward * 0.1f, margin_m, margin_tex), 0.0f);
+  for (float t = 0.1f; t < 45.0f; t += 0.001f) {
+    const Vec3 x = cam.forward * t;
+    const uint32_t i = select_cascade(cam, b, p, x, margin_m, margin_tex);
+    if (i == glsl::kShadowMaxCascades) break;
+    const float w = cascade_blend_weight(cam, b, p, i, x, margin_m, margin_tex);
+    EXPECT_GE(w, 0.0f);
+    EXPECT_LE(w, 1.0f);
+    if (i != prev) {
+      // Selection moved on: just before it the next cascade's weight was (nearly) whole.
+      EXPECT_EQ(i, prev + 1);
+      EXPECT_GT(prev_w, 0.99f) << "seam " << prev << " -> " << i << " at " << t << " m";
+      ++seams;
+    } else {
+      EXPECT_GE(w, prev_w - 1e-5f) << "weight falls towards the seam at " << t << " m";
+    }
+    if (i == 3) {
+      EXPECT_EQ(w, 0.0f);  // the last cascade has nothing to blend into
+    }
+    prev = i;
+    prev_w = w;
+  }
+  EXPECT_EQ(seams, 3u);
+  // Off: no blend anywhere.
+  p.blend.x = 0;
+  for (float t = 0.1f; t < 45.0f; t += 0.01f) {
+    const Vec3 x = cam.forward * t;
+    const uint32_t i = select_cascade(cam, b, p, x, margin_m, margin_tex);
+    if (i < glsl::kShadowMaxCascades) {
+      EXPECT_EQ(cascade_blend_weight(cam, b, p, i, x, margin_m, margin_tex), 0.0f);
+    }
+  }
+}
+
+// The GPU's selection and blend weight (gow_shadow.glsl, through tests/gow_cascade_test.comp)
+// agree with the CPU mirror on random points in and around four cascades.
+class GowCascadeGpu : public GpuTest {};
+TEST_F(GowCascadeGpu, SelectionAndSeamBlendMatchTheCpuMirror) {
+  const glsl::ShadowCascadePush p = test_push(4, 1024, 40.0f);
+  const ShadowCameraCpu cam{{1234.5f, 3.0f, -777.25f}, normalize(Vec3{0.3f, -0.2f, -1.0f}), 0.577f, 16.0f / 9.0f};
+  const Vec3 sun = normalize(Vec3{0.4f, 1.0f, 0.2f});
+  const ShadowBasisCpu b = shadow_basis(sun);
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f), dist(0.0f, 50.0f), margin(0.0f, 0.2f);
+  std::vector<glsl::GowCascadeTestIn> in(4096);
+  for (auto& t : in) {
+    const Vec3 x = cam.forward * dist(rng) + Vec3{u(rng), u(rng), u(rng)} * 8.0f;
+    t.x_rel = {x.x, x.y, x.z, margin(rng)};
+  }
+  glsl::GowCascadeTestPush push{};
+  push.cascades = p;
+  push.camera = {cam.position.x, cam.position.y, cam.position.z, cam.tan_y};
+  push.forward = {cam.forward.x, cam.forward.y, cam.forward.z, cam.aspect};
+  push.sun = {sun.x, sun.y, sun.z, 0};
+  static_assert(sizeof(push) == 128, "GowCascadeTestPush must match tests/gow_cascade_test_shared.h");
+  const uint32_t count = uint32_t(in.size());
+  auto in_buf = gpu().create_buffer(count * sizeof(glsl::GowCascadeTestIn), BufferUsage::storage, "gow_cascade_test.in");
+  gpu().upload(*in_buf, in.data(), count * sizeof(glsl::GowCascadeTestIn));
+  auto out_buf = gpu().create_buffer(count * sizeof(glsl::GowCascadeTestOut), BufferUsage::storage, "gow_cascade_test.out");
+  ComputePipelineDesc desc{"gow_cascade_test.comp",
+                           {{glsl::kGowCascadeTestBindIn, DescriptorKind::storage_buffer},
+                            {glsl::kGowCascadeTestBindOut, DescriptorKind::storage_buffer}},
+                           sizeof(push)};
+  auto pipeline = gpu().compute_pipeline(desc);
+  const Bind binds[] = {{glsl::kGowCascadeTestBindIn, in_buf.get()}, {glsl::kGowCascadeTestBindOut, out_buf.get()}};
+  auto cmd = gpu().begin();
+  cmd->bind(*pipeline, binds, &push, sizeof(push));
+  cmd->dispatch((count + glsl::kGowCascadeTestGroup - 1) / glsl::kGowCascadeTestGroup);
+  gpu().submit(std::move(cmd));
+  std::vector<glsl::GowCascadeTestOut> out(count);
+  gpu().download(*out_buf, out.data(), count * sizeof(glsl::GowCascadeTestOut));
+  uint32_t differ = 0, blended = 0;
+  double worst = 0;
+  const float margin_tex = 2.0f + p.area.w;
+  for (uint32_t k = 0; k < count; ++k) {
+    const Vec3 x{in[k].x_rel.x, in[k].x_rel.y, in[k].x_rel.z};
+    const uint32_t i = select_cascade(cam, b, p, x, in[k].x_rel.w, margin_tex);
+    if (uint32_t(out[k].result.x) != i) {
+      ++differ;  // a point on a square's edge to within float rounding
+      continue;
+    }
+    const float w = i < glsl::kShadowMaxCascades ? cascade_blend_weight(cam, b, p, i, x, in[k].x_rel.w, margin_tex) : 0.0f;
+    blended += w > 0;
+    worst = std::max(worst, double(std::fabs(out[k].result.y - w)));
+  }
+  std::printf("gow cascade selection: %u points, %u select differently, %u blended, max |GPU - CPU| weight %.3g\n",
+              count, differ, blended, worst);
+  EXPECT_LE(differ, count / 1000);
+  EXPECT_GT(blended, count / 50);
+  EXPECT_LT(worst, 1e-3);
+}
+
+// A straight shadow edge crossing the seam between two cascades of very different texel sizes
+// (camera 1 m above a floor looking down, sun overhead with a 0.1 degree radius, an occluder
+// edge 1.5 m up: the true penumbra, 3 mm, is under a texel of either cascade, so each draws
+// the edge as wide as its filter, one texel of radius plus the bilinear footprint). Per image
+// column across the seam, the edge's width (4 x the sum over rows of min(v, 1 - v): the width of
+// a linear ramp). The step: the largest change between adjacent columns, as a share of the
+// whole change between the two cascades' widths (medians well inside each). A hard seam puts
+// the whole change in one column step (share near 1). A good technique's shadow has no seam: the
+// light does not know where a cascade ends. Blending linearly over a band of B columns puts at
+// most about 1/B of the change in each column step; the bound allows twice that (the width
+// measure is not linear in the blend, and the taps are jittered per pixel).
+TEST_F(GowShadowGpu, SeamBlendSpreadsTheStepAcrossTheBand) {
+  constexpr uint32_t W = 128, H = 72;
+  json doc = {{"materials", {{"grey", {{"albedo", {0.5, 0.5, 0.5}}}}}},
+              {"objects", json::array({{{"name", "floor"},
+                                        {"primitive", {{"type", "quad"}, {"size", {40, 40}}, {"facing", "+y"}}},
+                                        {"material", "grey"}},
+                                       {{"name", "occluder"},
+                                        {"primitive", {{"type", "quad"}, {"size", {40, 40}}, {"facing", "-y"}}},
+                                        {"material", "grey"},
+                                        {"transform", {{"translate", {0, 1.5, -20}}}}}})},
+              {"sun", {{"direction", {0, 1, 0}}, {"irradiance", {3, 3, 3}}, {"angular_radius_deg", 0.1}}},
+              {"camera",
+               {{"position", {0, 1, 0}}, {"target", {0, 0, 0}}, {"up", {0, 0, -1}}, {"fov_y_deg", 60}, {"near", 0.05}}}};
+  Scene scene = parse_scene(doc, "gow-seam-test");
+  // Two cascades, logarithmic: the first ends at sqrt(0.05 x 7.2) = 0.6 m (its square ~0.71 m
+  // from the view's centre), the second reaches 7.2 m (texels 12x larger).
+  auto edge_widths = [&](uint32_t filter, double band) {
+    const Technique& t = find_technique("gow-ragnarok");
+    Settings s;
+    s.width = W;
+    s.height = H;
+    s = apply_preset(t, "medium", s);
+    s = apply_options(t, s, {{"shadow_filter", filter}, {"cascades", 2}, {"shadow_distance", 7.2}, {"split_lambda", 1},
+                             {"shadow_resolution", 256}, {"taps", 32}, {"march_steps", 16}, {"cascade_blend", band}});
+    FloatImage v = render_gow(gpu(), scene, s, {vis_slot(filter)})[vis_slot(filter)];
+    std::vector<double> w(W, 0.0);
+    for (uint32_t x = 0; x < W; ++x)
+      for (uint32_t y = 0; y < H; ++y) w[x] += 4.0 * std::min(v.at(x, y, 0), 1.0f - v.at(x, y, 0));
+    return w;
+  };
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  for (uint32_t filter : {0u, 1u}) {
+    double share[2];
+    for (int blend = 0; blend < 2; ++blend) {
+      const std::vector<double> w = edge_widths(filter, blend ? 0.1 : 0.0);
+      // The right-hand seam (x = +0.71 m, about column 108): cascade 0 left of it, 1 right.
+      const double inner = median(std::vector<double>(w.begin() + 70, w.begin() + 88));
+      const double outer = median(std::vector<double>(w.begin() + 118, w.end()));
+      double step = 0;
+      uint32_t at = 0;
+      for (uint32_t x = 70; x + 1 < W; ++x)
+        if (std::fabs(w[x + 1] - w[x]) > step) step = std::fabs(w[x + 1] - w[x]), at = x;
+      share[blend] = step / std::fabs(outer - inner);
+      std::printf("%-26s cascade_blend %.1f: edge width %.2f px (cascade 0) -> %.2f px (cascade 1); largest column "
+                  "step %.2f px at column %u = %.2f of the change\n",
+                  vis_slot(filter), blend ? 0.1 : 0.0, inner, outer, step, at, share[blend]);
+      EXPECT_GT(outer, inner + 3.0) << "the two cascades must draw the edge at different widths";
+    }
+    // Band: 0.1 of the first cascade's width (2 x 0.71 m) at 1.6 cm per pixel: about 9 columns.
+    const double band_cols = 0.1 * 2 * 0.71 / (2 * 1.0 * std::tan(30.0 * kPi / 180.0) * (double(W) / H) / W);
+    EXPECT_GT(share[0], 0.5) << vis_slot(filter) << ": the control (no blend) must show the seam";
+    EXPECT_LT(share[1], 2.0 / band_cols) << vis_slot(filter) << ": band " << band_cols << " columns";
   }
 }
 

@@ -6,16 +6,21 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <functional>
 #include <random>
 #include <set>
 #include <algorithm>
 
 #include "perf/calibration.h"
+#include "perf/frame_timing.h"
 #include "perf/clock_probe.h"
 #include "perf/perf.h"
 #include "perf/profiles.h"
 #include "perf/stats.h"
+#include "renderer/graph/executor.h"
+#include "renderer/scene/scene_loader.h"
 #include "renderer/techniques/technique.h"
 #include "tests/gpu_fixture.h"
 
@@ -25,6 +30,13 @@
 
 namespace gib::perf {
 namespace {
+
+std::string read_text_file(const std::string& path) {
+  std::ifstream f(path);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
 
 std::vector<double> lognormal(uint32_t seed, size_t n, double median, double sigma) {
   std::mt19937 rng(seed);
@@ -293,7 +305,7 @@ TEST(PerfProfiles, RepoDataLoads) {
   auto ps5 = select_profiles(profiles, "ps5");
   EXPECT_EQ(ps5.at(0).width, 2560u);
   const std::vector<SeedTable> seeds = load_seed_tables(dir + "/seed-timings.json");
-  ASSERT_EQ(seeds.size(), 4u);
+  ASSERT_EQ(seeds.size(), 5u);
   const SeedTable& idtech = seeds[0];
   ASSERT_NE(idtech.find("ps5"), nullptr);
   EXPECT_GT(idtech.find("ps5")->ms.at("final_gather"), 0);
@@ -360,6 +372,149 @@ TEST(PerfProfiles, RepoDataLoads) {
   Settings s = apply_preset(find_technique("deferred"), "high", Settings{});
   EXPECT_EQ(it->read(apply_options(find_technique("deferred"), s, {{"vrcs", 0}})), 0.0);
   EXPECT_EQ(it->read(apply_options(find_technique("deferred"), s, {{"vrcs", 1}})), 1.0);
+  // God of War Ragnarok: PS5 at 4K, its own workload (not the ps5 profile's 2560x1440); the
+  // shadow captions' two views and the reflections' capture as columns, every one compared.
+  const SeedTable& gow = seeds[4];
+  EXPECT_EQ(gow.name, "god_of_war_ragnarok");
+  EXPECT_EQ(gow.technique, "gow-ragnarok");
+  EXPECT_TRUE(gow.own_workload);
+  EXPECT_TRUE(gow.column_option.empty());
+  const SeedPlatform* shot1 = gow.find("ps5", "shot_1");
+  const SeedPlatform* shot2 = gow.find("ps5", "shot_2");
+  const SeedPlatform* refl = gow.find("ps5", "rt_cubemaps");
+  ASSERT_TRUE(shot1 && shot2 && refl);
+  EXPECT_EQ(shot1->width, 3840u);
+  EXPECT_EQ(refl->height, 2160u);
+  EXPECT_DOUBLE_EQ(shot1->ms.at("pcf"), 1.30);
+  EXPECT_DOUBLE_EQ(shot1->ms.at("contact_hardening"), 3.22);
+  EXPECT_DOUBLE_EQ(shot2->ms.at("pcf"), 0.89);
+  EXPECT_DOUBLE_EQ(shot2->ms.at("contact_hardening"), 3.15);
+  EXPECT_NEAR(refl->ms.at("bvh_trace_plus_combine_half_res"), 1.33 + 0.68, 1e-12);  // one pass of ours does both
+  EXPECT_DOUBLE_EQ(refl->ms.at("resolve_full_res"), 1.36);
+  EXPECT_DOUBLE_EQ(refl->ms.at("ssr_ssdo_ssgi"), 4.23);
+  EXPECT_EQ(gow.pass_row.at("ssdo"), "ssr_ssdo_ssgi");
+  EXPECT_EQ(gow.pass_row.at("ssgi"), "ssr_ssdo_ssgi");
+  EXPECT_EQ(gow.pass_row.count("cubemap_capture"), 0u);  // baked offline in the game
+  // Its malformed fields are named.
+  auto e = [&](const std::string& text) {
+    try {
+      parse_seed_tables(text, "s.json");
+    } catch (const PerfError& err) {
+      return std::string(err.what());
+    }
+    return std::string("no error");
+  };
+  const std::string all = read_text_file(dir + "/seed-timings.json");
+  auto with = [&](const std::string& from, const std::string& to) {
+    std::string text = all;
+    const size_t at = text.find(from, text.find("\"god_of_war_ragnarok\""));
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    return text;
+  };
+  std::string broken = with("\"pcf\": [1.30, 0.89]", "\"pcf\": [1.30]");
+  EXPECT_NE(e(broken).find("/god_of_war_ragnarok/shadows_ps5_4k_ms/pcf: expected [view 1, view 2]"), std::string::npos)
+      << e(broken);
+  broken = with("\"resolution\": [3840, 2160]", "\"resolution\": [3840]");
+  EXPECT_NE(e(broken).find("/god_of_war_ragnarok/workload/resolution"), std::string::npos) << e(broken);
+  broken = with("\"resolve_full_res\": 1.36", "\"resolve_full_res\": \"slow\"");
+  EXPECT_NE(e(broken).find("/god_of_war_ragnarok/raytraced_cubemaps_ps5_4k_ms/resolve_full_res: expected milliseconds"),
+            std::string::npos)
+      << e(broken);
+}
+
+// bench plans the contract AOVs the scene supports (not only radiance), so gow-ragnarok's
+// reflection passes, which feed only the `reflection` AOV, are planned in a glossy scene and
+// culled with a reason in a scene without glossy materials; --aov narrows it.
+TEST(PerfPlan, ReflectionPassesArePlannedInAGlossySceneAndCulledWithAReasonElsewhere) {
+  const Technique& t = find_technique("gow-ragnarok");
+  const char* reflection_passes[] = {"cubemap_capture", "reflections_rt_cubemap", "reflections_resolve"};
+  auto plan_of = [&](const Scene& scene, const BenchOutputs& outs) {
+    Settings s = apply_preset(t, "medium", Settings{});
+    s.width = 64;
+    s.height = 36;
+    std::vector<PassDecl> decls;
+    for (auto& p : make_passes(t)) decls.push_back(p->declare(scene, s));
+    return compile(decls, {scene.features(), outs.resources, s.width, s.height});
+  };
+  Scene glossy = load_scene(std::string(GIB_SOURCE_DIR) + "/cases/scenes/glossy_hall.json");
+  BenchOutputs outs = bench_outputs(t, glossy.features());
+  EXPECT_EQ(outs.aovs, (std::vector<std::string>{"radiance", "direct", "indirect_diffuse", "reflection"}));
+  EXPECT_TRUE(outs.left_out.empty());
+  Plan plan = plan_of(glossy, outs);
+  for (const char* name : reflection_passes) {
+    auto it = std::find_if(plan.passes.begin(), plan.passes.end(), [&](auto& pp) { return pp.name == name; });
+    ASSERT_NE(it, plan.passes.end()) << name;
+    EXPECT_TRUE(it->runs) << name << ": " << it->reason;
+  }
+  // Radiance alone (what bench planned before): the reflection passes are culled.
+  Plan radiance = plan_of(glossy, bench_outputs(t, glossy.features(), {"radiance"}));
+  for (auto& pp : radiance.passes)
+    if (pp.name.rfind("reflections_", 0) == 0 || pp.name == "cubemap_capture") {
+      EXPECT_FALSE(pp.runs) << pp.name;
+    }
+
+  Scene matte = load_scene(std::string(GIB_SOURCE_DIR) + "/cases/scenes/contact_shadows.json");
+  ASSERT_FALSE(matte.features().has(Feature::glossy));
+  BenchOutputs mouts = bench_outputs(t, matte.features());
+  EXPECT_EQ(mouts.aovs, (std::vector<std::string>{"radiance", "direct", "indirect_diffuse"}));
+  ASSERT_EQ(mouts.left_out.size(), 1u);
+  EXPECT_EQ(mouts.left_out[0], "reflection (the scene lacks the features it needs)");
+  Plan mplan = plan_of(matte, mouts);
+  for (const char* name : reflection_passes) {
+    auto it = std::find_if(mplan.passes.begin(), mplan.passes.end(), [&](auto& pp) { return pp.name == name; });
+    ASSERT_NE(it, mplan.passes.end()) << name;
+    EXPECT_FALSE(it->runs) << name;
+    EXPECT_FALSE(it->reason.empty()) << name;
+  }
+  // --aov: narrows; a name outside the contract names the flag.
+  EXPECT_EQ(bench_outputs(t, glossy.features(), {"reflection"}).resources, (std::vector<std::string>{"reflection"}));
+  EXPECT_THROW(bench_outputs(t, glossy.features(), {"specular"}), PerfError);
+  EXPECT_TRUE(bench_outputs(find_technique("direct"), glossy.features(), {"reflection"}).aovs.empty());
+}
+
+// What planning every contract AOV changes for bench's frame totals: in every scene of
+// cases/scenes, the only running passes that feed no radiance are gow-ragnarok's reflection
+// passes in glossy scenes; every other technique plans the same passes as with radiance alone
+// (bench/README.md "What is planned"; update it with this list).
+TEST(PerfPlan, OnlyGowReflectionPassesAreAovOnlyInAnyScene) {
+  namespace fs = std::filesystem;
+  std::set<std::string> aov_only;
+  for (auto& e : fs::directory_iterator(std::string(GIB_SOURCE_DIR) + "/cases/scenes")) {
+    if (e.path().extension() != ".json") continue;
+    Scene scene = load_scene(e.path().string());
+    for (const Technique& t : techniques()) {
+      Settings s = apply_preset(t, "low", Settings{});
+      s.width = 64;
+      s.height = 36;
+      std::vector<PassDecl> decls;
+      for (auto& p : make_passes(t)) decls.push_back(p->declare(scene, s));
+      Plan all = compile(decls, {scene.features(), bench_outputs(t, scene.features()).resources, s.width, s.height});
+      Plan radiance = compile(decls, {scene.features(), {t.output}, s.width, s.height});
+      for (const PlannedPass* pp : all.running())
+        if (std::none_of(radiance.passes.begin(), radiance.passes.end(),
+                         [&](const PlannedPass& q) { return q.name == pp->name && q.runs; }))
+          aov_only.insert(t.name + "/" + pp->name + (scene.features().has(Feature::glossy) ? "" : " (not glossy)"));
+    }
+  }
+  EXPECT_EQ(aov_only, (std::set<std::string>{"gow-ragnarok/cubemap_capture", "gow-ragnarok/reflections_rt_cubemap",
+                                             "gow-ragnarok/reflections_resolve"}));
+}
+
+// ... and timed: one frame through the executor with bench's outputs times every reflection pass.
+class PerfPlanGpu : public test::GpuTest {};
+TEST_F(PerfPlanGpu, ReflectionPassesAreTimedInAGlossyScene) {
+  const Technique& t = find_technique("gow-ragnarok");
+  Scene glossy = load_scene(std::string(GIB_SOURCE_DIR) + "/cases/scenes/glossy_hall.json");
+  Settings s = apply_preset(t, "low", Settings{});
+  s.width = 32;
+  s.height = 18;
+  Executor ex(gpu(), glossy, s, make_passes(t), bench_outputs(t, glossy.features()).resources);
+  FrameTiming ft = time_frames(ex, 0, 1);
+  std::set<std::string> timed;
+  for (auto& [name, summary] : ft.passes()) timed.insert(name);
+  for (const char* name : {"cubemap_capture", "reflections_rt_cubemap", "reflections_resolve"})
+    EXPECT_TRUE(timed.count(name)) << name;
 }
 
 TEST(PerfSamples, ReadsBothFormatsAndNamesBadFields) {

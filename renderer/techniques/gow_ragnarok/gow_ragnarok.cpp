@@ -130,6 +130,10 @@ Technique gow_ragnarok_technique() {
           option("normal_offset", "receiver offset along its normal (shadow-map texels)", 0, 16, &G::normal_offset),
           option("taps", "PCF taps / contact-hardening rays per pixel", 1, 32, &G::taps),
           option("march_steps", "contact-hardening steps over the march distance", 1, 256, &G::march_steps),
+          option("cascade_blend",
+                 "seam band: within this fraction of a cascade's width from its edge, the shadow filters blend into "
+                 "the next cascade (0: off, the hard seam)",
+                 0, 0.5, &G::cascade_blend),
           option("minmax_early_out", "skip fully lit / shadowed pixels and shorten marches by the dilated min/max", 0, 1,
                  &G::minmax_early_out),
           option("local_shadows", "local lights: 1 shadow rays (direct_lighting), 0 no shadow maps (ssdo occludes them)",

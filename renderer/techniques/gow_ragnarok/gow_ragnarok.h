@@ -22,6 +22,7 @@ struct GowRagnarokSettings : TechniqueSettingsOf<GowRagnarokSettings>, DirectLig
   uint32_t taps = 16;                // PCF taps / contact-hardening rays per pixel (1..32)
   uint32_t march_steps = 12;         // contact-hardening steps over the march distance
   bool minmax_early_out = true;      // shadow_minmax: skip fully lit / shadowed pixels, shorten marches
+  float cascade_blend = 0.1f;        // seam band (fraction of a cascade's width) blended into the next cascade; 0 off
   // Screen-space terms (ssdo/, ssgi/; gow_ragnarok.md "SSDO and SSGI"). Local lights have no
   // shadow maps (DirectLightingParams::local_lights false, option local_shadows 0): ssdo lights
   // them through its directional occlusion.

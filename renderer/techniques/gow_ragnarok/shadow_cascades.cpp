@@ -35,6 +35,7 @@ glsl::ShadowCascadePush shadow_cascade_push(const GowRagnarokSettings& s, float 
   p.area = {s.filter_radius, s.march_distance, s.shadow_bias, s.normal_offset};
   p.counts = {std::clamp<uint32_t>(s.taps, 1, glsl::kShadowMaxTaps), std::max<uint32_t>(s.march_steps, 1), 0,
               s.minmax_early_out ? 1u : 0u};
+  p.blend = {std::max(s.cascade_blend, 0.0f), 0, 0, 0};
   return p;
 }
 
@@ -88,6 +89,23 @@ uint32_t select_cascade(const ShadowCameraCpu& cam, const ShadowBasisCpu& b, con
     if (q.x >= m && q.y >= m && q.x <= 1.0f - m && q.y <= 1.0f - m && q.z >= 0.0f && q.z <= 1.0f) return i;
   }
   return glsl::kShadowMaxCascades;
+}
+
+float cascade_blend_weight(const ShadowCameraCpu& cam, const ShadowBasisCpu& b, const glsl::ShadowCascadePush& p,
+                           uint32_t i, Vec3 x_rel, float margin_m, float margin_texels) {
+  const float band = p.blend.x;
+  if (!(band > 0.0f) || i + 1 >= uint32_t(p.params.x)) return 0.0f;
+  const ShadowCascadeCpu c = shadow_cascade(i, cam, b, p);
+  const Vec3 q = shadow_project(c, b, x_rel);
+  const float m = margin_m / (2.0f * c.half_extent) + margin_texels / p.params.y;
+  const float d = std::min(std::min(q.x - m, q.y - m), std::min(1.0f - m - q.x, 1.0f - m - q.y));
+  const float w = std::clamp(1.0f - d / band, 0.0f, 1.0f);
+  if (w <= 0.0f) return 0.0f;
+  const ShadowCascadeCpu n = shadow_cascade(i + 1, cam, b, p);
+  const Vec3 qn = shadow_project(n, b, x_rel);
+  const float mn = margin_m / (2.0f * n.half_extent) + margin_texels / p.params.y;
+  const bool held = qn.x >= mn && qn.y >= mn && qn.x <= 1.0f - mn && qn.y <= 1.0f - mn && qn.z >= 0.0f && qn.z <= 1.0f;
+  return held ? w : 0.0f;
 }
 
 Vec2 disk_tap(uint32_t k, uint32_t n, float rotation) {

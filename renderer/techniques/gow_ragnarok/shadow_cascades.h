@@ -41,6 +41,11 @@ ShadowCascadeCpu shadow_cascade(uint32_t i, const ShadowCameraCpu& cam, const Sh
 Vec3 shadow_project(const ShadowCascadeCpu& c, const ShadowBasisCpu& b, Vec3 x_rel);  // (u, v, depth)
 uint32_t select_cascade(const ShadowCameraCpu& cam, const ShadowBasisCpu& b, const glsl::ShadowCascadePush& p,
                         Vec3 x_rel, float margin_m, float margin_texels);  // kShadowMaxCascades: none
+// The seam blend: weight of cascade i + 1 at x_rel, whose selected cascade is i (0 at `band` =
+// p.blend.x of cascade i's width from the edge of the square select_cascade accepts, 1 at that
+// edge; 0 when blending is off, i is the last cascade, or i + 1 does not hold the point).
+float cascade_blend_weight(const ShadowCameraCpu& cam, const ShadowBasisCpu& b, const glsl::ShadowCascadePush& p,
+                           uint32_t i, Vec3 x_rel, float margin_m, float margin_texels);
 Vec2 disk_tap(uint32_t k, uint32_t n, float rotation);
 // Filtered comparison against a one-channel shadow-map atlas (cascades side by side, res each).
 float shadow_tap(const FloatImage& map, uint32_t cascade, float u, float v, float z, uint32_t res);

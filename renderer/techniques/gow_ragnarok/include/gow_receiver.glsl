@@ -12,6 +12,7 @@
 struct ShadowReceiver {
   int state;         // -1: no pixel (sky) or beyond the cascades (lit); 0 fully shadowed; 1 fully lit; 2 filter
   uint cascade;
+  float blend;       // weight of cascade + 1 near this cascade's edge (gow_cascade_blend; 0: none)
   vec2 uv;
   float z;           // biased receiver depth
   vec2 slope;        // depth change per unit of uv offset on the receiver's plane
@@ -21,9 +22,12 @@ struct ShadowReceiver {
   float rotation;    // tap-pattern rotation (radians)
 };
 
-ShadowReceiver gow_receiver(ivec2 p, ShadowCascadePush sp) {
+// Pixel p as a receiver in cascade `cascade` (selected: gow_receiver; or the next one, for the
+// seam blend). `cascade` kShadowMaxCascades: the first that holds its filter footprint.
+ShadowReceiver gow_receiver_in(ivec2 p, ShadowCascadePush sp, uint cascade) {
   ShadowReceiver r;
   r.state = -1;
+  r.blend = 0.0;
   vec4 pos = imageLoad(gb_position, p);
   if (pos.w == 0.0) return r;
   vec3 cam, fwd;
@@ -32,8 +36,12 @@ ShadowReceiver gow_receiver(ivec2 p, ShadowCascadePush sp) {
   ShadowBasis b = gow_shadow_basis(gib_frame.sun_dir.xyz);
   float radius_m = gow_filter_radius(sp);
   vec3 x_rel = pos.xyz - cam;
-  r.cascade = gow_select_cascade(cam, fwd, tan_y, aspect, b, sp, x_rel, radius_m, 2.0 + sp.area.w);
-  if (r.cascade >= kShadowMaxCascades) return r;
+  if (cascade < kShadowMaxCascades) r.cascade = cascade;
+  else {
+    r.cascade = gow_select_cascade(cam, fwd, tan_y, aspect, b, sp, x_rel, radius_m, 2.0 + sp.area.w);
+    if (r.cascade >= kShadowMaxCascades) return r;
+    r.blend = gow_cascade_blend(cam, fwd, tan_y, aspect, b, sp, r.cascade, x_rel, radius_m, 2.0 + sp.area.w);
+  }
   ShadowCascade c = gow_cascade(r.cascade, cam, fwd, tan_y, aspect, b, sp);
   float res = sp.params.y, texel = gow_texel_size(c, sp);
   vec3 n = imageLoad(gb_normal, p).xyz;
@@ -67,5 +75,8 @@ ShadowReceiver gow_receiver(ivec2 p, ShadowCascadePush sp) {
   }
   return r;
 }
+
+// Pixel p in the cascade selected for it (r.blend: how much of the next one to blend in).
+ShadowReceiver gow_receiver(ivec2 p, ShadowCascadePush sp) { return gow_receiver_in(p, sp, kShadowMaxCascades); }
 
 #endif

@@ -86,6 +86,30 @@ uint gow_select_cascade(vec3 cam, vec3 fwd, float tan_y, float aspect, ShadowBas
   return kShadowMaxCascades;
 }
 
+// The weight of cascade i + 1 at x_rel, a point whose selected cascade is i: the seam blend.
+// With d the distance (in units of cascade i's width) from x_rel to the nearest side of the
+// square gow_select_cascade accepts in cascade i (the same margins), the weight rises linearly
+// from 0 at d = band to 1 at d = 0, where selection would pass to cascade i + 1. 0 when the band
+// is 0 (blending off), i is the last cascade, or cascade i + 1 does not hold the point with its
+// margins (nothing to blend into).
+float gow_cascade_blend(vec3 cam, vec3 fwd, float tan_y, float aspect, ShadowBasis b, ShadowCascadePush p, uint i,
+                        vec3 x_rel, float margin_m, float margin_texels) {
+  float band = p.blend.x;
+  if (!(band > 0.0) || i + 1u >= uint(p.params.x)) return 0.0;
+  ShadowCascade c = gow_cascade(i, cam, fwd, tan_y, aspect, b, p);
+  vec3 q = gow_shadow_project(c, b, x_rel);
+  float m = margin_m / (2.0 * c.half_extent) + margin_texels / p.params.y;
+  float d = min(min(q.x - m, q.y - m), min(1.0 - m - q.x, 1.0 - m - q.y));
+  float w = clamp(1.0 - d / band, 0.0, 1.0);
+  if (w <= 0.0) return 0.0;
+  ShadowCascade n = gow_cascade(i + 1u, cam, fwd, tan_y, aspect, b, p);
+  vec3 qn = gow_shadow_project(n, b, x_rel);
+  float mn = margin_m / (2.0 * n.half_extent) + margin_texels / p.params.y;
+  bool held = all(greaterThanEqual(qn.xy, vec2(mn))) && all(lessThanEqual(qn.xy, vec2(1.0 - mn))) && qn.z >= 0.0 &&
+              qn.z <= 1.0;
+  return held ? w : 0.0;
+}
+
 // Tap k of n of the filter disk (a golden-angle spiral: even area density, no two taps closer
 // than about 1.2 / sqrt(n) of the radius), turned by `rotation` radians; inside the unit disk.
 vec2 gow_disk_tap(uint k, uint n, float rotation) {

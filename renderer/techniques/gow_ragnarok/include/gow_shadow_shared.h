@@ -17,7 +17,7 @@ GIB_CONST(uint, kShadowBindPosition, 10) // gbuffer_position (rgba32f)
 GIB_CONST(uint, kShadowBindNormal, 11)   // gbuffer_normal (rgba16f)
 GIB_CONST(uint, kShadowBindOut, 12)      // r32f sun visibility in [0, 1]
 
-// The cascade set (both kernels and the raster read it). 64 bytes.
+// The cascade set (both kernels and the raster read it). 80 bytes.
 struct ShadowCascadePush {
   vec4 splits;      // far view distance (m) of cascade 0..3; cascade i covers (splits[i-1], splits[i]]
   vec4 params;      // x: cascades, y: resolution (texels per side of one cascade), z: caster range (m
@@ -26,6 +26,8 @@ struct ShadowCascadePush {
                     //   z: depth bias (m); w: normal offset (texels)
   uvec4 counts;     // x: taps, y: march steps, z: cascade to rasterise (shadow_maps) or dilation axis
                     //   (shadow_minmax: 1 x, 0 y), w: use min/max (1)
+  vec4 blend;       // x: seam band, a fraction of a cascade's width: within it of the cascade's edge
+                    //   the filters blend into the next cascade (0: off); yzw unused
 };
 GIB_SHARED_END
 #endif

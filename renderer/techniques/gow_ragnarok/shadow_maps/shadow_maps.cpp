@@ -27,7 +27,7 @@ class ShadowMapsPass final : public Pass {
   void record(RecordContext& ctx) override {
     const auto& g = ctx.settings.params<GowRagnarokSettings>();
     glsl::ShadowCascadePush push = shadow_cascade_push(g, ctx.scene.camera.near_plane);
-    static_assert(sizeof(push) == 64, "ShadowCascadePush must match gow_shadow_shared.h");
+    static_assert(sizeof(push) == 80, "ShadowCascadePush must match gow_shadow_shared.h");
     GraphicsPipelineDesc desc;
     desc.vertex_shader = "shadow_maps.vert";
     desc.fragment_shader = "shadow_maps.frag";

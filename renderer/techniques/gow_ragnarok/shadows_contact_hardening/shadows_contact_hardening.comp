@@ -11,10 +11,8 @@
 // result: the depth map is treated as contiguous, so a ray never escapes between texels, and
 // the worst case is the PCF result. The filter radius grows from one texel at the receiver to
 // the full radius at the light. Taps are filtered comparisons; the pattern is turned per pixel.
-void main() {
-  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(p, imageSize(out_visibility)))) return;
-  ShadowReceiver r = gow_receiver(p, push);
+// Near a cascade's edge the result blends with the next cascade's march (r.blend).
+float contact_hardening(ShadowReceiver r) {
   float vis = 1.0;
   if (r.state == 0) vis = 0.0;
   else if (r.state == 2) {
@@ -51,5 +49,14 @@ void main() {
     for (uint k = 0u; k < taps; ++k) sum += results[k];
     vis = sum / float(taps);
   }
+  return vis;
+}
+
+void main() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(p, imageSize(out_visibility)))) return;
+  ShadowReceiver r = gow_receiver(p, push);
+  float vis = contact_hardening(r);
+  if (r.blend > 0.0) vis = mix(vis, contact_hardening(gow_receiver_in(p, push, r.cascade + 1u)), r.blend);
   imageStore(out_visibility, p, vec4(vis, 0.0, 0.0, 0.0));
 }

@@ -5,11 +5,10 @@
 
 // Poisson-style PCF: the mean of `taps` filtered comparisons over a disk of the area-light radius
 // (the same radius contact hardening reaches at its full march distance), each against the
-// receiver's plane, the pattern turned per pixel.
-void main() {
-  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(p, imageSize(out_visibility)))) return;
-  ShadowReceiver r = gow_receiver(p, push);
+// receiver's plane, the pattern turned per pixel. Near a cascade's edge the result blends with
+// the next cascade's (r.blend, gow_cascade_blend), so the filter's resolution does not jump at
+// the seam.
+float pcf(ShadowReceiver r) {
   float vis = 1.0;
   if (r.state == 0) vis = 0.0;
   else if (r.state == 2) {
@@ -21,5 +20,14 @@ void main() {
     }
     vis = sum / float(taps);
   }
+  return vis;
+}
+
+void main() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(p, imageSize(out_visibility)))) return;
+  ShadowReceiver r = gow_receiver(p, push);
+  float vis = pcf(r);
+  if (r.blend > 0.0) vis = mix(vis, pcf(gow_receiver_in(p, push, r.cascade + 1u)), r.blend);
   imageStore(out_visibility, p, vec4(vis, 0.0, 0.0, 0.0));
 }
