@@ -426,7 +426,9 @@ TEST(RadianceCacheSchedule, PresetsKeepMediumProbeSamples) {
   const Settings medium = apply_preset(t, "medium", Settings{});
   EXPECT_NEAR(samples(rc(medium)), 394.67f, 0.01f);
   EXPECT_EQ(rc(medium).probe_schedule, 0u);
-  EXPECT_FALSE(rc(medium).dither_stores);
+  // Every preset stores the probe atlas, the GI history and the cells dithered (closed box).
+  EXPECT_TRUE(rc(medium).dither_stores);
+  EXPECT_TRUE(rc(apply_preset(t, "low", Settings{})).dither_stores);
   EXPECT_EQ(rc(apply_preset(t, "low", Settings{})).probe_schedule, 0u);
   EXPECT_FLOAT_EQ(rc(apply_preset(t, "low", Settings{})).probe_hysteresis, 0.85f);
   for (const char* p : {"high", "ultra"}) {

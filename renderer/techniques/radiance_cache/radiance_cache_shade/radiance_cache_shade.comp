@@ -9,6 +9,7 @@ GIB_SCENE_BUFFERS(0, kBindSceneFirst)
 layout(constant_id = kRcShadeSpecSun) const bool kHasSun = true;
 layout(constant_id = kRcShadeSpecSky) const bool kHasSky = true;
 layout(constant_id = kRcShadeSpecLocal) const bool kHasLocal = true;
+layout(constant_id = kRcShadeSpecDither) const bool kDither = false;
 #define GIB_ALPHA_SPEC kRcShadeSpecAlpha
 #include "bvh_alpha.glsl"
 #include "lights.glsl"
@@ -35,8 +36,36 @@ RC_LIGHT_GRID_BUFFER(kRcShadeBindLightGrid)
 
 const float kFar = 3.4e38;
 
+// Direct light leaving x towards the side n (sun: one sample of its cone; local lights from the
+// light grid), each behind one shadow ray: what a cell adds to the light arriving from elsewhere.
+vec3 direct_light(vec3 x, vec3 n, vec3 albedo, float translucency, inout GibRng rng) {
+  vec3 result = vec3(0.0);
+  if (kHasSun && gib_frame.sun_irradiance.w > 0.0) {
+    vec3 wi = gib_uniform_cone(gib_frame.sun_dir.xyz, gib_frame.sun_dir.w, gib_next2(rng));
+    float w = gib_thin_facing(translucency, n, wi);
+    if (w > 0.0 && !trace_any(gib_offset_ray(x, dot(n, wi) > 0.0 ? n : -n), wi, 0.0, kFar))
+      result += albedo / GIB_PI * w * gib_frame.sun_irradiance.rgb;
+  }
+  if (kHasLocal) {
+    uint base = lg_cell_base(x);
+    if (base != kLgInvalid) {
+      uint count = min(LG_CELL_COUNT(base), kLightGridMaxLights);
+      for (uint i = 0u; i < count; ++i) {
+        vec3 wi;
+        float dist;
+        vec3 e = gib_local_light(gib_lights[LG_CELL_LIGHT(base, i)], x, wi, dist);
+        float w = gib_thin_facing(translucency, n, wi);
+        if (w <= 0.0 || all(equal(e, vec3(0.0)))) continue;
+        if (!trace_any(gib_offset_ray(x, dot(n, wi) > 0.0 ? n : -n), wi, 0.0, dist * 0.999))
+          result += albedo / GIB_PI * w * e;
+      }
+    }
+  }
+  return result;
+}
+
 // Radiance leaving the surface at a hit of a bounce ray travelling along wi.
-vec3 bounce_radiance(GibHit hit, vec3 wi, uint now) {
+vec3 bounce_radiance(GibHit hit, vec3 wi, uint now, inout GibRng rng) {
   GibSurface s = gib_surface(hit.triangle, hit.u, hit.v, rc.flags.y != 0u);
   // Single bounce (multi_bounce 0): only what the hit emits; cached cells and the volumes both
   // hold light that has already bounced.
@@ -48,9 +77,16 @@ vec3 bounce_radiance(GibHit hit, vec3 wi, uint now) {
     uint shaded = rc_cells[i].shaded_frame;
     if (shaded != 0u && shaded != now) return gib_unpack_rgb9e5(rc_cells[i].radiance);
   }
+  // No cell to read (none inserted there, or it is being shaded this frame): the hit's own
+  // estimate. The volumes hold light that reached the probes from surfaces and the sky, not the
+  // sun's or local lights' direct light at q, so that is traced here as a cell's shade does;
+  // without it a bounce onto a sunlit patch whose cell is shaded in the same frame lost the
+  // patch's sunlight (issue 19, thin-wall rooms).
   GpuMaterial m = gib_materials[s.material];
   vec3 n = dot(s.normal, wi) > 0.0 ? -s.normal : s.normal;
-  return gib_material_emissive(m, s.uv) + gib_material_albedo(m, s.uv) * rc_sample_irradiance(q, n, -wi);
+  vec3 albedo = gib_material_albedo(m, s.uv);
+  return gib_material_emissive(m, s.uv) + direct_light(q, n, albedo, m.translucency, rng) +
+         albedo * rc_sample_irradiance(q, n, -wi);
 }
 
 // Debug NaN injection target: the cell of the camera's first hit through pixel inject.yz, keyed
@@ -74,7 +110,11 @@ void store(uint cell, vec3 result, uint now) {
     rc_cells[cell].shaded_frame = 0u;
     return;
   }
-  rc_cells[cell].radiance = gib_pack_rgb9e5(result);  // RGB9E5 has no NaN: a NaN packs to 0
+  // RGB9E5 has no NaN: a NaN packs to 0. dither_stores: stochastic rounding (a dither from the
+  // cell and the frame), so a cell re-shaded to the same value does not round the same way each
+  // time: rounded to nearest, the closed box's 100x loop gain turned the rounding into a bias.
+  uint dither = gib_pcg(cell ^ gib_pcg(now ^ 0x3c6ef372u));
+  rc_cells[cell].radiance = kDither ? gib_pack_rgb9e5_dither(result, dither) : gib_pack_rgb9e5(result);
   rc_cells[cell].shaded_frame = now;
 }
 
@@ -105,27 +145,7 @@ void main() {
   GibRng rng = gib_rng(gib_seed(), rc.misc.x, uvec2(cell, hit_id), 21u);
   vec3 result = gib_material_emissive(m, s.uv);
 
-  if (kHasSun && gib_frame.sun_irradiance.w > 0.0) {
-    vec3 wi = gib_uniform_cone(gib_frame.sun_dir.xyz, gib_frame.sun_dir.w, gib_next2(rng));
-    float w = gib_thin_facing(translucency, n, wi);
-    if (w > 0.0 && !trace_any(gib_offset_ray(x, dot(n, wi) > 0.0 ? n : -n), wi, 0.0, kFar))
-      result += albedo / GIB_PI * w * gib_frame.sun_irradiance.rgb;
-  }
-  if (kHasLocal) {
-    uint base = lg_cell_base(x);
-    if (base != kLgInvalid) {
-      uint count = min(LG_CELL_COUNT(base), kLightGridMaxLights);
-      for (uint i = 0u; i < count; ++i) {
-        vec3 wi;
-        float dist;
-        vec3 e = gib_local_light(gib_lights[LG_CELL_LIGHT(base, i)], x, wi, dist);
-        float w = gib_thin_facing(translucency, n, wi);
-        if (w <= 0.0 || all(equal(e, vec3(0.0)))) continue;
-        if (!trace_any(gib_offset_ray(x, dot(n, wi) > 0.0 ? n : -n), wi, 0.0, dist * 0.999))
-          result += albedo / GIB_PI * w * e;
-      }
-    }
-  }
+  result += direct_light(x, n, albedo, translucency, rng);
   {
     // Sky and bounce: one cosine ray on the front, or (translucency) on the back.
     vec3 side = translucency > 0.0 && gib_next(rng) < translucency ? -n : n;
@@ -135,7 +155,7 @@ void main() {
     if (!trace_closest(gib_offset_ray(x, side), wi, 0.0, kFar, hit))
       l = kHasSky ? gib_sky_radiance(wi) : vec3(0.0);
     else
-      l = bounce_radiance(hit, wi, now);
+      l = bounce_radiance(hit, wi, now, rng);
     result += albedo * l;
   }
   if (cell == target) result = vec3(gib_nan());

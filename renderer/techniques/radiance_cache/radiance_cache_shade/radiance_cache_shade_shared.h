@@ -16,6 +16,7 @@ GIB_CONST(uint, kRcShadeSpecSun, 0)
 GIB_CONST(uint, kRcShadeSpecSky, 1)
 GIB_CONST(uint, kRcShadeSpecLocal, 2)
 GIB_CONST(uint, kRcShadeSpecAlpha, 3)
+GIB_CONST(uint, kRcShadeSpecDither, 4)  // 1: the cell's RGB9E5 store rounds stochastically (option dither_stores)
 struct RcShadePush {
   RcParams rc;
   LightGridParams lg;  // x: cascade-0 extent (m), y: cascades, z: light count
