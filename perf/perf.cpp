@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -538,6 +539,18 @@ int cmd_bench(const BenchOptions& o) {
       }
       // The timing every command shares (frame_timing.h): scan off, warm-up, timed frames.
       const FrameTiming timed = time_frames(ex, warmup, frames);
+      // Work the GPU counted (PassDecl::measured): read back after the timed frames, so the
+      // readback is in no timed frame; the last frame's value, averaged over the repeats.
+      for (auto* pp : ex.plan().running())
+        for (const MeasuredCounter& m : pp->measured)
+          for (auto& pr : r.passes)
+            if (pr.name == pp->name) {
+              const std::vector<uint8_t> raw = ex.read_buffer(m.resource);
+              uint32_t v = 0;
+              if (m.offset + sizeof(v) <= raw.size()) std::memcpy(&v, raw.data() + m.offset, sizeof(v));
+              const double prev = pr.counters.contains(m.name) ? pr.counters[m.name].get<double>() : 0.0;
+              pr.counters[m.name] = prev + double(v) / repeats;
+            }
       for (const FrameResult& fr : timed.frames) {
         for (auto& pt : fr.passes)
           for (auto& pr : r.passes)
@@ -744,6 +757,17 @@ int cmd_bench(const BenchOptions& o) {
     Summary fs = summarize_samples(r.frame_ms);
     fmt::print("frame measured end to end: median {} ms, IQR [{}, {}] at {}\n", fmt_ms(fs.median), fmt_ms(fs.q1),
                fmt_ms(fs.q3), w.run_name());
+    for (auto* pp : r.plan_run.running()) {
+      if (pp->measured.empty()) continue;
+      for (auto& pr : r.passes)
+        if (pr.name == pp->name) {
+          std::vector<std::string> parts;
+          for (const MeasuredCounter& m : pp->measured)
+            if (pr.counters.contains(m.name)) parts.push_back(fmt::format("{} {:g}", m.name, pr.counters[m.name].get<double>()));
+          fmt::print("measured work (GPU counters after the timed frames, at {}): {}: {}\n", w.run_name(), pr.name,
+                     fmt::join(parts, ", "));
+        }
+    }
     const std::string fkey = fmt::format("{}/frame/{}", r.name, w.run_name());
     medians[fkey] = fs.median;
     jr["frame"] = {{"key", fkey}, {"samples_ms", r.frame_ms}, {"sample_repeat", r.frame_repeat},

@@ -1,11 +1,13 @@
 // The radiance-cache world passes (probe_trace, radiance_cache_update, radiance_cache_shade,
 // irradiance_volume_update) on lavapipe at small sizes: cache counters against the table and
-// the hit records, drops under a tiny table, convergence of an open-sky probe to the sky
+// the hit records, drops under a tiny table, the insertion's table and counters against a CPU
+// mirror of the all-rounds design, convergence of an open-sky probe to the sky
 // radiance, and a CPU mirror of the cell key. A test-only pass (rc_world_test.comp) exposes the
 // hit positions/keys exactly as the update computes them and decodes the RGB9E5 atlas.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
@@ -277,6 +279,141 @@ TEST_F(RadianceCacheWorld, TinyCacheCountsEveryDrop) {
     EXPECT_EQ(c.misplaced, 0u);
     EXPECT_EQ(st.active, c.shaded_now);
     EXPECT_GE(st.collisions, st.drops * rc(s).cache_max_probe) << "a drop probed every slot";
+  }
+}
+
+// ---- CPU mirror of the insertion as it was first designed (radiance_cache.glsl, "Insertion"):
+// rounds 0 .. max_probe, each over every hit. Within a round the outcome does not depend on the
+// order of the hits (a bid is an atomicMax, a commit a compare-and-swap that one of the key's hits
+// wins), so running the hits one after another gives what the GPU's round gives. The GPU pass now
+// searches once and runs the later rounds over the pending hits only; it must leave the same
+// table and counters.
+struct MirrorInsertion {
+  std::vector<uint32_t> keys;  // the table's keys afterwards
+  uint32_t insertions = 0, collisions = 0, drops = 0, reused = 0, active = 0;
+};
+MirrorInsertion mirror_insertion(const std::vector<glsl::RcCell>& before, const std::vector<uint32_t>& hit_keys,
+                                 const Settings& s, uint32_t frame) {
+  MirrorInsertion m;
+  for (auto& c : before) m.keys.push_back(c.key);
+  std::vector<uint32_t> shaded;
+  for (auto& c : before) shaded.push_back(c.shaded_frame);
+  const uint32_t mask = (1u << rc(s).cache_log2_cells) - 1u, n = rc(s).cache_max_probe, now = frame + 1;
+  for (uint32_t round = 0; round <= n; ++round)
+    for (uint32_t key : hit_keys) {
+      if (!key) continue;
+      const uint32_t first = (key >> 2) & mask, hash = key & ~3u;
+      const uint32_t bid = hash | (2u + (round & 1u)), last_bid = hash | (2u + ((round + 1u) & 1u));
+      int64_t placed = -1;
+      for (uint32_t st = 0; st < round && placed < 0; ++st) {
+        const uint32_t i = (first + st) & mask, v = m.keys[i];
+        if (v == key) {
+          placed = i;
+        } else if (v == last_bid && st + 1 == round) {
+          m.keys[i] = key;
+          ++m.insertions;
+          placed = i;
+        } else if (st + 1 == round) {
+          ++m.collisions;
+        }
+      }
+      if (placed < 0) {
+        if (round == n) {
+          ++m.drops;
+          continue;
+        }
+        const uint32_t i = (first + round) & mask, v = m.keys[i];
+        if (v == key)
+          placed = i;
+        else if (v == 0 || (v & 3u) == (bid & 3u))
+          m.keys[i] = std::max(v, bid);
+      }
+      if (round == n && placed >= 0) {
+        uint32_t& sf = shaded[size_t(placed)];
+        if (sf == now) continue;
+        if (sf != 0 && now - sf < rc(s).cache_reuse_frames) {
+          ++m.reused;
+          continue;
+        }
+        sf = now;
+        ++m.active;
+      }
+    }
+  return m;
+}
+
+// The pass's table and counters against the mirror, frame by frame, in the room and with a
+// table so small that most keys collide and many are dropped.
+TEST_F(RadianceCacheWorld, InsertionMatchesCpuMirrorOfAllRounds) {
+  Scene scene = parse_scene(nlohmann::json::parse(kRoom), "room");
+  for (int tiny = 0; tiny < 2; ++tiny) {
+    Settings s = small_settings();
+    if (tiny) {
+      rc(s).cache_log2_cells = 6;
+      rc(s).cache_max_probe = 4;
+    }
+    Executor ex(gpu(), scene, s, world_passes(), {"probe_irradiance", "rc_test_keys", "rc_test_atlas"});
+    std::vector<glsl::RcCell> before(size_t(1) << rc(s).cache_log2_cells, glsl::RcCell{});
+    for (uint32_t f = 0; f < 4; ++f) {
+      ex.run_frame();
+      auto cells = as<glsl::RcCell>(ex.read_buffer("rc_cells"));
+      RcStats st = rc_stats_from_bytes(ex.read_buffer("rc_counters").data(), sizeof(glsl::RcCounters));
+      std::vector<uint32_t> hit_keys;
+      for (auto& k : as<glsl::RcTestKey>(ex.read_buffer("rc_test_keys"))) hit_keys.push_back(k.key.x);
+      MirrorInsertion m = mirror_insertion(before, hit_keys, s, f);
+      std::printf("%s frame %u: gpu insertions %u collisions %u drops %u reused %u active %u; mirror %u %u %u %u %u\n",
+                  tiny ? "tiny" : "room", f, st.insertions, st.collisions, st.drops, st.reused, st.active,
+                  m.insertions, m.collisions, m.drops, m.reused, m.active);
+      ASSERT_EQ(cells.size(), m.keys.size());
+      uint32_t differ = 0, hit_index_left = 0;
+      for (size_t i = 0; i < cells.size(); ++i) {
+        differ += cells[i].key != m.keys[i];
+        hit_index_left += cells[i].hit_index != 0;
+      }
+      EXPECT_EQ(differ, 0u) << "table keys differ from the mirror's";
+      EXPECT_EQ(hit_index_left, 0u) << "radiance_cache_shade resets every queued cell's hit_index";
+      EXPECT_EQ(st.insertions, m.insertions);
+      EXPECT_EQ(st.collisions, m.collisions);
+      EXPECT_EQ(st.drops, m.drops);
+      EXPECT_EQ(st.reused, m.reused);
+      EXPECT_EQ(st.active, m.active);
+      if (tiny) {
+        EXPECT_GT(m.drops, 0u);
+      }
+      before = cells;
+    }
+  }
+}
+
+// irradiance_volume_update's two layouts: the per-probe kernel GPUs run (volume_kernel 1: one
+// dispatch, probe groups plus carry groups, rays also stored to probe_ray_radiance) and the CPU
+// split (2: carry, rays, convolve) leave bit-identical atlases and ray buffers, frame after
+// frame, with three cascades so every frame carries two of them.
+TEST_F(RadianceCacheWorld, VolumeKernelsAgreeBitForBit) {
+  Scene scene = parse_scene(nlohmann::json::parse(kRoom), "room");
+  auto run = [&](uint32_t kernel) {
+    Settings s = small_settings();
+    rc(s).cascades = 3;
+    rc(s).volume_kernel = kernel;
+    Executor ex(gpu(), scene, s, world_passes(), {"probe_irradiance", "rc_test_keys", "rc_test_atlas"});
+    std::vector<std::vector<uint32_t>> frames;  // bit patterns: decoded atlas, both moments, rays
+    for (uint32_t f = 0; f < 4; ++f) {
+      ex.run_frame();
+      std::vector<uint32_t> bits;
+      for (float v : ex.read("rc_test_atlas").pixels) bits.push_back(std::bit_cast<uint32_t>(v));
+      for (float v : ex.read("probe_visibility").pixels) bits.push_back(std::bit_cast<uint32_t>(v));
+      for (uint32_t v : as<uint32_t>(ex.read_buffer("probe_ray_radiance"))) bits.push_back(v);
+      frames.push_back(std::move(bits));
+    }
+    return frames;
+  };
+  auto per_probe = run(1), split = run(2);
+  ASSERT_EQ(per_probe.size(), split.size());
+  for (size_t f = 0; f < split.size(); ++f) {
+    ASSERT_EQ(per_probe[f].size(), split[f].size());
+    size_t differ = 0;
+    for (size_t i = 0; i < split[f].size(); ++i) differ += per_probe[f][i] != split[f][i];
+    EXPECT_EQ(differ, 0u) << "frame " << f << ": values of the atlas / ray buffer that differ";
   }
 }
 

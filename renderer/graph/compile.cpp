@@ -359,6 +359,7 @@ class Compiler {
       pp.kind = decls_[p].kind;
       pp.slots = decls_[p].slots;
       pp.work = decls_[p].work;
+      pp.measured = decls_[p].measured;
       return pp;
     };
     for (int p : order) plan.passes.push_back(make(p, true));

@@ -110,6 +110,15 @@ struct WorkCounter {
   double per_frame = 0;
 };
 
+// A work counter the GPU counts: the uint32 at byte `offset` of buffer resource `resource` after
+// a frame. Read back by `gibench bench` after its timed frames (never inside a frame), and
+// reported next to the declared work: for work that depends on the frame (cells queued).
+struct MeasuredCounter {
+  std::string name;
+  std::string resource;
+  uint64_t offset = 0;
+};
+
 struct PassDecl {
   std::string name;     // == folder == timer label == bench key
   PassKind kind = PassKind::compute;
@@ -117,6 +126,7 @@ struct PassDecl {
   std::vector<Slot> slots;
   bool side_effect = false;  // never culled for unused outputs (readbacks, stats)
   std::vector<WorkCounter> work;  // besides "pixels", which every pass reports
+  std::vector<MeasuredCounter> measured;  // read back by bench after its timed frames
 };
 
 struct GraphError : std::runtime_error {
@@ -156,6 +166,7 @@ struct PlannedPass {
   PassKind kind = PassKind::compute;
   std::vector<Slot> slots;     // as declared
   std::vector<WorkCounter> work;  // as declared
+  std::vector<MeasuredCounter> measured;  // as declared
 };
 
 struct Plan {

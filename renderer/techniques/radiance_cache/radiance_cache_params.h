@@ -1,6 +1,5 @@
 // Builds the push-constant block every radiance-cache pass shares from Settings (C++ only).
 #pragma once
-#include <cmath>
 #include <vector>
 
 #include "renderer/graph/pass.h"
@@ -33,13 +32,6 @@ inline glsl::RcParams make_rc_params(const Settings& s, uint32_t frame) {
   p.misc = {frame, r.cache_reuse_frames, r.gather_divisor, r.light_grid_cascades};
   p.flags = {r.cache_side_key ? 1u : 0u, s.nan_guards ? 1u : 0u, r.multi_bounce ? 1u : 0u, r.probe_rays ? 1u : 0u};
   return p;
-}
-
-// The work counters of the two cache passes: the table's cells and the probe hits of the one
-// cascade updated per frame.
-inline std::vector<WorkCounter> rc_cache_work(const Settings& s) {
-  const RadianceCacheSettings& r = s.params<RadianceCacheSettings>();
-  return {{"cache_cells", std::ldexp(1.0, int(r.cache_log2_cells))}, {"hits", double(kProbesPerCascade) * r.rays_per_probe}};
 }
 
 }  // namespace gib

@@ -32,7 +32,8 @@ struct RcCell {
   uint key;           // 0: empty; else (hash(quantised position, lod) & ~3) | 1 (2, 3: insertion bid)
   uint radiance;      // RGB9E5 outgoing diffuse radiance of the cell
   uint shaded_frame;  // frame + 1 when last shaded (0: never)
-  uint hit_index;     // probe hit record that inserted it this frame (shading input)
+  uint hit_index;     // ~(lowest id of its probe hit records) while queued this frame (shading
+                      // input; radiance_cache_update sets it, radiance_cache_shade reads it and resets it to 0)
 };
 // Counters and the indirect dispatch for radiance_cache_shade (32 bytes, uvec4 aligned).
 struct RcCounters {

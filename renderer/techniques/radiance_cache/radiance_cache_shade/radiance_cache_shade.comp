@@ -127,7 +127,10 @@ void main() {
   if (index == 0u && target != 0xffffffffu && rc_cells[target].shaded_frame != now) store(target, vec3(gib_nan()), now);
   if (index >= counters.active_cells) return;
   uint cell = rc_active[index];
-  uint hit_id = rc_cells[cell].hit_index;
+  // ~(lowest hit id) of the cell's hits (radiance_cache_update); reset to 0 for the next frame's
+  // update, which offers its hits by atomicMax.
+  uint hit_id = ~rc_cells[cell].hit_index;
+  rc_cells[cell].hit_index = 0u;
   ProbeHit h = probe_hits[hit_id];
   uint rays = rc_rays_per_probe();
   uint probe = hit_id / rays, ray = hit_id - probe * rays;

@@ -1,5 +1,7 @@
 #include "renderer/techniques/radiance_cache/radiance_cache_shade/radiance_cache_shade.h"
 
+#include <cstddef>
+
 #include "renderer/techniques/radiance_cache/radiance_cache_shade/radiance_cache_shade_shared.h"
 #include "renderer/techniques/radiance_cache/radiance_cache_params.h"
 
@@ -8,7 +10,7 @@ namespace {
 
 class RadianceCacheShadePass final : public Pass {
  public:
-  PassDecl declare(const Scene& scene, const Settings& s) const override {
+  PassDecl declare(const Scene& scene, const Settings&) const override {
     PassDecl d;
     d.name = "radiance_cache_shade";
     d.slots = {{"probe_hits", Access::read},
@@ -18,7 +20,9 @@ class RadianceCacheShadePass final : public Pass {
                {"probe_irradiance", Access::read_prev},
                {"probe_visibility", Access::read_prev}};
     if (scene.features().has(Feature::local_lights)) d.slots.push_back({"light_grid", Access::read});
-    d.work = rc_cache_work(s);
+    // One thread per cell queued this frame: how many, only the GPU knows (read back by bench
+    // after its timed frames).
+    d.measured = {{"cells_shaded", "rc_counters", offsetof(glsl::RcCounters, active_cells)}};
     return d;
   }
 

@@ -1,15 +1,22 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 #include "renderer/techniques/radiance_cache/radiance_cache_update/radiance_cache_update_shared.h"
 #include "frame.glsl"
 #include "scene.glsl"
 GIB_SCENE_BUFFERS(0, kBindSceneFirst)
-layout(constant_id = kRcUpdateSpecKernel) const uint kKernel = kRcUpdateKernelInsert;
+layout(constant_id = kRcUpdateSpecKernel) const uint kKernel = kRcUpdateKernelFind;
 
 layout(local_size_x = kRcUpdateGroup) in;
 layout(std430, set = 0, binding = kRcUpdateBindHits) readonly buffer HitBuffer { ProbeHit probe_hits[]; };
 layout(std430, set = 0, binding = kRcUpdateBindActive) writeonly buffer ActiveBuffer { uint rc_active[]; };
-layout(std430, set = 0, binding = kRcUpdateBindCounters) coherent buffer CounterBuffer { RcCounters counters; };
+layout(std430, set = 0, binding = kRcUpdateBindCounters) coherent buffer CounterBuffer {
+  RcCounters counters;
+  RcRoundArgs rounds[];  // rounds[r - 1]: insertion round r
+};
+layout(std430, set = 0, binding = kRcUpdateBindPending) buffer PendingBuffer { uvec2 rc_pending[]; };
 layout(push_constant) uniform Push { RcParams rc; uvec4 extra; };
 #include "renderer/techniques/radiance_cache/include/probe_volume.glsl"
 #include "renderer/techniques/radiance_cache/include/radiance_cache.glsl"
@@ -30,84 +37,179 @@ uint hit_key(uint id) {
   return rc_cell_key(rc_hit_position(o, d, h.distance), rc_facing_normal(h.triangle_plus1 - 1u, d), lod);
 }
 
-// Deterministic insertion (radiance_cache.glsl, "Insertion"): kernel `round` r = 0..max_probe-1
-// lets every hit whose key is not yet in the table bid for slot first + r of its probe sequence;
-// a bid is the key tagged with the round's parity (2 | r & 1) and the largest bid wins
-// (atomicMax), so the winner depends on the set of keys, not on thread order. Kernel r first
-// looks for the key in slots first .. first + r - 1 (settled by earlier rounds) and commits its
-// own winning bid of round r - 1 (tag -> 1). The last kernel (r = max_probe) only settles: keys
-// still unplaced are dropped, placed ones are queued for shading. Returns the hit's cell, or
-// kNoCell when it is not placed (yet).
-uint insert_round(uint key, uint round) {
-  uint mask = rc_cell_mask(), first = rc_cell_first_slot(key), hash = key & ~3u;
-  uint bid = hash | (2u + (round & 1u)), last_bid = hash | (2u + ((round + 1u) & 1u));
-  for (uint s = 0u; s < round; ++s) {
-    uint i = (first + s) & mask;
-    uint v = rc_cells[i].key;
-    if (v == key) return i;
-    if (v == last_bid && s + 1u == round) {
-      // Our bid of the previous round won: commit it (one of the key's hits counts it).
-      if (atomicCompSwap(rc_cells[i].key, v, key) == v) atomicAdd(counters.insertions, 1u);
-      return i;
-    }
-    if (s + 1u == round) atomicAdd(counters.collisions, 1u);  // passed last round's slot
+// ---- subgroup-aggregated counters and list appends: one atomic per subgroup instead of one per
+// thread. Used in uniform control flow (every thread of the group, at the end of main).
+#define RC_COUNT(COUNTER, N)                                   \
+  {                                                            \
+    uint total_ = subgroupAdd(N);                              \
+    if (subgroupElect() && total_ != 0u) atomicAdd(COUNTER, total_); \
   }
-  if (round == rc_max_probe()) {
-    atomicAdd(counters.drops, 1u);
-    return kNoCell;
+
+// Appends for every thread whose WANT is true: SLOT receives its entry (consecutive within the
+// subgroup), LENGTH counts the entries, and GROUPS the groups of GROUP threads the list spans up
+// to CAP entries: each subgroup adds the multiples of GROUP it crosses, so the sum over all of
+// them is ceil(min(length, CAP) / GROUP) whatever the order.
+#define RC_APPEND(WANT, SLOT, LENGTH, GROUPS, GROUP, CAP)                                  \
+  {                                                                                        \
+    uvec4 ballot_ = subgroupBallot(WANT);                                                  \
+    uint n_ = subgroupBallotBitCount(ballot_), base_ = 0u;                                 \
+    if (n_ != 0u) {                                                                        \
+      if (subgroupElect()) {                                                               \
+        base_ = atomicAdd(LENGTH, n_);                                                     \
+        uint lo_ = min(base_, CAP), hi_ = min(base_ + n_, CAP);                            \
+        uint crossed_ = (hi_ + (GROUP) - 1u) / (GROUP) - (lo_ + (GROUP) - 1u) / (GROUP);   \
+        if (crossed_ != 0u) atomicAdd(GROUPS, crossed_);                                   \
+      }                                                                                    \
+      base_ = subgroupBroadcastFirst(base_);                                               \
+    }                                                                                      \
+    SLOT = base_ + subgroupBallotExclusiveBitCount(ballot_);                               \
   }
-  uint i = (first + round) & mask;
-  uint v = rc_cells[i].key;
-  if (v == key) return i;  // committed in an earlier frame
-  // Empty, or holding this round's bids (same parity tag): bid. Anything else (a committed key or
-  // the previous round's winner) is occupied: the next round tries the next slot.
+
+// ---- deterministic insertion (radiance_cache.glsl, "Insertion"). Round r = 0 .. max_probe lets
+// every key not yet in the table bid for slot first + r of its probe sequence: a bid is the key
+// tagged with the round's parity (2 | r & 1), the largest bid wins (atomicMax), so the winner
+// depends on the set of keys, not on thread order; the winner commits (tag -> 1) in round r + 1,
+// the losers move on; keys still unplaced after round max_probe - 1's commit are dropped.
+//
+// Round 0 (kernel find, every hit record): the key is searched in the table as the frame found
+// it (nothing but round-0 bids is written during this kernel, and only into slots empty at the
+// frame's start; cells are never removed, so every slot before a committed key is occupied).
+// Found at step s: placed (the rounds would find it in round s, counting s collisions). All
+// max_probe slots held by other keys: dropped (every round counts a collision). Else the key is
+// new: it bids here if its first slot is empty (or holds round-0 bids), and joins the pending
+// list of round 1. Round r >= 1 (kernel round, indirect over that list): looks at slot first +
+// r - 1 (its own bid of round r - 1 won: commit; a sibling hit committed it: found; else a
+// collision), then bids for slot first + r, or, in round max_probe, is dropped; still unplaced
+// hits join round r + 1's list, so a round with nothing left dispatches 0 groups. Each hit meets
+// exactly the table states and takes exactly the steps of the former design (every hit in every
+// round), so the table and the counters are the same.
+
+// Bids `bid` for slot i, which held v when read: empty, or holding this round's bids (same
+// parity tag). Anything else (a committed key, the previous round's winner) is occupied.
+void bid_for(uint i, uint v, uint bid) {
   if (v == 0u || (v & 3u) == (bid & 3u)) atomicMax(rc_cells[i].key, bid);
-  return kNoCell;
 }
 
-// After the last round: queue a placed hit's cell for shading unless it was shaded recently.
-void queue_cell(uint cell) {
+// A placed hit: queue its cell for shading unless it was shaded recently (reused), and offer the
+// hit as the cell's shading input: RcCell.hit_index holds ~(lowest hit id) of the queued cell's
+// hits (atomicMax of ~id; radiance_cache_shade reads it and resets it to 0, so it is 0 whenever
+// this pass starts). Which hit shades the cell then depends on the set of hits, not on who won
+// the queueing race. Returns true when this hit appended the cell to rc_active.
+bool queue_cell(uint cell, uint id, inout uint reused) {
   uint now = rc.misc.x + 1u;
   uint shaded = atomicAdd(rc_cells[cell].shaded_frame, 0u);
-  if (shaded == now) return;  // queued this frame by another hit
-  if (shaded != 0u && now - shaded < rc.misc.y) {
-    atomicAdd(counters.reused, 1u);
-    return;
+  bool mine = false;
+  if (shaded != now) {
+    if (shaded != 0u && now - shaded < rc.misc.y) {
+      reused = 1u;
+      return false;
+    }
+    // Within this pass shaded_frame only ever changes to `now`: losing the swap means another
+    // hit queued the cell.
+    mine = atomicCompSwap(rc_cells[cell].shaded_frame, shaded, now) == shaded;
   }
-  if (atomicCompSwap(rc_cells[cell].shaded_frame, shaded, now) != shaded) return;  // another hit won
-  uint slot = atomicAdd(counters.active_cells, 1u);
-  if (slot >= extra.x) return;  // unreachable: capacity >= hit records
-  rc_active[slot] = cell;
-  // Which of the cell's hits becomes its shading input is decided in the next kernel (lowest
-  // hit id), not by who won this race: the same frame then shades the same way every run.
-  rc_cells[cell].hit_index = 0xffffffffu;
+  atomicMax(rc_cells[cell].hit_index, ~id);
+  return mine;
 }
 
-void insert_hit(uint id) {
-  uint key = hit_key(id);
-  if (key == 0u) return;
-  uint cell = insert_round(key, extra.y);
-  if (extra.y == rc_max_probe() && cell != kNoCell) queue_cell(cell);
+struct Outcome {
+  uint collisions, drops, insertions, reused;
+  uint cell;     // placed: the cell to queue, else kNoCell
+  bool pending;  // goes on to the next round
+};
+
+Outcome find_hit(uint key) {
+  Outcome o = Outcome(0u, 0u, 0u, 0u, kNoCell, false);
+  if (key == 0u) return o;
+  uint mask = rc_cell_mask(), first = rc_cell_first_slot(key), n = rc_max_probe();
+  uint s = 0u, v = 0u;
+  for (; s < n; ++s) {
+    v = rc_cells[(first + s) & mask].key;
+    if (v == key) {
+      o.collisions = s;
+      o.cell = (first + s) & mask;
+      return o;
+    }
+    if ((v & 3u) != 1u) break;  // empty when the frame started (a round-0 bid at most)
+  }
+  if (s == n) {
+    o.collisions = n;
+    o.drops = 1u;
+    return o;
+  }
+  if (s == 0u) bid_for(first & mask, v, (key & ~3u) | 2u);
+  o.pending = true;
+  return o;
 }
 
-// Second kernel: every hit of a cell queued this frame offers its id; the smallest wins.
-void pick_hit(uint id) {
-  uint key = hit_key(id);
-  if (key == 0u) return;
-  uint cell = rc_find_cell(key);
-  if (cell == kNoCell || rc_cells[cell].shaded_frame != rc.misc.x + 1u) return;
-  atomicMin(rc_cells[cell].hit_index, id);
+Outcome round_hit(uint key, uint round) {
+  Outcome o = Outcome(0u, 0u, 0u, 0u, kNoCell, false);
+  uint mask = rc_cell_mask(), first = rc_cell_first_slot(key), hash = key & ~3u;
+  uint last_bid = hash | (2u + ((round + 1u) & 1u));
+  uint i = (first + round - 1u) & mask;
+  uint v = rc_cells[i].key;
+  if (v == key) {
+    o.cell = i;
+    return o;
+  }
+  if (v == last_bid) {
+    // Our bid of the previous round won: commit it (one of the key's hits counts it).
+    if (atomicCompSwap(rc_cells[i].key, v, key) == v) o.insertions = 1u;
+    o.cell = i;
+    return o;
+  }
+  o.collisions = 1u;  // passed last round's slot
+  if (round == rc_max_probe()) {
+    o.drops = 1u;
+    return o;
+  }
+  i = (first + round) & mask;
+  v = rc_cells[i].key;
+  if (v == key) {  // not reachable (a key enters an empty slot only by its own bid); kept as a guard
+    o.cell = i;
+    return o;
+  }
+  bid_for(i, v, hash | (2u + (round & 1u)));
+  o.pending = true;
+  return o;
 }
 
 void main() {
-  if (kKernel == kRcUpdateKernelInsert) {
-    insert_hit(gl_GlobalInvocationID.x);
-  } else if (kKernel == kRcUpdateKernelPick) {
-    pick_hit(gl_GlobalInvocationID.x);
-  } else if (gl_GlobalInvocationID.x == 0u) {
-    uint queued = min(counters.active_cells, extra.x);
-    counters.dispatch_x = (queued + kRcShadeGroup - 1u) / kRcShadeGroup;
-    counters.dispatch_y = 1u;
-    counters.dispatch_z = 1u;
+  uint round = kKernel == kRcUpdateKernelFind ? 0u : extra.y;
+  uint idx = gl_GlobalInvocationID.x;
+  uint id = kNoCell, key = 0u;
+  if (kKernel == kRcUpdateKernelFind) {
+    id = idx;
+    key = hit_key(id);
+    if (idx == 0u) {
+      // The y, z of every indirect dispatch this pass writes (the reset filled them with 0).
+      counters.dispatch_y = 1u;
+      counters.dispatch_z = 1u;
+      for (uint r = 0u; r < rc_max_probe(); ++r) {
+        rounds[r].groups_y = 1u;
+        rounds[r].groups_z = 1u;
+      }
+    }
+  } else if (idx < rounds[round - 1u].count) {
+    uvec2 e = rc_pending[(round & 1u) * extra.z + idx];
+    id = e.x;
+    key = e.y;
+  }
+  Outcome o = Outcome(0u, 0u, 0u, 0u, kNoCell, false);
+  if (key != 0u) o = kKernel == kRcUpdateKernelFind ? find_hit(key) : round_hit(key, round);
+  bool queued = o.cell != kNoCell && queue_cell(o.cell, id, o.reused);
+
+  // Uniform control flow from here: aggregated counters and appends.
+  RC_COUNT(counters.collisions, o.collisions);
+  RC_COUNT(counters.drops, o.drops);
+  RC_COUNT(counters.insertions, o.insertions);
+  RC_COUNT(counters.reused, o.reused);
+  uint slot;
+  RC_APPEND(queued, slot, counters.active_cells, counters.dispatch_x, kRcShadeGroup, extra.x);
+  if (queued && slot < extra.x) rc_active[slot] = o.cell;  // capacity >= hit records: always
+  if (round < rc_max_probe()) {
+    uint next = round + 1u;
+    RC_APPEND(o.pending, slot, rounds[next - 1u].count, rounds[next - 1u].groups_x, kRcUpdateGroup, extra.z);
+    if (o.pending) rc_pending[(next & 1u) * extra.z + slot] = uvec2(id, key);
   }
 }

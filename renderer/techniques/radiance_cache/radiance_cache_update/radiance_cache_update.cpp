@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstring>
+#include <stdexcept>
 
 #include "renderer/techniques/radiance_cache/radiance_cache_update/radiance_cache_update_shared.h"
 #include "renderer/techniques/radiance_cache/radiance_cache_params.h"
@@ -14,31 +15,52 @@ uint32_t active_capacity(const Settings& s) {
   return kProbesPerCascade * std::max(glsl::kRcActivePerProbe, s.params<RadianceCacheSettings>().rays_per_probe);
 }
 
+uint32_t hit_records(const Settings& s) { return kProbesPerCascade * s.params<RadianceCacheSettings>().rays_per_probe; }
+
 class RadianceCacheUpdatePass final : public Pass {
  public:
   PassDecl declare(const Scene&, const Settings& s) const override {
+    const RadianceCacheSettings& r = s.params<RadianceCacheSettings>();
     PassDecl d;
     d.name = "radiance_cache_update";
     ResourceDesc cells{Format::buffer, SizeRule::buffer};
-    cells.bytes = (uint64_t(1) << s.params<RadianceCacheSettings>().cache_log2_cells) * sizeof(glsl::RcCell);
+    cells.bytes = (uint64_t(1) << r.cache_log2_cells) * sizeof(glsl::RcCell);
     cells.persistent = true;
     cells.values = non_negative_values().encoded(Encoding::rgb9e5).layout(  // cell radiance
         sizeof(glsl::RcCell) / 4, offsetof(glsl::RcCell, radiance) / 4, 1);
     ResourceDesc active{Format::buffer, SizeRule::buffer};
     active.bytes = uint64_t(active_capacity(s)) * sizeof(uint32_t);
+    // RcCounters, then the indirect args and length of insertion rounds 1 .. cache_max_probe.
     ResourceDesc counters{Format::buffer, SizeRule::buffer};
-    counters.bytes = sizeof(glsl::RcCounters);
+    counters.bytes = sizeof(glsl::RcCounters) + uint64_t(r.cache_max_probe) * sizeof(glsl::RcRoundArgs);
+    // The hits still unplaced after a round, (hit id, key): two lists, rounds alternate.
+    ResourceDesc pending{Format::buffer, SizeRule::buffer};
+    pending.bytes = 2 * uint64_t(hit_records(s)) * 2 * sizeof(uint32_t);
     d.slots = {{"probe_hits", Access::read},
                {"rc_cells", Access::read_write, cells},
                {"rc_active", Access::write, active},
-               {"rc_counters", Access::write, counters}};
-    d.work = rc_cache_work(s);
+               {"rc_counters", Access::write, counters},
+               {"rc_pending", Access::write, pending}};
+    d.work = {{"hits", double(hit_records(s))}};
+    // Read back by bench after its timed frames (never in a frame): what the frame really did.
+    d.measured = {{"cells_queued", "rc_counters", offsetof(glsl::RcCounters, active_cells)},
+                  {"cells_inserted", "rc_counters", offsetof(glsl::RcCounters, insertions)},
+                  {"hits_reused", "rc_counters", offsetof(glsl::RcCounters, reused)},
+                  {"hits_dropped", "rc_counters", offsetof(glsl::RcCounters, drops)},
+                  {"hits_pending_round1", "rc_counters", sizeof(glsl::RcCounters) + offsetof(glsl::RcRoundArgs, count)}};
     return d;
   }
 
   void record(RecordContext& ctx) override {
     using namespace glsl;
-    RcUpdatePush push{make_rc_params(ctx.settings, ctx.frame), {active_capacity(ctx.settings), 0, 0, 0}};
+    const DeviceInfo& info = ctx.gpu.info();
+    if (!info.subgroup_ballot || !info.subgroup_arithmetic)
+      throw std::runtime_error(
+          "radiance_cache_update: the device lacks compute subgroup ballot/arithmetic operations "
+          "(VkPhysicalDeviceSubgroupProperties), which radiance_cache_update.comp needs");
+    const RadianceCacheSettings& r = ctx.settings.params<RadianceCacheSettings>();
+    const uint32_t hits = hit_records(ctx.settings);
+    RcUpdatePush push{make_rc_params(ctx.settings, ctx.frame), {active_capacity(ctx.settings), 0, hits, 0}};
     // Last frame's shade read rc_counters (indirect args): order the fill after it. (rc_cells is
     // persistent: the executor zeroes it when it creates it.)
     ctx.cmd.barrier(kStageCompute, kStageTransfer);
@@ -50,42 +72,31 @@ class RadianceCacheUpdatePass final : public Pass {
     const std::vector<BufferBinding> buffers{{kRcUpdateBindHits, "probe_hits"},
                                              {kRcUpdateBindCells, "rc_cells"},
                                              {kRcUpdateBindActive, "rc_active"},
-                                             {kRcUpdateBindCounters, "rc_counters"}};
-    // Insertion in cache_max_probe + 1 rounds (radiance_cache_update.comp): round r bids for the
-    // r-th slot of each unplaced key's probe sequence; the last round settles and queues.
-    ctx.cmd.begin_label("radiance_cache_update/insert");
-    const RadianceCacheSettings& r = ctx.settings.params<RadianceCacheSettings>();
-    uint32_t hits = kProbesPerCascade * r.rays_per_probe;
-    for (uint32_t round = 0; round <= r.cache_max_probe; ++round) {
-      push.extra.y = round;
-      record_compute(ctx, {.shader = "radiance_cache_update.comp",
-                           .groups_x = div_up(hits, kRcUpdateGroup),
-                           .push = &push,
-                           .push_bytes = sizeof(push),
-                           .spec_constants = {{kRcUpdateSpecKernel, kRcUpdateKernelInsert}},
-                           .buffers = buffers});
-      ctx.cmd.barrier(kStageCompute, kStageCompute);
-    }
-    ctx.cmd.end_label();
-
-    ctx.cmd.begin_label("radiance_cache_update/pick");
+                                             {kRcUpdateBindCounters, "rc_counters"},
+                                             {kRcUpdateBindPending, "rc_pending"}};
+    // Round 0 over every hit record: keys found in the table are placed and queued at once, new
+    // ones bid and join round 1's list (radiance_cache_update.comp).
     record_compute(ctx, {.shader = "radiance_cache_update.comp",
                          .groups_x = div_up(hits, kRcUpdateGroup),
                          .push = &push,
                          .push_bytes = sizeof(push),
-                         .spec_constants = {{kRcUpdateSpecKernel, kRcUpdateKernelPick}},
-                         .buffers = buffers});
-    ctx.cmd.end_label();
-    ctx.cmd.barrier(kStageCompute, kStageCompute);
-
-    ctx.cmd.begin_label("radiance_cache_update/args");
-    record_compute(ctx, {.shader = "radiance_cache_update.comp",
-                         .groups_x = 1,
-                         .push = &push,
-                         .push_bytes = sizeof(push),
-                         .spec_constants = {{kRcUpdateSpecKernel, kRcUpdateKernelArgs}},
-                         .buffers = buffers});
-    ctx.cmd.end_label();
+                         .spec_constants = {{kRcUpdateSpecKernel, kRcUpdateKernelFind}},
+                         .buffers = buffers,
+                         .label = "radiance_cache_update/find",
+                         .barrier_after = r.cache_max_probe > 0});
+    // Rounds 1 .. cache_max_probe over the hits still unplaced: indirect, 0 groups once none is.
+    for (uint32_t round = 1; round <= r.cache_max_probe; ++round) {
+      push.extra.y = round;
+      record_compute(ctx, {.shader = "radiance_cache_update.comp",
+                           .push = &push,
+                           .push_bytes = sizeof(push),
+                           .spec_constants = {{kRcUpdateSpecKernel, kRcUpdateKernelRound}},
+                           .buffers = buffers,
+                           .indirect = "rc_counters",
+                           .indirect_offset = sizeof(RcCounters) + uint64_t(round - 1) * sizeof(RcRoundArgs),
+                           .label = "radiance_cache_update/round",
+                           .barrier_after = round < r.cache_max_probe});
+    }
   }
 };
 

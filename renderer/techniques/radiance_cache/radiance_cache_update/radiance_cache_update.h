@@ -3,25 +3,36 @@
 // "Sampling the World": each ray hit triggers a cache update; spatial hashing [Gautron 2020],
 // 25 cm cells with distance LODs, linear probing, an active-cell counter and list, indirect
 // dispatch args). Kernels, in one pass (labels radiance_cache_update/<kernel>):
-//   reset  fill rc_counters with 0 (and rc_cells the first time the pass sees that buffer: the
-//          executor does not zero buffers)
-//   insert one thread per hit record; misses are skipped. The hit position probe + dir *
+//   reset  fill rc_counters (RcCounters and the rounds' indirect args) with 0 (rc_cells is
+//          persistent: the executor zeroes it when it creates it)
+//   find   one thread per hit record; misses are skipped. The hit position probe + dir *
 //          distance is hashed (rc_cell_key, radiance_cache.glsl: LOD = 2^floor(log2(1 + d_cam /
-//          lod_distance)), cell = floor(p / (cell_size * LOD)), key = hash(cell, LOD) | 1); the
-//          key is claimed with atomicCompSwap over at most cache_max_probe slots. A cell whose
-//          shaded_frame is 0 or at least cache_reuse_frames old is queued: the queued marker is
-//          RcCell.shaded_frame itself, atomicCompSwap'd from its old value to frame + 1 (so a
-//          cell is queued once per frame; radiance_cache_shade then writes the radiance, and
-//          shaded_frame already holds frame + 1). The winner appends the cell to rc_active and
-//          stores its hit record index in RcCell.hit_index.
-//   args   dispatch_x = ceil(active / kRcShadeGroup), 1, 1.
-// Counters (RcCounters, radiance_cache_shared.h), per hit record that is a hit: `drops` (no slot
-// within cache_max_probe), `insertions` (claimed an empty slot), `reused` (found a cell shaded in
-// an earlier frame within cache_reuse_frames), or none of them (found a cell queued this frame
-// by another hit, or queued it itself); `collisions` = probing steps past occupied slots of other
-// keys; `active` = cells queued. So insertions + reused + drops <= hits and insertions <= active.
+//          lod_distance)), cell = floor(p / (cell_size * LOD)), key = hash(cell, LOD) | 1) once,
+//          and searched over at most cache_max_probe slots: a key in the table is placed now, a
+//          new key bids for its first slot if empty (insertion round 0) and joins the pending
+//          list (hit id, key) of round 1, a key whose slots are all taken is dropped.
+//   round  r = 1 .. cache_max_probe, indirect over the hits still pending (0 groups once none
+//          is): commit a won bid, else bid for the next slot (deterministic insertion,
+//          radiance_cache_update.comp); still pending hits join round r + 1's list.
+// A placed hit queues its cell unless its shaded_frame is within cache_reuse_frames: the queued
+// marker is RcCell.shaded_frame itself, atomicCompSwap'd from its old value to frame + 1 (so a
+// cell is queued once per frame; radiance_cache_shade then writes the radiance, and shaded_frame
+// already holds frame + 1); the winner appends the cell to rc_active and counts the shade's
+// indirect args as it goes. Every hit of a queued cell offers ~id to RcCell.hit_index
+// (atomicMax): the shade uses the lowest hit id, whoever won the race, and resets it to 0.
+// Counters (RcCounters, radiance_cache_shared.h; aggregated per subgroup), per hit record that
+// is a hit: `drops` (no slot within cache_max_probe), `insertions` (claimed an empty slot),
+// `reused` (found a cell shaded in an earlier frame within cache_reuse_frames), or none of them
+// (found a cell queued this frame by another hit, or queued it itself); `collisions` = probing
+// steps past occupied slots of other keys; `active` = cells queued. So insertions + reused +
+// drops <= hits and insertions <= active. The same table and counters as the former design
+// (every round a dispatch over every hit record, then a pick and an args kernel).
+// Work: `hits` declared; bench reads back cells_queued, cells_inserted, hits_reused,
+// hits_dropped and hits_pending_round1 (the hits of new keys) after its timed frames.
 // Slots: reads probe_hits; writes rc_cells (persistent buffer, read_write, 2^cache_log2_cells x
-// 16 bytes), rc_active (buffer, 16^3 x max(64, rays_per_probe) uint), rc_counters (32 bytes).
+// 16 bytes), rc_active (buffer, 16^3 x max(64, rays_per_probe) uint), rc_counters (32 bytes +
+// 16 per round), rc_pending (two lists of 16^3 x rays_per_probe (hit id, key)).
+// Needs compute subgroup ballot and arithmetic operations (a clear error without them).
 // Limits: cells are never evicted (a long camera path fills the table, then insertions are
 // dropped and counted); between this pass and radiance_cache_shade a queued cell reads as shaded
 // this frame (readers run after the shade); the key ignores the normal, so both faces of a wall

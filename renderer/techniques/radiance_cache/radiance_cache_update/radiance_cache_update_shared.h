@@ -4,21 +4,28 @@
 #include "frame_shared.h"
 #include "renderer/techniques/radiance_cache/include/radiance_cache_shared.h"
 GIB_SHARED_BEGIN
-GIB_CONST(uint, kRcUpdateGroup, 64)          // insert/pick: one thread per probe hit record
+GIB_CONST(uint, kRcUpdateGroup, 64)          // find: one thread per probe hit record; round: per pending hit
 GIB_CONST(uint, kRcUpdateBindHits, 8)        // readonly ProbeHit probe_hits[]
 GIB_CONST(uint, kRcUpdateBindCells, 9)       // coherent RcCell rc_cells[2^cache_log2_cells]
 GIB_CONST(uint, kRcUpdateBindActive, 10)     // uint rc_active[capacity]: queued cell indices
-GIB_CONST(uint, kRcUpdateBindCounters, 11)   // RcCounters (indirect args first)
-GIB_CONST(uint, kRcUpdateSpecKernel, 0)      // 0: insert, 1: indirect args, 2: pick
-GIB_CONST(uint, kRcUpdateKernelInsert, 0)
-GIB_CONST(uint, kRcUpdateKernelArgs, 1)
-GIB_CONST(uint, kRcUpdateKernelPick, 2)  // lowest hit id of each queued cell (determinism)
+GIB_CONST(uint, kRcUpdateBindCounters, 11)   // RcCounters (indirect args first), then RcRoundArgs[max_probe]
+GIB_CONST(uint, kRcUpdateBindPending, 12)    // uvec2 rc_pending[2 * hits]: (hit id, key), two lists
+GIB_CONST(uint, kRcUpdateSpecKernel, 0)      // 0: find (round 0), 1: round r >= 1
+GIB_CONST(uint, kRcUpdateKernelFind, 0)
+GIB_CONST(uint, kRcUpdateKernelRound, 1)
 // Active-list capacity per probe: one entry per ray at most (64, or rays_per_probe if larger),
 // so the list cannot overflow (a cell is queued at most once per frame, by one of its hits).
 GIB_CONST(uint, kRcActivePerProbe, 64)
+// Insertion round r (1 .. max_probe) runs over the hits still unplaced after round r - 1: its
+// indirect args and list length, in rc_counters after RcCounters (byte offset 32 + 16 (r - 1)).
+struct RcRoundArgs {
+  uint groups_x, groups_y, groups_z;  // VkDispatchIndirectCommand: ceil(count / kRcUpdateGroup), 1, 1
+  uint count;                         // pending hits in the round's list
+};
 struct RcUpdatePush {
   RcParams rc;
-  uvec4 extra;  // x: active-list capacity (entries), y: insertion round (0 .. cache_max_probe)
+  uvec4 extra;  // x: active-list capacity (entries), y: insertion round (0 .. cache_max_probe),
+                // z: pending-list capacity (hit records)
 };
 GIB_SHARED_END
 #endif
