@@ -54,6 +54,7 @@ class GiDenoisePass final : public Pass {
                            .groups_y = div_up(ctx.height("gi_sh_r"), kDenoiseGroup),
                            .push = &push,
                            .push_bytes = sizeof(push),
+                           .spec_constants = {{kDenoiseSpecRadius, radius}},
                            .scene = false});
       ctx.cmd.end_label();
     };
