@@ -463,6 +463,49 @@ TEST_F(RadianceCacheScreen, DenoiseDoesNotBlurAcrossADepthEdge) {
   }
 }
 
+// gi_denoise filters from a group-shared tile sized by the radius: radius 0 is a copy (every
+// gather pixel that is not sky keeps its SH and direct part to within the one RGBA16F rounding
+// of (w x value) / w per direction, sky pixels are 0), and
+// the option's largest radius (16: a 30 KiB tile) runs and stays finite.
+TEST_F(RadianceCacheScreen, DenoiseTileKnownAnswersAtRadius0And16) {
+  Scene scene = box_scene();
+  for (uint32_t radius : {0u, 16u}) {
+    SCOPED_TRACE("radius " + std::to_string(radius));
+    Settings s = small_settings(72, 40);  // not a multiple of the 8x8 groups at gather resolution
+    rc(s).denoise_radius = radius;
+    Executor ex(gpu(), scene, s, screen_passes(), {"final_color", "gi_sh_r", "gi_sh_g", "gi_sh_b", "gi_direct"});
+    for (int f = 0; f < 3; ++f) ex.run_frame();  // the screen cache answers from frame 1: bounce light in the SH
+    FloatImage pos = ex.read("gbuffer_position");
+    size_t differing = 0, nonzero = 0, non_finite = 0, values = 0;
+    for (const char* in_name : {"gather_sh_r", "gather_sh_g", "gather_sh_b", "gather_direct"}) {
+      const std::string out_name = std::string(in_name) == "gather_direct" ? "gi_direct" : "gi_sh_" + std::string(in_name).substr(10);
+      FloatImage in = ex.read(in_name), out = ex.read(out_name.c_str());
+      for (uint32_t y = 0; y < out.height; ++y)
+        for (uint32_t x = 0; x < out.width; ++x) {
+          uint32_t px = std::min(2 * x + 1, pos.width - 1), py = std::min(2 * y + 1, pos.height - 1);
+          const bool sky = pos.at(px, py, 3) == 0;
+          for (uint32_t c = 0; c < 4; ++c) {
+            float o = out.at(x, y, c), expect = sky ? 0.0f : in.at(x, y, c);
+            ++values;
+            nonzero += o != 0;
+            non_finite += !std::isfinite(o);
+            differing += !(std::abs(o - expect) <= std::abs(expect) * 0x1p-9f);  // 2 half ulps: 2 directions
+          }
+        }
+    }
+    std::printf("denoise radius %u: %zu of %zu values differ from the gather by more than 2 half ulps (%zu non-zero, "
+                "%zu non-finite)\n", radius,
+                differing, values, nonzero, non_finite);
+    EXPECT_GT(nonzero, values / 8);
+    EXPECT_EQ(non_finite, 0u);
+    if (radius == 0) {
+      EXPECT_EQ(differing, 0u);
+    } else {
+      EXPECT_GT(differing, values / 8);  // radius 16 does filter
+    }
+  }
+}
+
 // Every history format runs; RGB9E5 and RGBA16F stay within their precision of RGBA32F (the
 // recursive filter's rounding error is bounded by (n_max + 1) / 2 ulp), R11G11B10F is reported.
 TEST_F(RadianceCacheScreen, HistoryFormatsAgreeWithinTheirPrecision) {

@@ -1,5 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_ballot : require
 // final_gather: one cosine-distributed ray per gather pixel, answered only from caches
 // (screen, world, irradiance volumes, sky), projected into 2-band SH per colour channel.
 // See final_gather.h for the conventions.
@@ -89,23 +91,27 @@ void write_out(ivec2 g, vec4 r, vec4 gg, vec4 b, vec3 direct, float distance) {
   imageStore(out_hit, g, vec4(distance, 0.0, 0.0, 0.0));
 }
 
-void main() {
-  ivec2 g = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(g, imageSize(out_hit)))) return;
+// Gathers gather pixel g and returns the cache that answered its ray (kGatherStat*), or
+// kGatherStatCount when no ray was traced (a sky gather pixel, a broken normal).
+uint gather(ivec2 g) {
   int div = int(push.divisor);
   ivec2 full = imageSize(gb_position);
   ivec2 p = min(g * div + div / 2, full - 1);  // the gather pixel's representative
+  // The three G-buffer loads are independent: issued together, before any branch, so the face
+  // normal's chain (vbuffer -> triangle -> vertices) does not wait for the sky test.
   vec4 pos = imageLoad(gb_position, p);
+  vec3 n_raw = imageLoad(gb_normal, p).xyz;
+  uint ids = imageLoad(vbuffer, p).x;
   if (pos.w == 0.0) {  // sky: no surface to gather for
     write_out(g, vec4(0.0), vec4(0.0), vec4(0.0), vec3(0.0), 0.0);
-    return;
+    return kGatherStatCount;
   }
-  vec3 n = normalize(imageLoad(gb_normal, p).xyz);
+  vec3 n = normalize(n_raw);
   if (rc.flags.y != 0u && !gib_finite(n)) {
     // Guard: no direction to gather around (broken G-buffer normal): an empty sample, which
     // gi_denoise and gi_upscale then skip as a tap (its normal is not finite either).
     write_out(g, vec4(0.0), vec4(0.0), vec4(0.0), vec3(0.0), kGatherMissDistance);
-    return;
+    return kGatherStatCount;
   }
 
   // Ray direction: per pixel, an R2 low-discrepancy sequence over frames (alpha = 1/phi2,
@@ -118,7 +124,6 @@ void main() {
   // Leave as the reference's paths do (surface.glsl gib_above_face): mirrored above the face,
   // offset along the face normal. cos_t (the sample's pdf) is the unmirrored direction's.
   vec3 ng = n;
-  uint ids = imageLoad(vbuffer, p).x;
   if (ids != kVisibilityNone) {
     vec3 o, view;
     gib_camera_ray(vec2(p) + 0.5, o, view);
@@ -160,7 +165,6 @@ void main() {
   if (rc.flags.y != 0u && !gib_finite(radiance)) radiance = vec3(0.0);
   if (rc.flags.y != 0u && !gib_finite(direct)) direct = vec3(0.0);
   if (push.sky == 0u) direct = vec3(0.0);  // direct_lighting's own rays count it (sky_rays > 0)
-  atomicAdd(gather_stats[served], 1u);
   // Pre-exposure: the SH (RGBA16F) hold radiance x P, P ~ 1 / the frame's typical luminance,
   // so bright skies do not clamp at the format's maximum; gi_upscale divides it out.
   radiance = gib_max0_keep_nan(radiance * exposure[kGatherExposureNow]);
@@ -170,4 +174,17 @@ void main() {
   vec4 bd = gib_sh2_basis(d), bn = gib_sh2_basis(n);
   write_out(g, sample_sh(radiance.r, bd, bn, weight), sample_sh(radiance.g, bd, bn, weight),
             sample_sh(radiance.b, bd, bn, weight), direct, distance);
+  return served;
+}
+
+void main() {
+  ivec2 g = ivec2(gl_GlobalInvocationID.xy);
+  uint served = all(lessThan(g, imageSize(out_hit))) ? gather(g) : kGatherStatCount;
+  // gather_stats: one atomic per subgroup and counter instead of one per pixel on 4 contended
+  // addresses. Every invocation reaches this point (no early return in main), so the ballot
+  // sees the whole subgroup; the counts are the same whatever the order of the atomics.
+  for (uint c = 0u; c < kGatherStatCount; ++c) {
+    uint count = subgroupBallotBitCount(subgroupBallot(served == c));
+    if (count != 0u && subgroupElect()) atomicAdd(gather_stats[c], count);
+  }
 }

@@ -28,7 +28,8 @@
 // read_prev gbuffer_position, read_prev final_color; writes gather_sh_r/g/b (RGBA16F: L0, L1,
 // bounce light), gather_direct (RGBA16F: rgb direct part, a 0), gather_hit_distance (R32F: metres, 1000 on a miss, 0 for a sky gather pixel) and
 // gather_stats (buffer, uint[4]: rays served by screen, world, volume, sky this frame; cleared
-// each frame, diagnostics only: nothing reads it, so it never keeps the pass alive).
+// each frame, diagnostics only: nothing reads it, so it never keeps the pass alive; counted with
+// one atomic per subgroup and counter, a ballot's bit count).
 // Seed: the idTech 8 "Global Illumination" talk, "Final Gather" (1 ray per pixel, 1/2 or 1/4 res, screen
 // -> world -> volumes, 2-band SH in 3 x RGBA16F).
 // Limits: the seed's blue noise is an R2 sequence here; gbuffer_albedo (listed in the design's
