@@ -463,10 +463,9 @@ TEST_F(RadianceCacheScreen, DenoiseDoesNotBlurAcrossADepthEdge) {
   }
 }
 
-// gi_denoise filters from a group-shared tile sized by the radius: radius 0 is a copy (every
-// gather pixel that is not sky keeps its SH and direct part to within the one RGBA16F rounding
-// of (w x value) / w per direction, sky pixels are 0), and
-// the option's largest radius (16: a 30 KiB tile) runs and stays finite.
+// gi_denoise at its radius bounds: radius 0 is a copy (every gather pixel that is not sky keeps
+// its SH and direct part to within the one RGBA16F rounding of (w x value) / w per direction, sky
+// pixels are 0), and the option's largest radius (16) runs, stays finite and filters.
 TEST_F(RadianceCacheScreen, DenoiseTileKnownAnswersAtRadius0And16) {
   Scene scene = box_scene();
   for (uint32_t radius : {0u, 16u}) {

@@ -1,64 +1,88 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// gi_denoise, one direction of the separable bilateral gaussian per dispatch (see gi_denoise.h).
-// The group's row
-// (horizontal) or column (vertical) of taps, its 8 x 8 pixels plus radius either side along the
-// axis, is loaded into group-shared memory once (geometry, hit distance, SH, direct part), then
-// each pixel filters from there.
-#include "renderer/techniques/radiance_cache/gi_denoise/gi_denoise.glsl"
+// One direction of the separable bilateral gaussian over the gather SH and the gather's direct
+// part, with the same weights (see gi_denoise.h).
+#include "renderer/techniques/radiance_cache/gi_denoise/gi_denoise_shared.h"
+#include "finite.glsl"
 
-// kDenoiseGroup lines across the axis, each kTileLen taps along it: tap a of line c (slot
-// c * kTileLen + a) is gather pixel origin + (a - radius) * axis + c * across. Values are kept as
-// loaded (32-bit floats), so the arithmetic is the one done on image loads. 30 KiB at radius 16.
-const int kTileLen = int(kDenoiseGroup) + 2 * kRadius;
-const int kTileSize = int(kDenoiseGroup) * kTileLen;
-shared vec4 s_pos[kTileSize];
-shared vec4 s_nh[kTileSize];  // xyz normal, w hit distance
-shared vec4 s_r[kTileSize];
-shared vec4 s_g[kTileSize];
-shared vec4 s_b[kTileSize];
-shared vec4 s_d[kTileSize];
+layout(local_size_x = kDenoiseGroup, local_size_y = kDenoiseGroup) in;
+layout(set = 0, binding = kDenoiseBindNormal, rgba16f) uniform readonly image2D gb_normal;
+layout(set = 0, binding = kDenoiseBindPosition, rgba32f) uniform readonly image2D gb_position;
+layout(set = 0, binding = kDenoiseBindHit, r32f) uniform readonly image2D in_hit;
+layout(set = 0, binding = kDenoiseBindInR, rgba16f) uniform readonly image2D in_r;
+layout(set = 0, binding = kDenoiseBindInG, rgba16f) uniform readonly image2D in_g;
+layout(set = 0, binding = kDenoiseBindInB, rgba16f) uniform readonly image2D in_b;
+layout(set = 0, binding = kDenoiseBindOutR, rgba16f) uniform writeonly image2D out_r;
+layout(set = 0, binding = kDenoiseBindOutG, rgba16f) uniform writeonly image2D out_g;
+layout(set = 0, binding = kDenoiseBindOutB, rgba16f) uniform writeonly image2D out_b;
+layout(set = 0, binding = kDenoiseBindInDirect, rgba16f) uniform readonly image2D in_direct;
+layout(set = 0, binding = kDenoiseBindOutDirect, rgba16f) uniform writeonly image2D out_direct;
+layout(push_constant) uniform Push { DenoisePush push; };
+
+// Geometry of gather pixel g: its representative full-res pixel's position (w: distance to the
+// camera, 0 for sky) and normal.
+void gather_geometry(ivec2 g, out vec4 pos, out vec3 n) {
+  int div = int(push.divisor);
+  ivec2 p = min(g * div + div / 2, imageSize(gb_position) - 1);
+  pos = imageLoad(gb_position, p);
+  n = imageLoad(gb_normal, p).xyz;
+}
 
 void main() {
-  ivec2 axis = ivec2(push.axis_x, push.axis_y), across = ivec2(1) - axis;
-  ivec2 origin = ivec2(gl_WorkGroupID.xy) * int(kDenoiseGroup);
-  // Consecutive invocations load consecutive pixels along x in both directions.
-  for (int i = int(gl_LocalInvocationIndex); i < kTileSize; i += int(kDenoiseGroup * kDenoiseGroup)) {
-    int a = axis.x != 0 ? i % kTileLen : i / int(kDenoiseGroup);
-    int c = axis.x != 0 ? i / kTileLen : i % int(kDenoiseGroup);
-    int slot = c * kTileLen + a;
-    ivec2 q = origin + (a - kRadius) * axis + c * across;
-    vec4 pos, nh, r, g, b, d;
-    denoise_geometry(q, pos, nh);
-    denoise_values(q, r, g, b, d);
-    s_pos[slot] = pos;
-    s_nh[slot] = nh;
-    s_r[slot] = r;
-    s_g[slot] = g;
-    s_b[slot] = b;
-    s_d[slot] = d;
-  }
-  barrier();
-
   ivec2 g = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(g, imageSize(out_r)))) return;
-  ivec2 l = ivec2(gl_LocalInvocationID.xy);
-  int centre = (axis.x != 0 ? l.y : l.x) * kTileLen + (axis.x != 0 ? l.x : l.y) + kRadius;
-  vec4 r = vec4(0.0), gg = vec4(0.0), b = vec4(0.0), d = vec4(0.0);
-  if (s_pos[centre].w != 0.0) {  // a sky gather pixel is written as 0
-    float inv_two_sigma2 = denoise_inv_two_sigma2();
-    int radius = int(push.radius);
-    DenoiseSums s = denoise_sums();
-    for (int k = -radius; k <= radius; ++k) {
-      int t = centre + k;
-      float w, wd;
-      if (denoise_weights(s_pos[centre], s_nh[centre], s_pos[t], s_nh[t], k, inv_two_sigma2, w, wd))
-        denoise_add(s, w, wd, s_r[t], s_g[t], s_b[t], s_d[t]);
-    }
-    denoise_result(s, r, gg, b, d);
+  ivec2 size = imageSize(out_r);
+  if (any(greaterThanEqual(g, size))) return;
+  vec4 pos_c;
+  vec3 n_c;
+  gather_geometry(g, pos_c, n_c);
+  if (pos_c.w == 0.0) {
+    imageStore(out_r, g, vec4(0.0));
+    imageStore(out_g, g, vec4(0.0));
+    imageStore(out_b, g, vec4(0.0));
+    imageStore(out_direct, g, vec4(0.0));
+    return;
   }
-  imageStore(out_r, g, r);
-  imageStore(out_g, g, gg);
-  imageStore(out_b, g, b);
-  imageStore(out_direct, g, d);
+  float h_c = imageLoad(in_hit, g).x;
+  int radius = int(push.radius);
+  float inv_two_sigma2 = radius > 0 ? 2.0 / float(radius * radius) : 0.0;  // sigma = radius / 2
+  ivec2 axis = ivec2(push.axis_x, push.axis_y);
+  vec4 sum_r = vec4(0.0), sum_g = vec4(0.0), sum_b = vec4(0.0), sum_d = vec4(0.0);
+  float sum_w = 0.0, sum_wd = 0.0;
+  for (int k = -radius; k <= radius; ++k) {
+    ivec2 q = g + k * axis;
+    if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
+    vec4 pos_q;
+    vec3 n_q;
+    gather_geometry(q, pos_q, n_q);
+    if (pos_q.w == 0.0) continue;
+    float h_q = imageLoad(in_hit, q).x;
+    float wd = exp(-float(k * k) * inv_two_sigma2);  // geometry: the direct part's weight
+    wd *= pow(max(0.0, dot(n_c, n_q)), kDenoiseNormalPower);
+    wd *= exp(-abs(dot(n_c, pos_q.xyz - pos_c.xyz)) / (pos_c.w * kDenoiseDepthSigma));
+    float w = wd;
+    if (push.hit_weight != 0u) {
+      float dh = abs(h_q - h_c) / max(max(h_q, h_c), 1e-6);
+      w *= exp(-(dh * dh) / (kDenoiseHitSigma * kDenoiseHitSigma));
+    }
+    if (wd <= 0.0) continue;
+    vec4 tr = imageLoad(in_r, q), tg = imageLoad(in_g, q), tb = imageLoad(in_b, q), td = imageLoad(in_direct, q);
+    // Guard: skip a tap whose weight (a NaN normal) or value is not finite: weight 0 would
+    // not do, 0 x NaN is NaN.
+    if (push.nan_guards != 0u &&
+        !(gib_finite(w) && gib_finite(wd) && gib_finite(tr) && gib_finite(tg) && gib_finite(tb) && gib_finite(td)))
+      continue;
+    sum_r += w * tr;
+    sum_g += w * tg;
+    sum_b += w * tb;
+    sum_w += w;
+    sum_d += wd * td;
+    sum_wd += wd;
+  }
+  // The centre's own weight is 1 (k = 0, identical geometry), so sum_w >= 1, unless guards
+  // skipped it (then every tap may be gone and the result is 0).
+  float inv = 1.0 / max(sum_w, 1e-6);
+  imageStore(out_r, g, sum_r * inv);
+  imageStore(out_g, g, sum_g * inv);
+  imageStore(out_b, g, sum_b * inv);
+  imageStore(out_direct, g, sum_d / max(sum_wd, 1e-6));
 }

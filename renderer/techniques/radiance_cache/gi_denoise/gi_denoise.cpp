@@ -1,8 +1,5 @@
 #include "renderer/techniques/radiance_cache/gi_denoise/gi_denoise.h"
 
-#include <cmath>
-#include <string>
-
 #include "renderer/techniques/radiance_cache/gi_denoise/gi_denoise_shared.h"
 #include "renderer/techniques/radiance_cache/radiance_cache.h"
 
@@ -26,10 +23,6 @@ class GiDenoisePass final : public Pass {
                {"gi_sh_g", Access::write, sh},          {"gi_sh_b", Access::write, sh},
                {"gather_direct", Access::read},         {"gi_denoise_tmp_direct", Access::write, direct},
                {"gi_direct", Access::write, direct}};
-    const RadianceCacheSettings& r = s.params<RadianceCacheSettings>();
-    const double g = r.gather_divisor >= 4 ? 4.0 : 2.0;
-    const double pixels = std::ceil(s.width / g) * std::ceil(s.height / g);
-    d.work = {{"taps", 2.0 * pixels * (2 * r.denoise_radius + 1)}};  // both directions
     return d;
   }
 
@@ -38,13 +31,13 @@ class GiDenoisePass final : public Pass {
     const RadianceCacheSettings& r = ctx.settings.params<RadianceCacheSettings>();
     const uint32_t divisor = r.gather_divisor >= 4 ? 4u : 2u;
     const uint32_t radius = r.denoise_radius;
-    auto run = [&](const char* label, int ax, int ay, const char* in, const char* in_direct,
-                   const char* out, bool barrier_after) {
+    auto run = [&](const char* label, int ax, int ay, const char* in, const char* in_direct, const char* out) {
       const std::string ir = std::string(in) + "_r", ig = std::string(in) + "_g", ib = std::string(in) + "_b";
       const std::string o_r = std::string(out) + "_r", og = std::string(out) + "_g", ob = std::string(out) + "_b";
       const std::string id = std::string(in_direct), od = std::string(out) == "gi_sh" ? "gi_direct" : std::string(out) + "_direct";
       DenoisePush push{ax, ay, radius, divisor, ctx.settings.nan_guards ? 1u : 0u, r.denoise_hit_weight ? 1u : 0u, 0, 0};
-      static_assert(sizeof(push) == 32, "DenoisePush must match gi_denoise.glsl's push block");
+      static_assert(sizeof(push) == 32, "DenoisePush must match gi_denoise.comp's push block");
+      ctx.cmd.begin_label(std::string("gi_denoise/") + label);
       record_compute(ctx, {.shader = "gi_denoise.comp",
                            .images = {{kDenoiseBindNormal, "gbuffer_normal"},
                                       {kDenoiseBindPosition, "gbuffer_position"},
@@ -61,15 +54,13 @@ class GiDenoisePass final : public Pass {
                            .groups_y = div_up(ctx.height("gi_sh_r"), kDenoiseGroup),
                            .push = &push,
                            .push_bytes = sizeof(push),
-                           .spec_constants = {{kDenoiseSpecRadius, radius}},
-                           .scene = false,
-                           .label = label,
-                           .barrier_after = barrier_after});
+                           .scene = false});
+      ctx.cmd.end_label();
     };
-    run("gi_denoise/horizontal", 1, 0, "gather_sh", "gather_direct", "gi_denoise_tmp", true);
-    run("gi_denoise/vertical", 0, 1, "gi_denoise_tmp", "gi_denoise_tmp_direct", "gi_sh", false);
+    run("horizontal", 1, 0, "gather_sh", "gather_direct", "gi_denoise_tmp");
+    ctx.cmd.barrier(kStageCompute, kStageCompute);
+    run("vertical", 0, 1, "gi_denoise_tmp", "gi_denoise_tmp_direct", "gi_sh");
   }
-
 };
 
 }  // namespace

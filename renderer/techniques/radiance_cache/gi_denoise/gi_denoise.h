@@ -1,9 +1,6 @@
 // gi_denoise: spatial denoise of the final gather's SH at gather resolution: a separable
 // "bilateral" gaussian, horizontal (gather_sh_* -> gi_denoise_tmp_*) then vertical
-// (gi_denoise_tmp_* -> gi_sh_*), 2 * denoise_radius + 1 taps each. Each 8x8 group loads its
-// pixels plus radius taps either side along the axis (geometry, hit distance, SH, direct part)
-// into group-shared memory once and filters from there (gi_denoise.comp; weights in
-// gi_denoise.glsl). A tap's weight is the
+// (gi_denoise_tmp_* -> gi_sh_*), 2 * denoise_radius + 1 taps each. A tap's weight is the
 // gaussian (sigma = radius / 2) times edge stops on the normal (pow(max(0, dot), 32)), the
 // depth (distance from the centre's tangent plane relative to its view distance, e^(-rel/0.02))
 // and, only with the option denoise_hit_weight 1 (the seed's; default 0, it biases the mean:
@@ -19,12 +16,9 @@
 // Seed: the idTech 8 "Global Illumination" talk, "Denoise + Upscale" (spatial denoise at final-gather
 // resolution, separable bilateral gaussian weighted by normal/depth and hit-distance deltas).
 // Departure: the hit-distance weight is off by default (see above).
-// Work counter: taps (gather pixels x (2 radius + 1) x 2 directions).
-// Limits: the tile keeps geometry and hit distance in FP32 (the seed preloads in FP16: packing
-// positions would change the depth weight); the vertical direction weighs hit distances of the
-// unfiltered gather, as the horizontal one does; two dispatches (radiance_cache.md, "Cost": one
-// dispatch keeping the horizontal results in group-shared memory is not bit-identical).
-// radius 0 copies (to within the RGBA16F rounding of (w x value) / w).
+// Limits: no group-shared preload (each tap reads the images; the seed preloads to LDS in FP16);
+// the vertical pass weighs hit distances of the unfiltered gather, as the horizontal one does.
+// radius 0 copies.
 // NaN guard (DenoisePush.nan_guards): taps with a non-finite weight or SH are skipped.
 #pragma once
 #include <memory>

@@ -14,9 +14,6 @@ GIB_CONST(uint, kDenoiseBindOutG, 15)
 GIB_CONST(uint, kDenoiseBindOutB, 16)
 GIB_CONST(uint, kDenoiseBindInDirect, 17)  // horizontal: gather_direct; vertical: gi_denoise_tmp_direct
 GIB_CONST(uint, kDenoiseBindOutDirect, 18) // horizontal: gi_denoise_tmp_direct; vertical: gi_direct
-// Specialisation constant: denoise_radius, which sizes the group-shared tile (8 + 2 radius taps
-// along the axis x 8 lines, 96 bytes a tap: 30 KiB at the option's maximum 16, 10.5 KiB at 3).
-GIB_CONST(uint, kDenoiseSpecRadius, 0)
 // Edge-stopping weights of a tap q for the centre g (gather pixels; geometry from their
 // representative full-res pixels g * divisor + divisor / 2, as final_gather):
 //   normal    pow(max(0, dot(n_g, n_q)), kDenoiseNormalPower)
@@ -33,7 +30,7 @@ GIB_CONST(float, kDenoiseDepthSigma, 0.02)
 GIB_CONST(float, kDenoiseHitSigma, 1.0)
 struct DenoisePush {
   int axis_x, axis_y;  // (1, 0) horizontal, (0, 1) vertical
-  uint radius;         // taps either side (the spec constant kDenoiseSpecRadius has the same value)
+  uint radius;         // taps either side
   uint divisor;        // gather divisor (2 or 4)
   uint nan_guards;     // 1: taps with a non-finite weight or value are skipped
   uint hit_weight;     // 1: the SH taps also weigh hit-distance similarity (the seed's); 0: geometry only

@@ -91,63 +91,28 @@ void write_out(ivec2 p, vec3 value, vec3 direct, float frames) {
   imageStore(out_direct_irradiance, p, vec4(stored_direct / exposure[kUpscaleExposureNow], 1.0));
 }
 
-// The group's gather samples in group-shared memory: the 8 x 8 gather pixels from s_base on
-// (each clamped to the gather image, as the taps are) hold every tap and every fallback tap of
-// the group's 8 x 8 full-res pixels (divisor 2: 6 x 6 taps and the 4x4 fallback's ring; 4:
-// fewer). One load per invocation replaces up to 4 (16 on the fallback) per pixel of the
-// representative pixel's position and normal, the 3 SH and the direct part; values are kept as
-// loaded (32-bit floats), so the arithmetic is the one done on image loads.
-const int kUpscaleTile = int(kUpscaleGroup);
-shared vec4 s_pos[kUpscaleTile * kUpscaleTile];     // representative full-res position (w: distance)
-shared vec4 s_normal[kUpscaleTile * kUpscaleTile];  // representative full-res normal (xyz)
-shared vec4 s_r[kUpscaleTile * kUpscaleTile];
-shared vec4 s_g[kUpscaleTile * kUpscaleTile];
-shared vec4 s_b[kUpscaleTile * kUpscaleTile];
-shared vec4 s_d[kUpscaleTile * kUpscaleTile];       // gi_direct (rgb)
-ivec2 s_base;  // gather pixel of slot (0, 0), before clamping
-
-// Gather pixel g0 + o's slot in the tile (g0 + o unclamped: the slot holds the clamped pixel).
-int tap_slot(ivec2 g) {
-  ivec2 t = g - s_base;
-  return t.y * kUpscaleTile + t.x;
-}
-
-// The lowest floor((p - divisor / 2) / divisor) of the group, minus 1 (the fallback's ring).
-void load_tile(ivec2 origin) {
-  int div = int(push.divisor);
-  s_base = ivec2(floor((vec2(origin) - float(div / 2)) / float(div))) - 1;
-  ivec2 t = ivec2(gl_LocalInvocationID.xy);
-  int slot = t.y * kUpscaleTile + t.x;
-  ivec2 g = clamp(s_base + t, ivec2(0), imageSize(sh_r) - 1);
-  ivec2 src = min(g * div + div / 2, imageSize(gb_position) - 1);  // gather pixel g's full-res pixel
-  s_pos[slot] = imageLoad(gb_position, src);
-  s_normal[slot] = vec4(imageLoad(gb_normal, src).xyz, 0.0);
-  s_r[slot] = imageLoad(sh_r, g);
-  s_g[slot] = imageLoad(sh_g, g);
-  s_b[slot] = imageLoad(sh_b, g);
-  s_d[slot] = vec4(imageLoad(gi_direct, g).rgb, 0.0);
-}
-
-// How much the gather sample in slot t lies on the surface at x with normal n: normal
+// How much gather sample g (a gather-res pixel) lies on the surface at x with normal n: normal
 // agreement times distance from the plane; 0 when that gather pixel saw the sky.
-float tap_similarity(int t, vec3 x, vec3 n, float dist) {
-  vec4 gp = s_pos[t];
+float tap_similarity(ivec2 g, vec3 x, vec3 n, float dist) {
+  int div = int(push.divisor);
+  ivec2 src = min(g * div + div / 2, imageSize(gb_position) - 1);  // gather pixel g's full-res pixel
+  vec4 gp = imageLoad(gb_position, src);
   if (gp.w == 0.0) return 0.0;
-  vec3 gn = s_normal[t].xyz;
+  vec3 gn = imageLoad(gb_normal, src).xyz;
   float s = pow(max(0.0, dot(n, gn)), kUpscaleNormalPower) * exp(-abs(dot(n, gp.xyz - x)) / (dist * kUpscaleDepthSigma));
   // Guard: a tap with a non-finite similarity (NaN normal) is not on any surface. (Its SH are
-  // checked where they are read anyway.)
+  // checked where they are loaded anyway: loading them here too cost gi_upscale +27% on an H100.)
   if (push.nan_guards != 0u && !gib_finite(s)) return 0.0;
   return s;
 }
 
-// The gather sample in slot t: its SH (r, g, b) and direct part; false when the guards are on
-// and one is not finite (such a tap is not on any surface).
-bool tap_sh(int t, out vec4 r, out vec4 gg, out vec4 b, out vec3 d) {
-  r = s_r[t];
-  gg = s_g[t];
-  b = s_b[t];
-  d = s_d[t].rgb;
+// Gather sample g's SH (r, g, b) and direct part; false when the guards are on and one is not
+// finite (such a tap is not on any surface).
+bool tap_sh(ivec2 g, out vec4 r, out vec4 gg, out vec4 b, out vec3 d) {
+  r = imageLoad(sh_r, g);
+  gg = imageLoad(sh_g, g);
+  b = imageLoad(sh_b, g);
+  d = imageLoad(gi_direct, g).rgb;
   return push.nan_guards == 0u || (gib_finite(r) && gib_finite(gg) && gib_finite(b) && gib_finite(d));
 }
 
@@ -159,15 +124,16 @@ bool upscale(ivec2 p, vec3 x, vec3 n, float dist, out vec3 irradiance, out vec3 
   direct = vec3(0.0);
   vec3 acc_d = vec3(0.0);
   int div = int(push.divisor);
+  ivec2 gsize = imageSize(sh_r);
   vec2 xg = (vec2(p) - float(div / 2)) / float(div);
   ivec2 g0 = ivec2(floor(xg));
   vec2 f = xg - vec2(g0);
   vec4 acc_r = vec4(0.0), acc_g = vec4(0.0), acc_b = vec4(0.0);
   float acc_w = 0.0, best = 0.0;
-  int best_g = -1;  // slot of the most similar tap
+  ivec2 best_g = ivec2(-1);
   for (int i = 0; i < 4; ++i) {
     ivec2 o = ivec2(i & 1, i >> 1);
-    int g = tap_slot(g0 + o);
+    ivec2 g = clamp(g0 + o, ivec2(0), gsize - 1);
     float similar = tap_similarity(g, x, n, dist);
     if (push.nan_guards != 0u && similar == 0.0) continue;  // 0 x NaN would still be NaN
     vec4 r, gg, b;
@@ -196,7 +162,7 @@ bool upscale(ivec2 p, vec3 x, vec3 n, float dist, out vec3 irradiance, out vec3 
     if (best <= 1e-3)
       for (int j = -1; j <= 2; ++j)
         for (int i = -1; i <= 2; ++i) {
-          int g = tap_slot(g0 + ivec2(i, j));
+          ivec2 g = clamp(g0 + ivec2(i, j), ivec2(0), gsize - 1);
           float similar = tap_similarity(g, x, n, dist);
           if (similar > best) {
             best = similar;
@@ -262,8 +228,6 @@ bool reproject(vec3 x, vec3 n, out vec3 prev, out vec3 prev_direct, out float fr
 }
 
 void main() {
-  load_tile(ivec2(gl_WorkGroupID.xy) * int(kUpscaleGroup));
-  barrier();
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(p, imageSize(out_irradiance)))) return;
   vec4 pos = imageLoad(gb_position, p);

@@ -26,8 +26,6 @@
 // Seed: the idTech 8 "Global Illumination" talk, "Denoise + Upscale" (bilateral upscale weighted by
 // normal/depth, temporal filter with a valid-fragment frame counter, RGB9E5 or RGBA16F history)
 // and "RGB9E5 vs R11G11B10F".
-// Cost: each 8x8 group loads the 8x8 gather samples its taps and fallback taps can reach
-// (geometry of the representative pixels, SH, direct part) into group-shared memory once.
 // Limits: the seed's 4 poisson taps are the 4 bilinear neighbours here; no history clamping
 // (lighting changes fade in over n_max frames); n is interpolated with the history, so it may
 // be fractional after camera motion. One kernel per history format (gi_upscale_<format>.comp).

@@ -1,14 +1,9 @@
-// irradiance_volume_update on GPUs, in one dispatch: workgroups 0 .. 4095 are the probes of the
-// updated cascade (one 8x8 group per probe: its rays shaded once into group-shared memory, each
-// thread convolves one interior texel, then the 10x10 tile with its border is written), and the
-// groups after them carry the other cascades' rows from last frame's atlas (8x8 texels each;
-// what irradiance_volume_carry.comp does on CPU devices, there a dispatch of its own). Both read
-// only last frame's atlas and write disjoint rows of this frame's, so no barrier separates them.
-// The probe groups also store their rays into probe_ray_radiance as irradiance_volume_rays.comp
-// does (the buffer then holds the same on both paths, with no fill). CPU devices (lavapipe) use
-// the barrier-free pair irradiance_volume_rays.comp + irradiance_volume_update.comp instead
-// (same output): there each barrier costs ~70 us per workgroup, while on an H100 the split pair
-// was 39% slower (0.108 vs 0.078 ms at ultra, before the carry joined this dispatch).
+// irradiance_volume_update on GPUs: one 8x8 workgroup per probe of the updated cascade; the
+// probe's rays are shaded once into group-shared memory, each thread convolves one interior
+// texel, then the 10x10 tile with its border is written. CPU devices (lavapipe) use the
+// barrier-free pair irradiance_volume_rays.comp + irradiance_volume_update.comp instead (same
+// output): there each barrier costs ~70 us per workgroup, while on an H100 the split pair is
+// 39% slower (0.108 vs 0.078 ms at ultra).
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "renderer/techniques/radiance_cache/irradiance_volume_update/irradiance_volume_update_shared.h"
@@ -26,7 +21,6 @@ layout(constant_id = kIvSpecCacheFallback) const bool kCacheFallback = true;
 
 layout(local_size_x = kIvGroup, local_size_y = kIvGroup) in;
 layout(std430, set = 0, binding = kIvBindHits) readonly buffer HitBuffer { ProbeHit probe_hits[]; };
-layout(std430, set = 0, binding = kIvBindRays) writeonly buffer RayBuffer { vec4 probe_ray_radiance[]; };
 layout(set = 0, binding = kIvBindIrradiance, r32ui) uniform writeonly uimage2D out_irradiance;
 layout(set = 0, binding = kIvBindVisibility, rg16f) uniform writeonly image2D out_visibility;
 layout(push_constant) uniform Push { RcParams rc; };
@@ -45,23 +39,7 @@ shared float s_distance[kIvMaxRays];
 shared uint s_irradiance[kTexels];
 shared vec2 s_moments[kTexels];
 
-// A carry group: 8x8 texels of a cascade other than the updated one, copied from last frame.
-void carry(uint block) {
-  const uint kBlocksX = kProbeAtlasWidth / kIvGroup, kBlocksPerCascade = kBlocksX * (kProbeAtlasRowsPerCascade / kIvGroup);
-  uint k = block / kBlocksPerCascade, b = block - k * kBlocksPerCascade;
-  uint cascade = k < rc_updated_cascade() ? k : k + 1u;
-  ivec2 p = ivec2((b % kBlocksX) * kIvGroup, cascade * kProbeAtlasRowsPerCascade + (b / kBlocksX) * kIvGroup) +
-            ivec2(gl_LocalInvocationID.xy);
-  imageStore(out_irradiance, p, uvec4(rc_probe_irradiance_texel(p)));
-  imageStore(out_visibility, p, vec4(rc_probe_visibility_texel(p), 0.0, 0.0));
-}
-
 void main() {
-  const uint kProbes = kProbeGridDim * kProbeGridDim * kProbeGridDim;
-  if (gl_WorkGroupID.x >= kProbes) {
-    carry(gl_WorkGroupID.x - kProbes);
-    return;
-  }
   uint probe = gl_WorkGroupID.x;
   uint tid = gl_LocalInvocationIndex;
   uint rays = min(rc_rays_per_probe(), kIvMaxRays);
@@ -80,8 +58,6 @@ void main() {
     s_dir[r] = drop ? vec3(0.0) : d;
     s_radiance[r] = drop ? vec3(0.0) : l;
     s_distance[r] = min(h.distance, max_distance);
-    probe_ray_radiance[probe * rc_rays_per_probe() + r] =
-        drop ? vec4(0.0, 0.0, 0.0, -1.0) : vec4(l, min(h.distance, max_distance));
   }
   barrier();
 

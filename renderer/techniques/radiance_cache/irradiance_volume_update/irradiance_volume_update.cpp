@@ -41,32 +41,10 @@ class IrradianceVolumeUpdatePass final : public Pass {
     const std::vector<SpecConstant> ray_specs = {{kIvSpecCacheFallback, 1},
                                                  {kIvSpecAlpha, ctx.scene.features().has(Feature::alpha_tested) ? 1u : 0u},
                                                  {kIvSpecDither, dither}};
-    IvPush push{make_rc_params(ctx.settings, ctx.frame)};
-    const uint32_t updated = rc_updated_cascade(r.probe_schedule, r.cascades, ctx.frame);
-    const bool per_probe = r.volume_kernel == 0 ? !ctx.gpu.info().is_software() : r.volume_kernel == 1;
-    if (per_probe) {
-      // GPU, one dispatch: a workgroup per probe with its rays in group-shared memory, then 8x8
-      // carry groups for the rows of every cascade not updated this frame (they carry over from
-      // last frame's copy). The probe groups also write probe_ray_radiance.
-      const uint32_t carry_groups = (r.cascades - 1) * (kProbeAtlasWidth / kIvGroup) * (kProbeAtlasRowsPerCascade / kIvGroup);
-      record_compute(ctx, {.shader = "irradiance_volume_probe.comp",
-                           .images = {{kIvBindPrevIrradiance, "probe_irradiance", true},
-                                      {kIvBindPrevVisibility, "probe_visibility", true},
-                                      {kIvBindIrradiance, "probe_irradiance"},
-                                      {kIvBindVisibility, "probe_visibility"}},
-                           .groups_x = kProbesPerCascade + carry_groups,
-                           .push = &push,
-                           .push_bytes = sizeof(push),
-                           .spec_constants = ray_specs,
-                           .buffers = {{kIvBindHits, "probe_hits"}, {kIvBindCells, "rc_cells"},
-                                       {kIvBindRays, "probe_ray_radiance"}},
-                           .label = "irradiance_volume_update/probe"});
-      return;
-    }
     // Cascades not updated this frame carry over from last frame's copy; the updated one is
     // rewritten whole by the convolve below.
     ctx.cmd.begin_label("irradiance_volume_update/carry");
-    IvCarryPush carry{updated, 0, 0, 0};
+    IvCarryPush carry{rc_updated_cascade(r.probe_schedule, r.cascades, ctx.frame), 0, 0, 0};
     const Image& atlas = ctx.image("probe_irradiance");
     record_compute(ctx, {.shader = "irradiance_volume_carry.comp",
                          .images = {{kIvBindPrevIrradiance, "probe_irradiance", true},
@@ -80,6 +58,27 @@ class IrradianceVolumeUpdatePass final : public Pass {
                          .scene = false});
     ctx.cmd.end_label();
     ctx.cmd.barrier(kStageCompute, kStageCompute);
+    IvPush push{make_rc_params(ctx.settings, ctx.frame)};
+    const bool per_probe = r.volume_kernel == 0 ? !ctx.gpu.info().is_software() : r.volume_kernel == 1;
+    if (per_probe) {
+      // GPU: one workgroup per probe with its rays in group-shared memory.
+      ctx.cmd.begin_label("irradiance_volume_update/probe");
+      record_compute(ctx, {.shader = "irradiance_volume_probe.comp",
+                           .images = {{kIvBindPrevIrradiance, "probe_irradiance", true},
+                                      {kIvBindPrevVisibility, "probe_visibility", true},
+                                      {kIvBindIrradiance, "probe_irradiance"},
+                                      {kIvBindVisibility, "probe_visibility"}},
+                           .groups_x = kProbesPerCascade,
+                           .push = &push,
+                           .push_bytes = sizeof(push),
+                           .spec_constants = ray_specs,
+                           .buffers = {{kIvBindHits, "probe_hits"}, {kIvBindCells, "rc_cells"}}});
+      ctx.cmd.end_label();
+      // The split path's ray buffer is unused here: zeroed so nothing (the stability scan, a
+      // dump) reads undefined memory.
+      ctx.cmd.fill(ctx.buffer("probe_ray_radiance"), 0);
+      return;
+    }
     // CPU device: two barrier-free kernels (see irradiance_volume_probe.comp for why).
     ctx.cmd.begin_label("irradiance_volume_update/rays");
     record_compute(ctx, {.shader = "irradiance_volume_rays.comp",

@@ -3,10 +3,8 @@
 // "Irradiance Volumes Update": one dispatch, 8x8 groups, radiance-cache results (sky on a miss)
 // into group-shared memory, irradiance per texel [Greger 1998], previous frame added, RGB9E5 +
 // RG16F tiles of 8x8 with a 1-texel border in a 2560-wide atlas, DDGI-like [Majercik 2019]).
-// GPUs (irradiance_volume_probe.comp) do it in one dispatch: one 8x8 group per probe of the
-// updated cascade, then groups that carry every other cascade's rows from last frame's copy
-// (both images: cascades not updated keep their tiles; CPU devices run the carry, then the rays
-// and convolve kernels, with the same output). A probe group:
+// First the whole atlas is copied from last frame (both images: cascades not updated keep
+// their tiles), then one 8x8 group per probe of cascade frame % cascades:
 //   load   each thread takes rays tid, tid + 64, ...: a miss -> sky radiance; a hit at
 //          p = probe + dir * distance -> rc_lookup(p) (the cell shaded this frame or reused);
 //          a hit whose cell was dropped -> emission + albedo x last frame's volumes at the hit
@@ -18,8 +16,7 @@
 //          distance clamped to min(4 x spacing, 200 m)) weighted by max(0, n.d)^16
 //   blend  with last frame's texel by probe_hysteresis, except on a probe's first update
 //          (last frame's mean distance is 0 only before that)
-//   store  RGB9E5 (packing.glsl) and RG16F, then the 36 border texels (gib_oct_border_source);
-//          the rays (rgb, clamped distance; w -1 when the guard drops one) go to probe_ray_radiance.
+//   store  RGB9E5 (packing.glsl) and RG16F, then the 36 border texels (gib_oct_border_source).
 // Slots: reads probe_hits, rc_cells, read_prev probe_irradiance/probe_visibility; writes
 // probe_irradiance (r32_uint, 2560 x 160 * cascades, persistent) and probe_visibility (rg16f).
 // Limits: at most 256 rays per probe; a probe slot that scrolls to a new position (camera moved
