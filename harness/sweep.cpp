@@ -69,6 +69,44 @@ std::string sweep_svg(const std::string& case_name, const std::vector<SweepPoint
   return s + "</svg>\n";
 }
 
+std::vector<SweepPoint> sweep_case(Gpu& gpu, const Case& c, const GoldenStore& store,
+                                   const std::vector<std::string>& techniques, bool print) {
+  std::vector<SweepPoint> pts;
+  for (auto& run : c.techniques) {
+    if (!technique_selected(techniques, run.technique)) continue;
+    const std::string row = run.label.empty() ? run.technique : run.technique + "+" + run.label;
+    std::string aov = run.compare_aov.empty() ? c.output : run.compare_aov;
+    std::string ref_path = store.find(GoldenStore::reference_stem(aov, c.output), "");
+    if (ref_path.empty())
+      throw GoldenError(fmt::format("{}: reference golden missing; create it with: gibench update-goldens --case {} "
+                                    "--reference --reason \"initial reference\"", store.dir(), c.name));
+    FloatImage ref = store.read(ref_path);
+    for (auto& preset : find_technique(run.technique).presets) {
+      CaseRender r = render_case(gpu, c, run, preset);
+      FlipOptions fo;
+      fo.ppd = c.ppd;
+      fo.mode = c.flip_mode == "ldr" ? FlipOptions::Mode::ldr : FlipOptions::Mode::hdr;
+      // The reference converges over many frames: its cost is the whole convergence. Any other
+      // technique: the median of its timed frames (scan-free, after the case's; render_case).
+      const bool whole = run.technique == "reference";
+      double ms = whole ? r.gpu_ms_total : r.frame_median_ms;
+      SweepPoint pt{row, preset, ms, flip(ref, r.image, fo).mean};
+      pt.timed_frames = uint32_t(whole ? r.frames : r.timing.frames.size());
+      pt.scan_free = r.timing.scan_free();
+      std::string rois;
+      for (const Roi& roi : c.rois) {
+        pt.roi_ratios.emplace_back(roi.name, compute_metric(c, "roi_ratio", r.image, &ref, &roi));  // as `run` reports it
+        rois += fmt::format("  {} {:.3f}", roi.name, pt.roi_ratios.back().second);
+      }
+      pts.push_back(std::move(pt));
+      if (print)
+        fmt::print("{:<28} {:<8} {:>10.3f} ms  FLIP {:.4f}{}  ({} {} frames)\n", row, preset, ms, pts.back().flip, rois,
+                   whole ? "sum of" : "median of", pts.back().timed_frames);
+    }
+  }
+  return pts;
+}
+
 int cmd_sweep(const SuiteOptions& o) {
   for (const std::string& t : o.techniques) find_technique(t);  // an unknown name is an error, before any GPU work
   std::vector<Case> cases = select_cases(o);
@@ -80,38 +118,7 @@ int cmd_sweep(const SuiteOptions& o) {
   for (const Case& c0 : cases) {
     const Case c = at_tier(c0, tier);
     GoldenStore store = prepare_references(*gpu, o.goldens_dir, cache_root, c, tier).store;
-    std::vector<SweepPoint> pts;
-    for (auto& run : c.techniques) {
-      if (!technique_selected(o.techniques, run.technique)) continue;
-      const std::string row = run.label.empty() ? run.technique : run.technique + "+" + run.label;
-      std::string aov = run.compare_aov.empty() ? c.output : run.compare_aov;
-      std::string ref_path = store.find(GoldenStore::reference_stem(aov, c.output), "");
-      if (ref_path.empty())
-        throw GoldenError(fmt::format("{}: reference golden missing; create it with: gibench update-goldens --case {} "
-                                      "--reference --reason \"initial reference\"", store.dir(), c.name));
-      FloatImage ref = store.read(ref_path);
-      for (auto& preset : find_technique(run.technique).presets) {
-        CaseRender r = render_case(*gpu, c, run, preset);
-        FlipOptions fo;
-        fo.ppd = c.ppd;
-        fo.mode = c.flip_mode == "ldr" ? FlipOptions::Mode::ldr : FlipOptions::Mode::hdr;
-        // The reference converges over many frames: its cost is the whole convergence. Any other
-        // technique: the median of its timed frames (scan-free, after the case's; render_case).
-        const bool whole = run.technique == "reference";
-        double ms = whole ? r.gpu_ms_total : r.frame_median_ms;
-        SweepPoint pt{row, preset, ms, flip(ref, r.image, fo).mean};
-        pt.timed_frames = uint32_t(whole ? r.frames : r.timing.frames.size());
-        pt.scan_free = r.timing.scan_free();
-        std::string rois;
-        for (const Roi& roi : c.rois) {
-          pt.roi_ratios.emplace_back(roi.name, compute_metric(c, "roi_ratio", r.image, &ref, &roi));  // as `run` reports it
-          rois += fmt::format("  {} {:.3f}", roi.name, pt.roi_ratios.back().second);
-        }
-        pts.push_back(std::move(pt));
-        fmt::print("{:<28} {:<8} {:>10.3f} ms  FLIP {:.4f}{}  ({} {} frames)\n", row, preset, ms, pts.back().flip, rois,
-                   whole ? "sum of" : "median of", pts.back().timed_frames);
-      }
-    }
+    std::vector<SweepPoint> pts = sweep_case(*gpu, c, store, o.techniques);
     mark_pareto(pts);
     fs::path dir = fs::path(o.out) / c.name;
     fs::create_directories(dir);

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/goldens.h"
 #include "harness/runner.h"
 
 namespace gib {
@@ -22,6 +23,11 @@ struct SweepPoint {
 // Marks points not dominated by any other (lower or equal time and error, one strictly lower).
 void mark_pareto(std::vector<SweepPoint>& points);
 std::string sweep_svg(const std::string& case_name, const std::vector<SweepPoint>& points);
+// One case (already at its tier): every row of the selected techniques (all when empty) x every
+// preset of its technique, FLIP and ROI ratios against the case's reference golden in `store`;
+// each point printed as it is measured when `print`.
+std::vector<SweepPoint> sweep_case(Gpu& gpu, const Case& c, const GoldenStore& store,
+                                   const std::vector<std::string>& techniques, bool print = true);
 int cmd_sweep(const SuiteOptions& o);
 
 }  // namespace gib

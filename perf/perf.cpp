@@ -150,6 +150,16 @@ struct Workload {
   }
 };
 
+// A workload at a target resolution, rendered at `scale` of it (at least 8 x 8).
+Workload make_workload(uint32_t width, uint32_t height, double scale) {
+  Workload w;
+  w.width = width;
+  w.height = height;
+  w.run_width = std::max(8u, uint32_t(std::lround(width * scale)));
+  w.run_height = std::max(8u, uint32_t(std::lround(height * scale)));
+  return w;
+}
+
 struct PassRun {
   std::string name;
   std::vector<double> samples;   // ms per frame, every repeat
@@ -412,12 +422,7 @@ int cmd_bench(const BenchOptions& o) {
     auto it = std::find_if(workloads.begin(), workloads.end(),
                            [&](auto& w) { return w.width == p.width && w.height == p.height; });
     if (it == workloads.end()) {
-      Workload w;
-      w.width = p.width;
-      w.height = p.height;
-      w.run_width = std::max(8u, uint32_t(std::lround(p.width * scale)));
-      w.run_height = std::max(8u, uint32_t(std::lround(p.height * scale)));
-      workloads.push_back(w);
+      workloads.push_back(make_workload(p.width, p.height, scale));
       it = workloads.end() - 1;
     }
     it->profiles.push_back(&p);
@@ -435,13 +440,9 @@ int cmd_bench(const BenchOptions& o) {
         return w.seed_table == table.name && w.width == sp.width && w.height == sp.height;
       });
       if (it == workloads.end()) {
-        Workload w;
-        w.width = sp.width;
-        w.height = sp.height;
+        Workload w = make_workload(sp.width, sp.height, scale);
         w.seed_table = table.name;
         w.technique = table.technique;
-        w.run_width = std::max(8u, uint32_t(std::lround(sp.width * scale)));
-        w.run_height = std::max(8u, uint32_t(std::lround(sp.height * scale)));
         workloads.push_back(w);
         it = workloads.end() - 1;
       }

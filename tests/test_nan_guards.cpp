@@ -111,7 +111,7 @@ NanTrace run_injection(Gpu& gpu, const Scene& scene, const std::string& techniqu
   s = apply_options(t, s, options);
   // Near the centre, on the representative pixel of a gather pixel (g * divisor + divisor / 2),
   // so that the radiance-cache gather, denoise and upscale all read an injected normal.
-  const uint32_t div = s.has_params<RadianceCacheSettings>() && rc(s).gather_divisor >= 4 ? 4 : 2;
+  const uint32_t div = s.has_params<RadianceCacheSettings>() ? gather_divisor(rc(s)) : 2u;
   s.debug.inject_x = s.width / 2 / div * div + div / 2;
   s.debug.inject_y = s.height / 2 / div * div + div / 2;
   NanTrace trace;

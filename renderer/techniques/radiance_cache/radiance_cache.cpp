@@ -19,8 +19,19 @@
 
 namespace gib {
 namespace {
-// The seed's platform tiers: 16/32/64 rays per probe, 1/4 or 1/2 gather; cascades and cache
-// size grow with quality (6 cascades and ~2^20 cells ship on consoles at 'ultra').
+// The seed's platform tiers: 16/32/64 rays per probe, 1/4 or 1/2 gather, more cascades with
+// quality (6 ship). ultra goes past the seed: it gathers at full resolution (4x high's gather
+// rays), the one step up that lowers the error of a small interior, where cascades beyond the
+// fourth reach nothing (issue 19: with 6 cascades and a 1/2 gather ultra erred as much as high).
+//
+// Cache size: every preset has the seed's 14 MB (2^20 cells of 16 B). Until issue 19's fifth
+// session low had 2^13 cells, medium 2^15, high 2^16, ultra 2^18. Cells are never evicted, so a
+// small table fills, its insertions are dropped, and their gather rays and bounces fall back to
+// the volumes, which hold no direct light: the thin-wall room read 0.83-0.85 of the reference at
+// low (H100, CI tier) and 0.81 at the GPU tier (1.00 with 2^20 cells), and at the GPU tier
+// medium's 2^15 cells read 0.974 (1.011 with 2^20) and erred more than low. The larger table
+// uncovered a leak the dropped cells had hidden: extreme-range's interior reads 8.1x its
+// reference on an H100 (1.03 with 2^15 cells), a known failure (radiance_cache.md, "Cache size").
 //
 // high and ultra (issue 19, "presets form a ladder"): with one cascade updated per frame in
 // turn and the same hysteresis, more cascades meant each probe was updated less often, so the
@@ -41,10 +52,10 @@ struct Preset {
   uint32_t rays_per_probe, gather_divisor, cascades, cache_log2_cells, probe_schedule;
   bool dither_stores;
 };
-constexpr Preset kPresets[] = {{"low", 16, 4, 2, 13, 0, true},
-                               {"medium", 32, 2, 3, 15, 0, true},
-                               {"high", 64, 2, 4, 16, 1, true},
-                               {"ultra", 64, 2, 6, 18, 1, true}};
+constexpr Preset kPresets[] = {{"low", 16, 4, 2, 20, 0, true},
+                               {"medium", 32, 2, 3, 20, 0, true},
+                               {"high", 64, 2, 4, 20, 1, true},
+                               {"ultra", 64, 1, 6, 20, 1, true}};
 // Ray samples a probe texel averages at medium (32 rays, hysteresis 0.85).
 constexpr float kMediumProbeSamples = 32.0f * (1.0f + 0.85f) / (1.0f - 0.85f);
 void apply_preset_row(RadianceCacheSettings& s, const Preset& p) {
@@ -88,7 +99,7 @@ std::vector<TechniqueOption> own_options() {
              0, 1, &S::probe_schedule),
       option("rays_per_probe", "visibility rays per updated probe", 1, 64, &S::rays_per_probe),
       option("probe_spacing", "metres between cascade-0 probes", 0.01, 100, &S::probe_spacing),
-      option("gather_divisor", "final gather at 1/2 or 1/4 resolution (2 or 4)", 2, 4, &S::gather_divisor),
+      option("gather_divisor", "final gather at full, 1/2 or 1/4 resolution (1, 2 or 4; 3 reads as 2)", 1, 4, &S::gather_divisor),
       option("cache_log2_cells", "radiance cache capacity, log2 cells", 4, 24, &S::cache_log2_cells),
       option("cache_reuse_frames", "frames a shaded cache cell is reused", 1, 1024, &S::cache_reuse_frames),
       option("denoise_hit_weight",

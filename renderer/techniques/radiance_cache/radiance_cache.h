@@ -4,6 +4,7 @@
 #pragma once
 #include <cstdint>
 
+#include "renderer/graph/graph.h"
 #include "renderer/graph/settings.h"
 #include "renderer/passes/direct_lighting/direct_lighting.h"
 
@@ -19,8 +20,8 @@ struct RadianceCacheSettings : TechniqueSettingsOf<RadianceCacheSettings>, Direc
   float probe_spacing = 0.5f;       // metres between cascade-0 probes; doubles per cascade
   uint32_t rays_per_probe = 32;     // visibility rays per updated probe (16 / 32 / 64)
   float probe_hysteresis = 0.85f;   // weight of last frame's probe texel when blending
-  uint32_t gather_divisor = 2;      // final gather at 1/2 or 1/4 resolution
-  uint32_t cache_log2_cells = 15;   // world radiance cache capacity (2^n cells)
+  uint32_t gather_divisor = 2;      // final gather at 1/1, 1/2 or 1/4 resolution (gather_divisor())
+  uint32_t cache_log2_cells = 20;   // world radiance cache capacity (2^n cells; 2^20 x 16 B: the seed's 14 MB)
   uint32_t cache_max_probe = 8;     // linear-probing steps before an insertion is dropped
   float cache_cell_size = 0.25f;    // metres at LOD 0
   float cache_lod_distance = 8.0f;  // metres: LOD = 2^floor(log2(1 + dist / this))
@@ -42,5 +43,16 @@ struct RadianceCacheSettings : TechniqueSettingsOf<RadianceCacheSettings>, Direc
   bool pre_exposure = true;         // screen-space GI works on radiance x P (exposure pass); 0: P = 1 (negative control)
   uint32_t volume_kernel = 0;       // irradiance_volume_update: 0 by device (GPU per-probe, CPU split), 1 per-probe, 2 split
 };
+
+// The gather's divisor as the passes use it: 1 (full resolution: ultra, beyond the seed), 2 or 4
+// (the seed's 1/2 and 1/4); an option value of 3 reads as 2.
+inline uint32_t gather_divisor(const RadianceCacheSettings& r) {
+  return r.gather_divisor >= 4 ? 4u : r.gather_divisor <= 1 ? 1u : 2u;
+}
+// The size rule of the gather-resolution images (final_gather's SH, gi_denoise's).
+inline SizeRule gather_size_rule(const RadianceCacheSettings& r) {
+  const uint32_t d = gather_divisor(r);
+  return d == 4 ? SizeRule::quarter : d == 2 ? SizeRule::half : SizeRule::render;
+}
 
 }  // namespace gib

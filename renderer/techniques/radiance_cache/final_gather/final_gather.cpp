@@ -12,7 +12,7 @@ namespace {
 class FinalGatherPass final : public Pass {
  public:
   PassDecl declare(const Scene&, const Settings& s) const override {
-    const SizeRule size = s.params<RadianceCacheSettings>().gather_divisor >= 4 ? SizeRule::quarter : SizeRule::half;
+    const SizeRule size = gather_size_rule(s.params<RadianceCacheSettings>());
     const ResourceDesc sh = ResourceDesc{Format::rgba16_float, size}.with(  // x L0, yzw L1
         non_negative_values().allow_negative(kChannelG | kChannelB | kChannelA));
     ResourceDesc stats{Format::buffer, SizeRule::buffer};
@@ -34,7 +34,7 @@ class FinalGatherPass final : public Pass {
                {"gather_direct", Access::write, ResourceDesc{Format::rgba16_float, size}.with(non_negative_values())},
                {"gather_hit_distance", Access::write, ResourceDesc{Format::r32_float, size}.with(non_negative_values())},
                {"gather_stats", Access::write, stats}};
-    const double g = std::max(1u, s.params<RadianceCacheSettings>().gather_divisor);
+    const double g = gather_divisor(s.params<RadianceCacheSettings>());
     d.work = {{"rays", std::ceil(s.width / g) * std::ceil(s.height / g)}};  // one per gather pixel
     return d;
   }
@@ -46,7 +46,7 @@ class FinalGatherPass final : public Pass {
       RcParams rc;
       GatherPush gather;
     } push{make_rc_params(ctx.settings, ctx.frame),
-           {r.gather_divisor >= 4 ? 4u : 2u, ctx.frame > 0 ? 1u : 0u, r.sky_rays == 0 ? 1u : 0u, 0}};
+           {gather_divisor(r), ctx.frame > 0 ? 1u : 0u, r.sky_rays == 0 ? 1u : 0u, 0}};
 
     ComputePipelineDesc desc;
     desc.shader = "final_gather.comp";

@@ -1,5 +1,5 @@
 // final_gather: the radiance-cache technique's per-pixel irradiance probes. At 1/gather_divisor
-// resolution (SizeRule::half for 2, quarter for 4) each gather pixel g takes the G-buffer
+// resolution (SizeRule::render for 1, half for 2, quarter for 4) each gather pixel g takes the G-buffer
 // sample of its representative full-res pixel g * divisor + divisor / 2 (clamped to the
 // render size; the pixel just below and right of the block's centre, shared with gi_denoise
 // and gi_upscale) and traces one cosine-distributed ray around its normal (direction: a

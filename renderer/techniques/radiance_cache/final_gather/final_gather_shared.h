@@ -46,7 +46,7 @@ GIB_CONST(float, kGatherScreenDepthTolerance, 0.05)
 GIB_CONST(float, kGatherMinCos, 0.02)
 
 struct GatherPush {
-  uint divisor;       // 2 or 4
+  uint divisor;       // gather divisor: 1, 2 or 4
   uint screen_cache;  // 0: skip the screen cache (first frame: last frame's image is empty)
   uint sky;           // 1: the gather's direct part (sky on a miss, a hit's emission) is kept;
                       // 0 (direct_lighting traces them, sky_rays > 0): it is dropped, no double count

@@ -9,7 +9,7 @@ namespace {
 class GiDenoisePass final : public Pass {
  public:
   PassDecl declare(const Scene&, const Settings& s) const override {
-    const SizeRule size = s.params<RadianceCacheSettings>().gather_divisor >= 4 ? SizeRule::quarter : SizeRule::half;
+    const SizeRule size = gather_size_rule(s.params<RadianceCacheSettings>());
     const ResourceDesc sh =  // x L0, yzw L1
         ResourceDesc{Format::rgba16_float, size}.with(non_negative_values().allow_negative(kChannelG | kChannelB | kChannelA));
     const ResourceDesc direct = ResourceDesc{Format::rgba16_float, size}.with(non_negative_values());
@@ -29,7 +29,7 @@ class GiDenoisePass final : public Pass {
   void record(RecordContext& ctx) override {
     using namespace glsl;
     const RadianceCacheSettings& r = ctx.settings.params<RadianceCacheSettings>();
-    const uint32_t divisor = r.gather_divisor >= 4 ? 4u : 2u;
+    const uint32_t divisor = gather_divisor(r);
     const uint32_t radius = r.denoise_radius;
     auto run = [&](const char* label, int ax, int ay, const char* in, const char* in_direct, const char* out) {
       const std::string ir = std::string(in) + "_r", ig = std::string(in) + "_g", ib = std::string(in) + "_b";

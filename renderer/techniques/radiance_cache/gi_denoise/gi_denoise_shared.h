@@ -31,7 +31,7 @@ GIB_CONST(float, kDenoiseHitSigma, 1.0)
 struct DenoisePush {
   int axis_x, axis_y;  // (1, 0) horizontal, (0, 1) vertical
   uint radius;         // taps either side
-  uint divisor;        // gather divisor (2 or 4)
+  uint divisor;        // gather divisor: 1, 2 or 4
   uint nan_guards;     // 1: taps with a non-finite weight or value are skipped
   uint hit_weight;     // 1: the SH taps also weigh hit-distance similarity (the seed's); 0: geometry only
   uint pad1, pad2;

@@ -63,7 +63,7 @@ class GiUpscalePass final : public Pass {
   void record(RecordContext& ctx) override {
     using namespace glsl;
     const RadianceCacheSettings& r = ctx.settings.params<RadianceCacheSettings>();
-    UpscalePush push{r.gather_divisor >= 4 ? 4u : 2u, float(r.history_max_frames), r.disocclusion ? 1u : 0u,
+    UpscalePush push{gather_divisor(r), float(r.history_max_frames), r.disocclusion ? 1u : 0u,
                      ctx.frame > 0 ? 1u : 0u, ctx.settings.nan_guards ? 1u : 0u, r.dither_stores ? 1u : 0u,
                      ctx.frame, 0};
     static_assert(sizeof(push) == 32, "UpscalePush must match gi_upscale.glsl's push block");

@@ -33,7 +33,7 @@ GIB_CONST(float, kUpscaleDepthSigma, 0.02)
 GIB_CONST(float, kUpscaleDepthTolerance, 0.05)
 GIB_CONST(float, kUpscaleNormalCos, 0.9)
 struct UpscalePush {
-  uint divisor;        // gather divisor (2 or 4)
+  uint divisor;        // gather divisor: 1, 2 or 4
   float max_frames;    // n_max
   uint disocclusion;   // 1: depth/normal tests reject history
   uint history_valid;  // 0 on the first frame: last frame's images were never written
