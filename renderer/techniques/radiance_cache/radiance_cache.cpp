@@ -102,6 +102,11 @@ std::vector<TechniqueOption> own_options() {
       option("gather_divisor", "final gather at full, 1/2 or 1/4 resolution (1, 2 or 4; 3 reads as 2)", 1, 4, &S::gather_divisor),
       option("cache_log2_cells", "radiance cache capacity, log2 cells", 4, 24, &S::cache_log2_cells),
       option("cache_reuse_frames", "frames a shaded cache cell is reused", 1, 1024, &S::cache_reuse_frames),
+      option("cache_cell_size", "metres across a radiance-cache cell at LOD 0", 0.01, 10, &S::cache_cell_size),
+      option("cache_lod_distance",
+             "metres from the camera per cell LOD step: a cell at distance d is cache_cell_size x 2^floor(log2(1 + d / "
+             "this)) across",
+             0.1, 1e6, &S::cache_lod_distance),
       option("denoise_hit_weight",
              "gi_denoise weighs the bounce SH's taps by hit-distance similarity too, as the seed (0/1; default 0: the "
              "weight depends on the values and biases the mean; the direct part always takes geometry weights only)",
