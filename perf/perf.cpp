@@ -541,12 +541,16 @@ int cmd_bench(const BenchOptions& o) {
       // The timing every command shares (frame_timing.h): scan off, warm-up, timed frames.
       const FrameTiming timed = time_frames(ex, warmup, frames);
       // Work the GPU counted (PassDecl::measured): read back after the timed frames, so the
-      // readback is in no timed frame; the last frame's value, averaged over the repeats.
+      // readback is in no timed frame; the last frame's value, averaged over the repeats. Each
+      // buffer is read once (several counters, and passes, share rc_counters).
+      std::map<std::string, std::vector<uint8_t>> readbacks;
       for (auto* pp : ex.plan().running())
         for (const MeasuredCounter& m : pp->measured)
           for (auto& pr : r.passes)
             if (pr.name == pp->name) {
-              const std::vector<uint8_t> raw = ex.read_buffer(m.resource);
+              auto it = readbacks.find(m.resource);
+              if (it == readbacks.end()) it = readbacks.emplace(m.resource, ex.read_buffer(m.resource)).first;
+              const std::vector<uint8_t>& raw = it->second;
               uint32_t v = 0;
               if (m.offset + sizeof(v) <= raw.size()) std::memcpy(&v, raw.data() + m.offset, sizeof(v));
               const double prev = pr.counters.contains(m.name) ? pr.counters[m.name].get<double>() : 0.0;
