@@ -213,6 +213,9 @@ TEST(GltfErrors, EachClassNamesTheFileAndWhatWasExpected) {
   expect_error(glb_error([](GltfContent& g) { g.doc["nodes"][7]["extensions"]["KHR_lights_punctual"]["light"] = 2; }),
                "bad.glb", "expected at most one directional light in the scene");
   expect_error(glb_error([](GltfContent& g) { g.doc["asset"]["version"] = "1.0"; }), "bad.glb", "/asset/version");
+  // extras.gibench_solid must be a boolean (Instance::solid).
+  expect_error(glb_error([](GltfContent& g) { g.doc["nodes"][1]["extras"] = {{"gibench_solid", "yes"}}; }), "bad.glb",
+               "/nodes/1/extras/gibench_solid: expected a boolean, got another type");
   // A texture whose image file is missing, and one that cannot be decoded.
   expect_error(glb_error([](GltfContent& g) {
                  g.doc["images"] = {{{"uri", "nowhere.png"}}};

@@ -580,5 +580,101 @@ TEST(RadianceCacheSchedule, PresetsKeepMediumProbeSamples) {
   EXPECT_FLOAT_EQ(rc(o).probe_hysteresis, 0.5f);
 }
 
+// Probes inside a solid (Instance::solid): most of their rays meet the back of its faces, so
+// irradiance_volume_update marks them inside (moments 0, as never updated: samplers skip them) and they
+// carry none of the light their rays reach through it. A 1.2 m slab under an open sky holds the
+// probes of two layers (y = -0.25 and -0.75); every other probe is in the open or under it and
+// must stay an ordinary probe. The same slab declared not solid (negative control) marks none.
+TEST_F(RadianceCacheWorld, ProbesInsideSolidsAreMarkedAndSkipped) {
+  for (bool solid : {true, false}) {
+    nlohmann::json doc = nlohmann::json::parse(R"({
+      "materials": {"white": {"albedo": [0.5, 0.5, 0.5]}},
+      "objects": [{"primitive": {"type": "thin_slab", "size": [6, 6], "thickness": 1.2, "facing": "+y"},
+                   "transform": {"translate": [0, -0.6, 0]}, "material": "white"}],
+      "sky": {"type": "constant", "radiance": [1, 1, 1]},
+      "camera": {"position": [0.1, 1.4, 0.3], "target": [0, 0, 0]}
+    })");
+    doc["objects"][0]["solid"] = solid;
+    Scene scene = parse_scene(doc, "slab");
+    Settings s = small_settings();
+    rc(s).probe_spacing = 0.5f;
+    Executor ex(gpu(), scene, s, world_passes(), {"probe_irradiance", "rc_test_keys", "rc_test_atlas"});
+    ex.run_frame();
+    FloatImage atlas = ex.read("rc_test_atlas");
+    Vec3 cam = scene.camera_at(0).position;
+    const double sp = rc(s).probe_spacing;
+    uint32_t in_slab = 0, in_marked = 0, out = 0, out_marked = 0;
+    for (uint32_t pr = 0; pr < kProbes; ++pr) {
+      int ijk[3] = {int(pr & 15), int((pr >> 4) & 15), int(pr >> 8)};
+      double cv[3] = {cam.x, cam.y, cam.z}, p[3];
+      uint32_t slot[3];
+      for (int a = 0; a < 3; ++a) {
+        int cell = int(std::floor(cv[a] / sp)) - 8 + ijk[a];
+        p[a] = (cell + 0.5) * sp;
+        slot[a] = uint32_t(cell) & 15u;
+      }
+      const bool inside = std::abs(p[0]) < 3 && std::abs(p[2]) < 3 && p[1] < 0 && p[1] > -1.2;
+      uint32_t ox = (slot[2] * 16 + slot[0]) * 10, oy = slot[1] * 10, marked = 0;
+      for (uint32_t y = 0; y < 10; ++y)
+        for (uint32_t x = 0; x < 10; ++x) marked += atlas.at(ox + x, oy + y, 3) == 0.0f;  // every probe was updated in frame 0
+      if (inside) {
+        ++in_slab;
+        in_marked += marked == 100;
+      } else {
+        ++out;
+        out_marked += marked != 0;
+      }
+    }
+    std::printf("slab solid=%d: probes inside %u (marked %u), outside %u (marked %u)\n", solid, in_slab, in_marked, out,
+                out_marked);
+    EXPECT_EQ(in_slab, 2u * 12u * 12u) << "two layers of 12 x 12 probes lie in the slab";
+    EXPECT_EQ(out_marked, 0u) << "a probe in the open or under the slab sees front faces only";
+    EXPECT_EQ(in_marked, solid ? in_slab : 0u);
+  }
+}
+
+// A probe on a surface (a lattice falling on a wall plane) is inside too: an open quad 0.1 mm
+// above a layer of probes (y = 0.25) is nearer than kRcOnSurface (1e-3 spacings, 0.5 mm) along
+// 40% of the sphere of directions, so that layer is marked; 1 cm above (control) it is not.
+TEST_F(RadianceCacheWorld, ProbesOnASurfaceAreMarked) {
+  for (double gap : {1e-4, 1e-2}) {
+    nlohmann::json doc = nlohmann::json::parse(R"({
+      "materials": {"white": {"albedo": [0.5, 0.5, 0.5]}},
+      "objects": [{"primitive": {"type": "quad", "size": [6, 6], "facing": "-y"}, "material": "white"}],
+      "sky": {"type": "constant", "radiance": [1, 1, 1]},
+      "camera": {"position": [0.1, 1.4, 0.3], "target": [0, 0, 0]}
+    })");
+    doc["objects"][0]["transform"] = {{"translate", {0.0, 0.25 + gap, 0.0}}};
+    Scene scene = parse_scene(doc, "ceiling");
+    Settings s = small_settings();
+    rc(s).probe_spacing = 0.5f;
+    Executor ex(gpu(), scene, s, world_passes(), {"probe_irradiance", "rc_test_keys", "rc_test_atlas"});
+    ex.run_frame();
+    FloatImage atlas = ex.read("rc_test_atlas");
+    Vec3 cam = scene.camera_at(0).position;
+    uint32_t layer = 0, layer_marked = 0, other_marked = 0;
+    for (uint32_t pr = 0; pr < kProbes; ++pr) {
+      int ijk[3] = {int(pr & 15), int((pr >> 4) & 15), int(pr >> 8)};
+      double cv[3] = {cam.x, cam.y, cam.z}, p[3];
+      uint32_t slot[3];
+      for (int a = 0; a < 3; ++a) {
+        int cell = int(std::floor(cv[a] / 0.5)) - 8 + ijk[a];
+        p[a] = (cell + 0.5) * 0.5;
+        slot[a] = uint32_t(cell) & 15u;
+      }
+      const bool on = std::abs(p[0]) < 2.9 && std::abs(p[2]) < 2.9 && p[1] == 0.25;
+      const bool marked = atlas.at((slot[2] * 16 + slot[0]) * 10 + 5, slot[1] * 10 + 5, 3) == 0.0f;
+      layer += on;
+      layer_marked += on && marked;
+      other_marked += !on && marked;
+    }
+    std::printf("quad %.4f m above the probes: layer %u marked %u, others marked %u\n", gap, layer, layer_marked,
+                other_marked);
+    EXPECT_EQ(layer, 12u * 12u);
+    EXPECT_EQ(layer_marked, gap < 1e-3 ? layer : 0u);
+    EXPECT_EQ(other_marked, 0u);
+  }
+}
+
 }  // namespace
 }  // namespace gib

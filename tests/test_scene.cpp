@@ -329,6 +329,39 @@ TEST(ScenePrimitives, ThinSlab) {
   EXPECT_NEAR(total_area(m), 2 * (1.5f * 2.0f + 0.02f * 2.0f + 0.02f * 1.5f), 1e-4f);
 }
 
+// Closed primitives are wound counter-clockwise seen from outside: every face normal
+// cross(b - a, c - a) points away from the (convex) primitive's centre. Solid instances
+// (GpuInstance::flags) rely on it to tell the back of a face from its front.
+TEST(ScenePrimitives, ClosedPrimitivesAreWoundOutwards) {
+  struct Case {
+    const char* name;
+    Mesh mesh;
+    bool closed;
+  };
+  std::vector<Case> cases = {{"box", make_box({1, 2, 3}), true},
+                             {"thin_slab", make_thin_slab({2, 3}, 0.3f, Facing::pos_x), true},
+                             {"sphere", make_sphere(1.5f, 24), true},
+                             {"capped cylinder", make_cylinder(0.5f, 2.0f, 16, true), true},
+                             {"open cylinder", make_cylinder(0.5f, 2.0f, 16, false), false},
+                             {"quad", make_quad({1, 1}, Facing::pos_y), false},
+                             {"leaf cards", make_leaf_cards(8, {1, 1, 1}, {0.1f, 0.1f}, 3), false}};
+  for (const Case& c : cases) {
+    EXPECT_EQ(c.mesh.closed, c.closed) << c.name;
+    if (!c.closed) continue;
+    size_t faces = 0, outward = 0;
+    for (size_t t = 0; t + 2 < c.mesh.indices.size(); t += 3) {
+      Vec3 a = c.mesh.positions[c.mesh.indices[t]], b = c.mesh.positions[c.mesh.indices[t + 1]],
+           d = c.mesh.positions[c.mesh.indices[t + 2]];
+      Vec3 g = cross(b - a, d - a);
+      if (length(g) < 1e-9f) continue;  // the sphere's collapsed pole triangles
+      ++faces;
+      outward += dot(g, (a + b + d) * (1.0f / 3.0f)) > 0.0f;
+    }
+    EXPECT_GT(faces, 0u) << c.name;
+    EXPECT_EQ(outward, faces) << c.name;
+  }
+}
+
 TEST(ScenePrimitives, LeafCardsAreDeterministicAndInsideRegion) {
   Vec3 region{2, 1, 3};
   Vec2 card{0.2f, 0.1f};
@@ -557,6 +590,36 @@ std::string error_of(const json& doc) {
     return e.what();
   }
   return "<no error>";
+}
+
+// "solid": thin_slab is solid unless it says otherwise, other closed primitives only when they
+// say so; flatten carries it into GpuInstance::flags, with the mirrored bit for a negative
+// determinant; an open primitive cannot be solid.
+TEST(SceneLoader, SolidObjectsAndTheirInstanceFlags) {
+  json doc = json::parse(R"({
+    "materials": {"white": {}},
+    "objects": [
+      {"primitive": {"type": "thin_slab", "size": [2, 2], "thickness": 0.3}, "material": "white"},
+      {"primitive": {"type": "thin_slab", "size": [2, 2], "thickness": 0.3}, "material": "white", "solid": false},
+      {"primitive": {"type": "box"}, "material": "white"},
+      {"primitive": {"type": "box"}, "material": "white", "solid": true, "transform": {"scale": [-1, 1, 1]}},
+      {"primitive": {"type": "sphere"}, "material": "white", "solid": true},
+      {"primitive": {"type": "quad"}, "material": "white"}
+    ]
+  })");
+  Scene s = parse_scene(doc, "solid.json");
+  FlatScene f = flatten(s, 0.0f);
+  ASSERT_EQ(f.instances.size(), 6u);
+  const uint32_t expect[6] = {kInstanceSolid, 0u, 0u, kInstanceSolid | kInstanceMirrored, kInstanceSolid, 0u};
+  for (size_t i = 0; i < 6; ++i) EXPECT_EQ(f.instances[i].flags, expect[i]) << "object " << i;
+
+  json bad = minimal_doc();
+  bad["objects"][0] = {{"primitive", {{"type", "quad"}}}, {"material", "white"}, {"solid", true}};
+  EXPECT_NE(error_of(bad).find("solid"), std::string::npos) << error_of(bad);
+  bad["objects"][0] = {{"primitive", {{"type", "cylinder"}, {"capped", false}}}, {"material", "white"}, {"solid", true}};
+  EXPECT_NE(error_of(bad).find("closed primitive"), std::string::npos) << error_of(bad);
+  bad["objects"][0] = {{"primitive", {{"type", "box"}}}, {"material", "white"}, {"solid", 1}};
+  EXPECT_NE(error_of(bad).find("solid"), std::string::npos) << error_of(bad);
 }
 
 TEST(SceneLoader, MinimalSceneUsesDefaults) {

@@ -255,6 +255,11 @@ class Exporter {
     if (!is_identity(m)) node.matrix = column_major(m);
     if (!inst.animation.empty()) r_.lossy.push_back(inst.name + ": animation written as its transform at the export time");
     if (inst.removable()) r_.lossy.push_back(inst.name + ": removed_at written as its transform at the export time");
+    if (inst.solid) {  // Instance::solid, read back by the importer (gltf_import_nodes.cpp)
+      tg::Value::Object extras;
+      extras["gibench_solid"] = tg::Value(true);
+      node.extras = tg::Value(std::move(extras));
+    }
     add_node(std::move(node));
   }
 

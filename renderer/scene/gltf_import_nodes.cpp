@@ -109,6 +109,14 @@ void Importer::add_instances(size_t ni, const std::string& np, const Mat4& world
   const tg::Node& n = m_.nodes[ni];
   const size_t mi = w_.index(np + "/mesh", n.mesh, m_.meshes.size(), "mesh");
   const auto& prims = m_.meshes[mi].primitives;
+  // extras.gibench_solid (bool): the file vouches that the node's mesh is closed and wound
+  // counter-clockwise seen from outside, and nothing is seen from inside it (Instance::solid).
+  bool solid = false;
+  if (n.extras.IsObject() && n.extras.Has("gibench_solid")) {
+    const tg::Value& v = n.extras.Get("gibench_solid");
+    if (!v.IsBool()) w_.fail(np + "/extras/gibench_solid", "a boolean", "another type");
+    solid = v.Get<bool>();
+  }
   for (size_t pj = 0; pj < prims.size(); ++pj) {
     Instance inst;
     inst.mesh = mesh_for(mi, pj);
@@ -122,6 +130,7 @@ void Importer::add_instances(size_t ni, const std::string& np, const Mat4& world
     inst.name = opt_.instance_prefix + (n.name.empty() ? "node" + std::to_string(ni) : n.name) +
                 (prims.size() > 1 ? "/" + std::to_string(pj) : "");
     inst.transform = world;
+    inst.solid = solid;
     scene_.instances.push_back(std::move(inst));
     ++report_.instance_count;
   }

@@ -100,6 +100,7 @@ Vec3 facing_normal(Facing f) { return facing_frame(f).n; }
 Mesh make_box(Vec3 size) {
   Mesh m;
   m.name = "box";
+  m.closed = true;
   for (Facing f : {Facing::pos_x, Facing::neg_x, Facing::pos_y, Facing::neg_y, Facing::pos_z, Facing::neg_z}) {
     Frame fr = facing_frame(f);
     float w = dot(abs3(fr.u), size), h = dot(abs3(fr.v), size), d = dot(abs3(fr.n), size);
@@ -119,6 +120,7 @@ Mesh make_quad(Vec2 size, Facing facing) {
 Mesh make_sphere(float radius, uint32_t segments) {
   Mesh m;
   m.name = "sphere";
+  m.closed = true;
   segments = std::max(segments, 3u);
   uint32_t rings = std::max(segments / 2, 2u);
   // Vertex grid with a duplicated seam column so UVs do not wrap backwards.
@@ -161,6 +163,7 @@ Mesh make_cylinder(float radius, float height, uint32_t segments, bool capped) {
     add_triangle(m, t0, t1, b1);
   }
   if (!capped) return m;
+  m.closed = true;
   for (int side = 0; side < 2; ++side) {
     float y = side == 0 ? y1 : y0;
     Vec3 n{0, side == 0 ? 1.0f : -1.0f, 0};

@@ -279,6 +279,10 @@ FlatScene flatten(const Scene& scene, float time, Vec3 world_offset, const std::
       out.triangles.push_back({base + a, base + b, base + c, i});
     }
     gi.triangle_count = static_cast<uint32_t>(tri_count);
+    if (inst.solid) {
+      const float det = dot(m.transform_vector({1, 0, 0}), cross(m.transform_vector({0, 1, 0}), m.transform_vector({0, 0, 1})));
+      gi.flags = kInstanceSolid | (det < 0.0f ? kInstanceMirrored : 0u);
+    }
     out.instances.push_back(gi);
   }
 

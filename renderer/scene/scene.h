@@ -91,6 +91,10 @@ struct Mesh {
   std::vector<Vec3> normals;
   std::vector<Vec2> uvs;
   std::vector<uint32_t> indices;  // 3 per triangle
+  // A closed surface wound counter-clockwise seen from outside (cross(b - a, c - a) points out):
+  // the primitives box, thin_slab, sphere and the capped cylinder. Open meshes (quads, leaf
+  // cards, glTF meshes) are two-sided surfaces with no inside.
+  bool closed = false;
 };
 
 struct Instance {
@@ -99,6 +103,12 @@ struct Instance {
   uint32_t material = 0;
   Mat4 transform = Mat4::identity();  // static transform (or base when animated)
   std::vector<Keyframe> animation;    // empty: static; else overrides transform
+  // Scene key "solid" (default: true for thin_slab, else false; closed primitives only; glTF:
+  // node extras.gibench_solid, the file vouching for a closed mesh wound outwards): nothing is
+  // ever seen from inside it, so a ray that meets the back of one of its faces started inside
+  // or slipped through an edge (GpuInstance::flags, kInstanceSolid). A box used as a room seen
+  // from inside is not solid.
+  bool solid = false;
   // Scene key `removed_at` (seconds): from this time on the instance is collapsed to its origin
   // (scale 0: no area, so no raster, no BVH triangle), a step, not a fade. Infinity: never.
   float removed_at = std::numeric_limits<float>::infinity();
@@ -196,8 +206,13 @@ struct GpuInstance {  // 16 bytes
   uint32_t material;
   uint32_t first_triangle;
   uint32_t triangle_count;
-  uint32_t pad;
+  uint32_t flags;  // kInstanceSolid | kInstanceMirrored
 };
+// GpuInstance::flags. Solid: Instance::solid (a closed mesh nothing is seen from inside of), so
+// the back of one of its triangles is only ever met from inside the solid. Mirrored: its transform has a negative
+// determinant, so in world space the winding (and the face normal cross(b - a, c - a)) points
+// inwards.
+constexpr uint32_t kInstanceSolid = 1u, kInstanceMirrored = 2u;
 struct GpuMaterial {  // 112 bytes
   float albedo[3];
   float roughness;

@@ -245,6 +245,7 @@ struct Primitive {
   float radius = 0.5f, height = 1.0f, thickness = 0.02f;
   uint32_t segments = 32, count = 64, seed = 1;
   bool capped = true;
+  bool solid = false;  // the object key "solid"'s default: thin_slab (a wall with a thickness)
   Facing facing = Facing::pos_y;
   Mesh mesh;         // type "mesh": the triangles as written
   std::string name;  // Mesh::name when the key is too long to read (mesh); empty: the key
@@ -360,6 +361,7 @@ Primitive parse_primitive(const Node& n) {
       p.key = fmt::format("thin_slab size={},{} thickness={} facing={}", p.size2.x, p.size2.y, p.thickness,
                           facing_name(p.facing));
       p.build = [](const Primitive& q) { return make_thin_slab(q.size2, q.thickness, q.facing); };
+      p.solid = true;
       break;
     case Type::leaf_cards:
       check_object(n, {"type", "count", "region", "card_size", "seed"});
@@ -405,7 +407,7 @@ float get_key_time(const Node& n, size_t index, float previous) {
 
 Instance parse_object(const Node& n, size_t index, const std::map<std::string, uint32_t>& material_index,
                       std::map<std::string, uint32_t>& mesh_index, std::vector<Mesh>& meshes) {
-  check_object(n, {"type", "name", "primitive", "material", "transform", "animation", "removed_at"});
+  check_object(n, {"type", "name", "primitive", "material", "transform", "animation", "removed_at", "solid"});
   Instance inst;
   inst.name = get_string(n["name"], "object" + std::to_string(index));
 
@@ -416,6 +418,10 @@ Instance parse_object(const Node& n, size_t index, const std::map<std::string, u
     meshes.back().name = prim.name.empty() ? prim.key : prim.name;
   }
   inst.mesh = it->second;
+  Node solid = n["solid"];
+  inst.solid = get_bool(solid, prim.solid);
+  if (inst.solid && !meshes[inst.mesh].closed)
+    solid.fail("false: only a closed primitive (box, thin_slab, sphere, capped cylinder) can be solid", "true");
 
   Node mat = n["material"];
   std::string mat_name = get_string(mat, std::nullopt);

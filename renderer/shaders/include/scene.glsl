@@ -60,8 +60,10 @@ struct GpuInstance {  // 16 bytes
   uint material;
   uint first_triangle;
   uint triangle_count;
-  uint pad;
+  uint flags;  // kGibInstanceSolid | kGibInstanceMirrored (scene.h kInstanceSolid, kInstanceMirrored)
 };
+const uint kGibInstanceSolid = 1u;
+const uint kGibInstanceMirrored = 2u;
 
 struct GpuMaterial {  // 112 bytes
   vec3 albedo;

@@ -84,6 +84,10 @@ std::vector<TechniqueOption> own_options() {
              0, 1, &S::probe_rays),
       option("cache_side_key", "leak mitigation: radiance-cache cells keyed by surface side (0/1)", 0, 1,
              &S::cache_side_key),
+      option("inside_test",
+             "leak mitigation: probes whose rays meet the back of a solid or a surface nearer than 1e-3 spacings "
+             "are inside geometry: not sampled, no cache cells; bounce rays meeting a solid's back bring 0 (0/1)",
+             0, 1, &S::inside_test),
       option("disocclusion", "temporal filter rejects history failing depth/normal tests (0/1)", 0, 1,
              &S::disocclusion),
       option("history_format", "GI history: 0 RGB9E5, 1 RGBA16F, 2 R11G11B10F, 3 RGBA32F", 0, 3, &S::history_format),

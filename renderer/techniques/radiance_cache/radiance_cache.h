@@ -33,6 +33,7 @@ struct RadianceCacheSettings : TechniqueSettingsOf<RadianceCacheSettings>, Direc
   float view_bias = 0.1f;           // leak mitigation: metres towards the viewer
   bool probe_rays = true;           // leak mitigation: a shadow ray from the sampled point to each of its 8 probes; blocked ones get no weight
   bool cache_side_key = true;       // leak mitigation: cache cells keyed by surface side, so the two faces of a thin wall differ
+  bool inside_test = true;          // leak mitigation: probes inside geometry (solids' backs, surfaces < 1e-3 spacings) unused; see kRcFlagInsideTest
   bool disocclusion = true;         // temporal filter rejects history failing depth/normal tests
   uint32_t history_format = 0;      // 0 RGB9E5 (R32_UINT), 1 RGBA16F, 2 R11G11B10F, 3 RGBA32F
   uint32_t history_max_frames = 16; // n_max of the temporal filter

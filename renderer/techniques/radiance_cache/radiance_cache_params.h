@@ -30,7 +30,7 @@ inline glsl::RcParams make_rc_params(const Settings& s, uint32_t frame) {
   p.cache = {r.cache_cell_size, r.cache_lod_distance, float(r.cache_log2_cells), float(r.cache_max_probe)};
   p.bias = {r.normal_bias, r.view_bias, r.visibility_test ? 1.0f : 0.0f, r.probe_hysteresis};
   p.misc = {frame, r.cache_reuse_frames, gather_divisor(r), r.light_grid_cascades};
-  p.flags = {r.cache_side_key ? 1u : 0u, s.nan_guards ? 1u : 0u, r.multi_bounce ? 1u : 0u, r.probe_rays ? 1u : 0u};
+  p.flags = {(r.cache_side_key ? glsl::kRcFlagSideKey : 0u) | (r.inside_test ? glsl::kRcFlagInsideTest : 0u), s.nan_guards ? 1u : 0u, r.multi_bounce ? 1u : 0u, r.probe_rays ? 1u : 0u};
   return p;
 }
 

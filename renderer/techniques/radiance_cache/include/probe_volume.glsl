@@ -45,6 +45,11 @@ const float kRcWrapFloor = 0.2;
 // kRcMaxMomentDistance metres) so the squared moment fits a half float (max 65504).
 const float kRcMomentSpacings = 4.0;
 const float kRcMaxMomentDistance = 200.0;
+// Probes inside geometry (radiance_cache.glsl rc_probe_ray_inside): a hit closer than this many
+// spacings means the probe sits on a surface; a probe with more than this fraction of its rays
+// inside is not sampled.
+const float kRcOnSurface = 1e-3;
+const float kRcInsideFraction = 0.25;
 
 uint rc_cascades() { return clamp(uint(rc.grid.y), 1u, kMaxCascades); }
 uint rc_rays_per_probe() { return uint(rc.grid.z); }
@@ -191,7 +196,8 @@ vec3 rc_sample_irradiance_weight(vec3 p, vec3 n, vec3 to_viewer, out float weigh
     float r = length(to_probe);
     vec3 dir = r > 1e-6 ? to_probe / r : n;
     vec2 m = rc_tile_moments(origin, -dir);
-    if (m.x <= 0.0) continue;  // never updated: moments are 0 only before the first update
+    // Moments 0: never updated, or inside geometry (irradiance_volume_update's iv_finish_texel).
+    if (m.x <= 0.0) continue;
     float wrap = (dot(dir, n) + 1.0) * 0.5;
     float w = wrap * wrap + kRcWrapFloor;
     if (rc.bias.z > 0.5 && r > m.x) {

@@ -66,6 +66,32 @@ vec3 rc_facing_normal(uint triangle, vec3 dir) {
   return dot(g, dir) > 0.0 ? -g : g;
 }
 
+// Did a ray travelling along `dir` hit `triangle` from inside a closed mesh (the back of a
+// solid's face)? Such a ray started inside the solid (a probe inside a wall) or slipped through
+// an edge; what it reaches is not lit and is no surface anyone sees. Open meshes (quads, leaf
+// cards) have no inside: false.
+bool rc_inside_solid(uint triangle, vec3 dir) {
+  GpuTriangle t = gib_triangles[triangle];
+  uint flags = gib_instances[t.instance].flags;
+  if ((flags & kGibInstanceSolid) == 0u) return false;
+  vec3 a = gib_vertices[t.i0].position, b = gib_vertices[t.i1].position, c = gib_vertices[t.i2].position;
+  float side = dot(cross(b - a, c - a), dir);
+  return (flags & kGibInstanceMirrored) != 0u ? side < 0.0 : side > 0.0;
+}
+
+#ifdef GIB_PROBE_VOLUME_GLSL
+// A probe ray of cascade c that hit h from inside geometry: the back of a solid's face, or any
+// face closer than kRcOnSurface spacings (the probe sits on a surface: a cascade whose lattice
+// falls on a wall plane). It inserts no cache cell (a cell shaded from a point on an edge or
+// inside a wall sees through it) and carries no light into the probe; a probe with more than
+// kRcInsideFraction of its rays inside is inside geometry and is not sampled (DDGI's probe
+// classification: backface fraction 0.25, Majercik et al. 2021). Constants: probe_volume.glsl.
+bool rc_probe_ray_inside(ProbeHit h, vec3 d, uint c) {
+  if (h.triangle_plus1 == 0u || (rc.flags.x & kRcFlagInsideTest) == 0u) return false;
+  return h.distance < kRcOnSurface * rc_spacing(c) || rc_inside_solid(h.triangle_plus1 - 1u, d);
+}
+#endif
+
 // Hash of position, side and LOD; lod receives the LOD factor (1, 2, 4, ...).
 uint rc_cell_hash(vec3 p, vec3 n, out float lod) {
   precise vec3 dp = p - gib_frame.camera_pos.xyz;
@@ -77,7 +103,7 @@ uint rc_cell_hash(vec3 p, vec3 n, out float lod) {
   uint h = gib_pcg(uint(cell.x));
   h = gib_pcg(uint(cell.y) + h);
   h = gib_pcg(uint(cell.z) + h);
-  if (rc.flags.x != 0u) h = gib_pcg(rc_side(n) + h);
+  if ((rc.flags.x & kRcFlagSideKey) != 0u) h = gib_pcg(rc_side(n) + h);
   return gib_pcg(uint(lod) + h);
 }
 

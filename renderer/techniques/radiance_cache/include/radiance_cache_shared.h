@@ -58,10 +58,16 @@ struct RcParams {
   vec4 cache;   // x: cell size (m), y: LOD distance (m), z: log2 cells, w: max probe steps
   vec4 bias;    // x: normal bias (m), y: view bias (m), z: visibility test (0/1), w: probe hysteresis
   uvec4 misc;   // x: frame, y: cache reuse frames, z: gather divisor, w: light-grid cascades
-  uvec4 flags;  // x: cache cells keyed by surface side (leak mitigation), y: NaN guards (Settings::nan_guards),
+  uvec4 flags;  // x: leak mitigations kRcFlagSideKey | kRcFlagInsideTest, y: NaN guards (Settings::nan_guards),
                 //    z: multi-bounce (RadianceCacheSettings::multi_bounce), w: probe rays (leak mitigation:
                 //    a shadow ray from the sampled point to each probe; blocked probes get no weight)
 };
+// RcParams.flags.x bits. Side key: cache cells keyed by the surface side, so the two faces of a
+// thin wall differ. Inside test: probe rays from inside geometry (the back of a solid, a surface
+// nearer than kRcOnSurface spacings) mark their probe inside and insert no cell; bounce rays that
+// meet the back of a solid bring nothing (radiance_cache.glsl rc_probe_ray_inside).
+GIB_CONST(uint, kRcFlagSideKey, 1)
+GIB_CONST(uint, kRcFlagInsideTest, 2)
 struct LightGridParams {
   vec4 extent;  // x: cascade-0 extent (m), y: cascades, z: light count, w: unused
 };

@@ -7,6 +7,7 @@
 #define GIB_IRRADIANCE_VOLUME_COMMON_GLSL
 
 #include "hash.glsl"
+const float kIvInsideMark = -2.0;  // probe_ray_radiance.w of a ray inside geometry (-1: dropped)
 layout(constant_id = kIvSpecDither) const bool kIvDither = false;
 
 // The irradiance texel's RGB9E5 store: rounded to nearest, or (kIvDither, option dither_stores)
@@ -33,18 +34,27 @@ vec3 iv_fallback_radiance(ProbeHit h, vec3 p, vec3 d) {
   return gib_material_emissive(m, s.uv) + gib_material_albedo(m, s.uv) * rc_sample_irradiance(p, n, -d);
 }
 
-// The radiance arriving at probe position o along ray direction d with hit record h: sky on a
-// miss, the cache cell at the hit, else the fallback. False when the NaN guard drops the ray.
-bool iv_ray_radiance(ProbeHit h, vec3 o, vec3 d, out vec3 l) {
+// What a probe ray brings: light, nothing (dropped by the NaN guard), or nothing because it hit
+// from inside geometry (rc_probe_ray_inside), which also counts towards the probe being inside.
+const uint kIvRayLit = 0u, kIvRayDropped = 1u, kIvRayInside = 2u;
+
+// The radiance arriving at probe position o of cascade c along ray direction d with hit record
+// h: sky on a miss, the cache cell at the hit, else the fallback; l is 0 unless kIvRayLit.
+uint iv_ray_radiance(ProbeHit h, vec3 o, vec3 d, uint c, out vec3 l) {
+  l = vec3(0.0);
+  if (rc_probe_ray_inside(h, d, c)) return kIvRayInside;
   if (h.triangle_plus1 == 0u) {
     l = gib_sky_radiance(d);
   } else {
     vec3 p = rc_hit_position(o, d, h.distance);
     if (!rc_lookup(p, rc_facing_normal(h.triangle_plus1 - 1u, d), l)) l = iv_fallback_radiance(h, p, d);
   }
-  return rc.flags.y == 0u || gib_finite(l);
+  if (rc.flags.y == 0u || gib_finite(l)) return kIvRayLit;
+  l = vec3(0.0);
+  return kIvRayDropped;
 }
 #endif
+
 
 // Blends a texel's new irradiance and moments with last frame's at atlas texel `at`
 // (hysteresis), then floors the mean distance: a written probe never has a zero mean distance,
@@ -60,6 +70,20 @@ void iv_blend_with_last_frame(ivec2 at, inout vec3 irradiance, inout vec2 moment
     moments = mix(moments, prev_moments, hysteresis);
   }
   moments.x = max(moments.x, 1e-3);
+}
+
+// A probe with more than kRcInsideFraction of this update's rays inside geometry
+// (rc_probe_ray_inside) is inside: its texels store irradiance 0 and moments 0, as a probe never
+// updated, which every sampler skips (rc_sample_irradiance_weight: m.x <= 0) and which restarts
+// without history once an update finds it outside. (Not a negative marker: the stability scan
+// holds the moments to [0, max distance].) Else the texel is blended with last frame's.
+void iv_finish_texel(ivec2 at, uint inside_rays, uint rays, inout vec3 irradiance, inout vec2 moments) {
+  if (float(inside_rays) > kRcInsideFraction * float(rays)) {
+    irradiance = vec3(0.0);
+    moments = vec2(0.0);
+    return;
+  }
+  iv_blend_with_last_frame(at, irradiance, moments);
 }
 
 #endif

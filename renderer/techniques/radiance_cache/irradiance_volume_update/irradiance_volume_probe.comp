@@ -53,11 +53,12 @@ void main() {
     vec3 d = rc_ray_direction(r, rays, rotation);
     ProbeHit h = probe_hits[probe * rc_rays_per_probe() + r];
     vec3 l;
-    // A ray the guard drops gets a zero direction: weight 0 in every texel.
-    bool drop = !iv_ray_radiance(h, o, d, l);
-    s_dir[r] = drop ? vec3(0.0) : d;
-    s_radiance[r] = drop ? vec3(0.0) : l;
-    s_distance[r] = min(h.distance, max_distance);
+    // A ray that brings no light gets a zero direction (weight 0 in every texel); one inside
+    // geometry a negative distance too, which the texels count.
+    uint state = iv_ray_radiance(h, o, d, c, l);
+    s_dir[r] = state == kIvRayLit ? d : vec3(0.0);
+    s_radiance[r] = l;
+    s_distance[r] = state == kIvRayInside ? -1.0 : min(h.distance, max_distance);
   }
   barrier();
 
@@ -67,7 +68,9 @@ void main() {
   float weight = 0.0;
   vec2 moments = vec2(0.0);
   float moment_weight = 0.0;
+  uint inside = 0u;
   for (uint r = 0u; r < rays; ++r) {
+    inside += s_distance[r] < 0.0 ? 1u : 0u;
     float w = max(0.0, dot(n, s_dir[r]));
     sum += s_radiance[r] * w;
     weight += w;
@@ -82,7 +85,7 @@ void main() {
 
   uvec2 origin = rc_tile_origin(c, rc_probe_slot(c, ijk));
   ivec2 at = ivec2(origin) + texel + 1;
-  iv_blend_with_last_frame(at, irradiance, moments);
+  iv_finish_texel(at, inside, rays, irradiance, moments);
   s_irradiance[tid] = iv_pack_irradiance(at, irradiance);
   s_moments[tid] = moments;
   barrier();

@@ -41,7 +41,9 @@ void main() {
   vec3 d = rc_ray_direction(r, rays, rc_frame_rotation(rc.misc.x));
   ProbeHit h = probe_hits[i];
   vec3 l;
-  // A ray the guard drops is marked by a negative distance: weight 0 in every texel.
-  bool drop = !iv_ray_radiance(h, o, d, l);
-  probe_ray_radiance[i] = drop ? vec4(0.0, 0.0, 0.0, -1.0) : vec4(l, min(h.distance, rc_moment_max_distance(c)));
+  // A ray that brings no light is marked by a negative distance (weight 0 in every texel): -1
+  // dropped by the guard, kIvInsideMark inside geometry.
+  uint state = iv_ray_radiance(h, o, d, c, l);
+  probe_ray_radiance[i] = state == kIvRayLit ? vec4(l, min(h.distance, rc_moment_max_distance(c)))
+                                             : vec4(0.0, 0.0, 0.0, state == kIvRayInside ? kIvInsideMark : -1.0);
 }

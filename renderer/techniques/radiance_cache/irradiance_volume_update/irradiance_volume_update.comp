@@ -42,9 +42,13 @@ void main() {
   float weight = 0.0;
   vec2 moments = vec2(0.0);
   float moment_weight = 0.0;
+  uint inside = 0u;
   for (uint r = 0u; r < rays; ++r) {
     vec4 ray = probe_ray_radiance[probe * rays + r];
-    if (ray.w < 0.0) continue;  // dropped by the guard
+    if (ray.w < 0.0) {  // dropped by the guard, or inside geometry
+      inside += ray.w == kIvInsideMark ? 1u : 0u;
+      continue;
+    }
     // Recomputed rather than stored: on lavapipe a second buffer load per ray costs more.
     float w = max(0.0, dot(n, rc_ray_direction(r, rays, rotation)));
     sum += ray.rgb * w;
@@ -59,7 +63,7 @@ void main() {
 
   uvec2 origin = rc_tile_origin(c, rc_probe_slot(c, ijk));
   ivec2 at = ivec2(origin) + texel + 1;
-  iv_blend_with_last_frame(at, irradiance, moments);
+  iv_finish_texel(at, inside, rays, irradiance, moments);
   imageStore(out_irradiance, ivec2(origin) + local, uvec4(iv_pack_irradiance(at, irradiance)));
   imageStore(out_visibility, ivec2(origin) + local, vec4(moments, 0.0, 0.0));
 }

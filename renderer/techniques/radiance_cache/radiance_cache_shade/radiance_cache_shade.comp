@@ -66,6 +66,9 @@ vec3 direct_light(vec3 x, vec3 n, vec3 albedo, float translucency, inout GibRng 
 
 // Radiance leaving the surface at a hit of a bounce ray travelling along wi.
 vec3 bounce_radiance(GibHit hit, vec3 wi, uint now, inout GibRng rng) {
+  // The back of a solid's face: the ray slipped into a wall (from a cell on an edge); nothing
+  // inside is lit, and the cells and probes there hold the outside's light.
+  if ((rc.flags.x & kRcFlagInsideTest) != 0u && rc_inside_solid(hit.triangle, wi)) return vec3(0.0);
   GibSurface s = gib_surface(hit.triangle, hit.u, hit.v, rc.flags.y != 0u);
   // Single bounce (multi_bounce 0): only what the hit emits; cached cells and the volumes both
   // hold light that has already bounced.

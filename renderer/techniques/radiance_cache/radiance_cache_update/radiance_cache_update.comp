@@ -33,6 +33,7 @@ uint hit_key(uint id) {
   uint probe = id / rays, ray = id - probe * rays;
   vec3 o = rc_probe_position(rc_updated_cascade(), rc_probe_coord(probe));
   vec3 d = rc_ray_direction(ray, rays, rc_frame_rotation(rc.misc.x));
+  if (rc_probe_ray_inside(h, d, rc_updated_cascade())) return 0u;  // no cell for a point inside geometry
   float lod;
   return rc_cell_key(rc_hit_position(o, d, h.distance), rc_facing_normal(h.triangle_plus1 - 1u, d), lod);
 }
