@@ -34,6 +34,12 @@ class FinalGatherPass final : public Pass {
                {"gather_direct", Access::write, ResourceDesc{Format::rgba16_float, size}.with(non_negative_values())},
                {"gather_hit_distance", Access::write, ResourceDesc{Format::r32_float, size}.with(non_negative_values())},
                {"gather_stats", Access::write, stats}};
+    // Which source answered the gather rays (bench prints them): a ray answered by the volumes
+    // misses the direct light at its hit, so that count bounds the fallback's bias.
+    d.measured = {{"rays_screen_cache", "gather_stats", glsl::kGatherStatScreen * sizeof(uint32_t)},
+                  {"rays_world_cache", "gather_stats", glsl::kGatherStatWorld * sizeof(uint32_t)},
+                  {"rays_volume", "gather_stats", glsl::kGatherStatVolume * sizeof(uint32_t)},
+                  {"rays_sky", "gather_stats", glsl::kGatherStatSky * sizeof(uint32_t)}};
     const double g = gather_divisor(s.params<RadianceCacheSettings>());
     d.work = {{"rays", std::ceil(s.width / g) * std::ceil(s.height / g)}};  // one per gather pixel
     return d;
