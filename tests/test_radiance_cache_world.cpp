@@ -580,6 +580,37 @@ TEST(RadianceCacheSchedule, PresetsKeepMediumProbeSamples) {
   EXPECT_FLOAT_EQ(rc(o).probe_hysteresis, 0.5f);
 }
 
+// Probe `pr` of cascade 0 (spacing sp) around the camera: its world position and the top-left
+// texel of its tile in the decoded atlas (probe_volume.glsl's layout).
+struct ProbeAt {
+  double p[3];
+  uint32_t tile_x, tile_y;
+};
+ProbeAt probe_at(uint32_t pr, Vec3 cam, double sp) {
+  const int ijk[3] = {int(pr & 15), int((pr >> 4) & 15), int(pr >> 8)};
+  const double cv[3] = {cam.x, cam.y, cam.z};
+  ProbeAt out{};
+  uint32_t slot[3];
+  for (int a = 0; a < 3; ++a) {
+    const int cell = int(std::floor(cv[a] / sp)) - 8 + ijk[a];
+    out.p[a] = (cell + 0.5) * sp;
+    slot[a] = uint32_t(cell) & 15u;
+  }
+  out.tile_x = (slot[2] * 16 + slot[0]) * 10;
+  out.tile_y = slot[1] * 10;
+  return out;
+}
+
+// The decoded atlas after one frame of the world passes (one cascade of 0.5 m probes, every
+// probe updated) on `scene`, whose camera the probes follow.
+FloatImage atlas_after_one_update(Gpu& gpu, const Scene& scene) {
+  Settings s = small_settings();
+  rc(s).probe_spacing = 0.5f;
+  Executor ex(gpu, scene, s, world_passes(), {"probe_irradiance", "rc_test_keys", "rc_test_atlas"});
+  ex.run_frame();
+  return ex.read("rc_test_atlas");
+}
+
 // Probes inside a solid (Instance::solid): most of their rays meet the back of its faces, so
 // irradiance_volume_update marks them inside (moments 0, as never updated: samplers skip them) and they
 // carry none of the light their rays reach through it. A 1.2 m slab under an open sky holds the
@@ -596,27 +627,16 @@ TEST_F(RadianceCacheWorld, ProbesInsideSolidsAreMarkedAndSkipped) {
     })");
     doc["objects"][0]["solid"] = solid;
     Scene scene = parse_scene(doc, "slab");
-    Settings s = small_settings();
-    rc(s).probe_spacing = 0.5f;
-    Executor ex(gpu(), scene, s, world_passes(), {"probe_irradiance", "rc_test_keys", "rc_test_atlas"});
-    ex.run_frame();
-    FloatImage atlas = ex.read("rc_test_atlas");
+    FloatImage atlas = atlas_after_one_update(gpu(), scene);
     Vec3 cam = scene.camera_at(0).position;
-    const double sp = rc(s).probe_spacing;
     uint32_t in_slab = 0, in_marked = 0, out = 0, out_marked = 0;
     for (uint32_t pr = 0; pr < kProbes; ++pr) {
-      int ijk[3] = {int(pr & 15), int((pr >> 4) & 15), int(pr >> 8)};
-      double cv[3] = {cam.x, cam.y, cam.z}, p[3];
-      uint32_t slot[3];
-      for (int a = 0; a < 3; ++a) {
-        int cell = int(std::floor(cv[a] / sp)) - 8 + ijk[a];
-        p[a] = (cell + 0.5) * sp;
-        slot[a] = uint32_t(cell) & 15u;
-      }
-      const bool inside = std::abs(p[0]) < 3 && std::abs(p[2]) < 3 && p[1] < 0 && p[1] > -1.2;
-      uint32_t ox = (slot[2] * 16 + slot[0]) * 10, oy = slot[1] * 10, marked = 0;
+      const ProbeAt q = probe_at(pr, cam, 0.5);
+      const bool inside = std::abs(q.p[0]) < 3 && std::abs(q.p[2]) < 3 && q.p[1] < 0 && q.p[1] > -1.2;
+      uint32_t marked = 0;
       for (uint32_t y = 0; y < 10; ++y)
-        for (uint32_t x = 0; x < 10; ++x) marked += atlas.at(ox + x, oy + y, 3) == 0.0f;  // every probe was updated in frame 0
+        for (uint32_t x = 0; x < 10; ++x)
+          marked += atlas.at(q.tile_x + x, q.tile_y + y, 3) == 0.0f;  // every probe was updated in frame 0
       if (inside) {
         ++in_slab;
         in_marked += marked == 100;
@@ -646,24 +666,13 @@ TEST_F(RadianceCacheWorld, ProbesOnASurfaceAreMarked) {
     })");
     doc["objects"][0]["transform"] = {{"translate", {0.0, 0.25 + gap, 0.0}}};
     Scene scene = parse_scene(doc, "ceiling");
-    Settings s = small_settings();
-    rc(s).probe_spacing = 0.5f;
-    Executor ex(gpu(), scene, s, world_passes(), {"probe_irradiance", "rc_test_keys", "rc_test_atlas"});
-    ex.run_frame();
-    FloatImage atlas = ex.read("rc_test_atlas");
+    FloatImage atlas = atlas_after_one_update(gpu(), scene);
     Vec3 cam = scene.camera_at(0).position;
     uint32_t layer = 0, layer_marked = 0, other_marked = 0;
     for (uint32_t pr = 0; pr < kProbes; ++pr) {
-      int ijk[3] = {int(pr & 15), int((pr >> 4) & 15), int(pr >> 8)};
-      double cv[3] = {cam.x, cam.y, cam.z}, p[3];
-      uint32_t slot[3];
-      for (int a = 0; a < 3; ++a) {
-        int cell = int(std::floor(cv[a] / 0.5)) - 8 + ijk[a];
-        p[a] = (cell + 0.5) * 0.5;
-        slot[a] = uint32_t(cell) & 15u;
-      }
-      const bool on = std::abs(p[0]) < 2.9 && std::abs(p[2]) < 2.9 && p[1] == 0.25;
-      const bool marked = atlas.at((slot[2] * 16 + slot[0]) * 10 + 5, slot[1] * 10 + 5, 3) == 0.0f;
+      const ProbeAt q = probe_at(pr, cam, 0.5);
+      const bool on = std::abs(q.p[0]) < 2.9 && std::abs(q.p[2]) < 2.9 && q.p[1] == 0.25;
+      const bool marked = atlas.at(q.tile_x + 5, q.tile_y + 5, 3) == 0.0f;
       layer += on;
       layer_marked += on && marked;
       other_marked += !on && marked;
