@@ -55,7 +55,6 @@ uint iv_ray_radiance(ProbeHit h, vec3 o, vec3 d, uint c, out vec3 l) {
 }
 #endif
 
-
 // Blends a texel's new irradiance and moments with last frame's at atlas texel `at`
 // (hysteresis), then floors the mean distance: a written probe never has a zero mean distance,
 // which marks "never updated".
