@@ -24,12 +24,10 @@ void main() {
     RcTestKey k;
     k.position = vec4(0.0);
     k.key = uvec4(0u);
-    uint probe_ = id / rc_rays_per_probe();
-    vec3 d_ = rc_ray_direction(id - probe_ * rc_rays_per_probe(), rc_rays_per_probe(), rc_frame_rotation(rc.misc.x));
-    if (h.triangle_plus1 != 0u && !rc_probe_ray_inside(h, d_, rc_updated_cascade())) {
-      uint probe = id / rays, ray = id - probe * rays;
-      uint c = rc_updated_cascade();
-      vec3 d = rc_ray_direction(ray, rays, rc_frame_rotation(rc.misc.x));
+    uint probe = id / rays, ray = id - probe * rays;
+    uint c = rc_updated_cascade();
+    vec3 d = rc_ray_direction(ray, rays, rc_frame_rotation(rc.misc.x));
+    if (h.triangle_plus1 != 0u && !rc_probe_ray_inside(h, d, c)) {
       vec3 p = rc_hit_position(rc_probe_position(c, rc_probe_coord(probe)), d, h.distance);
       vec3 n = rc_facing_normal(h.triangle_plus1 - 1u, d);
       float lod;

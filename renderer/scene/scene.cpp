@@ -47,12 +47,14 @@ bool keys_at(const std::vector<Key>& keys, float time, const Key*& a, const Key*
 // collapsed instance gets (renormalised or zero) normals instead of NaN.
 struct NormalMatrix {
   Vec3 c0, c1, c2;  // columns
+  bool mirrored = false;  // negative determinant: the transform flips winding
   explicit NormalMatrix(const Mat4& m) {
     Vec3 a{m.m[0][0], m.m[0][1], m.m[0][2]};
     Vec3 b{m.m[1][0], m.m[1][1], m.m[1][2]};
     Vec3 c{m.m[2][0], m.m[2][1], m.m[2][2]};
     float det = dot(a, cross(b, c));
-    float sign = det < 0 ? -1.0f : 1.0f;
+    mirrored = det < 0;
+    float sign = mirrored ? -1.0f : 1.0f;
     c0 = cross(b, c) * sign;
     c1 = cross(c, a) * sign;
     c2 = cross(a, b) * sign;
@@ -279,10 +281,7 @@ FlatScene flatten(const Scene& scene, float time, Vec3 world_offset, const std::
       out.triangles.push_back({base + a, base + b, base + c, i});
     }
     gi.triangle_count = static_cast<uint32_t>(tri_count);
-    if (inst.solid) {
-      const float det = dot(m.transform_vector({1, 0, 0}), cross(m.transform_vector({0, 1, 0}), m.transform_vector({0, 0, 1})));
-      gi.flags = kInstanceSolid | (det < 0.0f ? kInstanceMirrored : 0u);
-    }
+    if (inst.solid) gi.flags = kInstanceSolid | (nm.mirrored ? kInstanceMirrored : 0u);
     out.instances.push_back(gi);
   }
 

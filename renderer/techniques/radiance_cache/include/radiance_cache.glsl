@@ -56,11 +56,16 @@ uint rc_side(vec3 n) {
   return axis * 2u + (n[axis] < 0.0 ? 1u : 0u);
 }
 
-// Unit geometric normal of a triangle, turned to face against `dir` (the ray that hit it).
-vec3 rc_facing_normal(uint triangle, vec3 dir) {
+// cross(b - a, c - a) of a triangle's world-space vertices (its winding's face normal, unscaled).
+vec3 rc_face_cross(uint triangle) {
   GpuTriangle t = gib_triangles[triangle];
   vec3 a = gib_vertices[t.i0].position, b = gib_vertices[t.i1].position, c = gib_vertices[t.i2].position;
-  vec3 g = cross(b - a, c - a);
+  return cross(b - a, c - a);
+}
+
+// Unit geometric normal of a triangle, turned to face against `dir` (the ray that hit it).
+vec3 rc_facing_normal(uint triangle, vec3 dir) {
+  vec3 g = rc_face_cross(triangle);
   float len = length(g);
   g = len > 0.0 ? g / len : vec3(0.0, 1.0, 0.0);
   return dot(g, dir) > 0.0 ? -g : g;
@@ -71,11 +76,9 @@ vec3 rc_facing_normal(uint triangle, vec3 dir) {
 // an edge; what it reaches is not lit and is no surface anyone sees. Open meshes (quads, leaf
 // cards) have no inside: false.
 bool rc_inside_solid(uint triangle, vec3 dir) {
-  GpuTriangle t = gib_triangles[triangle];
-  uint flags = gib_instances[t.instance].flags;
+  uint flags = gib_instances[gib_triangles[triangle].instance].flags;
   if ((flags & kGibInstanceSolid) == 0u) return false;
-  vec3 a = gib_vertices[t.i0].position, b = gib_vertices[t.i1].position, c = gib_vertices[t.i2].position;
-  float side = dot(cross(b - a, c - a), dir);
+  float side = dot(rc_face_cross(triangle), dir);
   return (flags & kGibInstanceMirrored) != 0u ? side < 0.0 : side > 0.0;
 }
 
