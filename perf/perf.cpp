@@ -20,6 +20,7 @@
 
 #include "perf/calibration.h"
 #include "perf/frame_timing.h"
+#include "perf/occupancy.h"
 #include "perf/profiles.h"
 #include "perf/stats.h"
 #include "revision.h"
@@ -168,6 +169,7 @@ struct PassRun {
   double work_scale = 1;         // bytes_full / bytes_run: the per-pass scale to the workload
   bool raster = false;           // a graphics pass: scaled by fill rate (scale_raster_to_profile)
   nlohmann::json counters;
+  DispatchSamples dispatches;    // from the profiled frames (occupancy term); empty: not profiled
 };
 
 struct TechniqueRun {
@@ -184,6 +186,21 @@ struct TechniqueRun {
   std::vector<double> frame_ms;
   std::vector<uint32_t> frame_repeat;
 };
+
+// One profiled frame's dispatches of a pass added to its samples (by record order).
+void add_dispatch_samples(DispatchSamples& s, const std::vector<DispatchTiming>& frame) {
+  if (s.frames++ == 0) {
+    s.ms.resize(frame.size());
+    s.threads.resize(frame.size());
+  } else if (s.ms.size() != frame.size()) {
+    s.consistent = false;
+  }
+  if (!s.consistent) return;
+  for (size_t i = 0; i < frame.size(); ++i) {
+    s.ms[i].push_back(frame[i].ms);
+    s.threads[i].push_back(double(frame[i].threads));
+  }
+}
 
 // Work done per frame, as the pass declares it (PassDecl::work), for reports.
 nlohmann::json work_counters(const PlannedPass& pass, const Settings& s) {
@@ -407,7 +424,20 @@ int cmd_bench(const BenchOptions& o) {
   fmt::print("calibrating (median of {} repeats)...\n", o.calibration_repeats);
   std::fflush(stdout);
   Calibration cal = calibrate(*gpu, o.calibration_repeats);
-  const DeviceThroughput thr = cal.throughput;
+  DeviceThroughput thr = cal.throughput;
+  thr.resident_threads = dev.resident_threads;
+  // The occupancy term (perf/occupancy.h) needs the device's resident threads, timestamps per
+  // dispatch (a GPU) and thread counts at the profile's workload (no --scale-resolution).
+  std::string occupancy_off;
+  if (cpu) occupancy_off = "a CPU device: no timestamps per dispatch";
+  else if (!dev.resident_threads) occupancy_off = "the driver does not report resident threads";
+  else if (scale != 1) occupancy_off = "--scale-resolution < 1: thread counts are not the workload's";
+  const uint32_t profile_frames = occupancy_off.empty() ? 3 : 0;
+  if (occupancy_off.empty())
+    fmt::print("occupancy: {} threads resident ({}); {} profiled frames per repeat after the timed ones\n",
+               dev.resident_threads, dev.residency_source, profile_frames);
+  else
+    fmt::print("occupancy term off ({}): compute time scales by the FLOP ratio alone\n", occupancy_off);
   fmt::print("calibration: FP32 {:.1f} GFLOP/s (the faster of two FMA kernels, {}: vec4 chains {:.1f}, scalar chains "
              "{:.1f}, ratio {:.3f}), copy bandwidth {:.1f} GB/s ({:.0f} MiB moved/dispatch)\n",
              thr.fp32_gflops, cal.timing, cal.fma_gflops, cal.fma_scalar_gflops,
@@ -556,6 +586,16 @@ int cmd_bench(const BenchOptions& o) {
               const double prev = pr.counters.contains(m.name) ? pr.counters[m.name].get<double>() : 0.0;
               pr.counters[m.name] = prev + double(v) / repeats;
             }
+      // Dispatch profile: frames apart from the timed ones (a timestamp after every dispatch
+      // may serialise work), for how each pass's time splits over its dispatches and their threads.
+      ex.enable_dispatch_profile(true);
+      for (uint32_t f = 0; f < profile_frames; ++f) {
+        const FrameResult fr = ex.run_frame();
+        for (auto& pt : fr.passes)
+          for (auto& pr : r.passes)
+            if (pr.name == pt.name) add_dispatch_samples(pr.dispatches, pt.dispatches);
+      }
+      ex.enable_dispatch_profile(false);
       for (const FrameResult& fr : timed.frames) {
         for (auto& pt : fr.passes)
           for (auto& pr : r.passes)
@@ -578,7 +618,10 @@ int cmd_bench(const BenchOptions& o) {
   out["date"] = utc_now();
   out["device"] = {{"name", dev.name}, {"type", dev.type}, {"driver", dev.driver_name},
                    {"driver_info", dev.driver_info}, {"api_version", dev.api_version},
-                   {"subgroup_size", dev.subgroup_size}};
+                   {"subgroup_size", dev.subgroup_size}, {"compute_units", dev.compute_units},
+                   {"resident_threads", dev.resident_threads}, {"residency_source", dev.residency_source}};
+  out["occupancy_term"] = occupancy_off.empty() ? nlohmann::json({{"on", true}, {"profiled_frames", profile_frames}})
+                                                : nlohmann::json({{"on", false}, {"why", occupancy_off}});
   out["calibration"] = cal.to_json();
   out["settings"] = {{"case", o.case_name}, {"scene", scene_path}, {"preset", o.preset}, {"frames", frames},
                      {"warmup", warmup}, {"repeats", repeats}, {"scale_resolution", scale},
@@ -662,12 +705,29 @@ int cmd_bench(const BenchOptions& o) {
                                      fmt_ms(s.median), fmt::format("[{}, {}]", fmt_ms(s.q1), fmt_ms(s.q3)),
                                      pr.work_scale, fmt_ms(full_ms), pr.bytes_full.total() / 1e6,
                                      fmt_ms(split.memory_ms), fmt_ms(split.compute_ms));
-      nlohmann::json scaled = nlohmann::json::object();
+      nlohmann::json scaled = nlohmann::json::object(), scaled_flop = nlohmann::json::object();
       std::vector<std::string> raster_fallback;
+      // The occupancy term: the pass's compute time shared over its dispatches (profiled frames).
+      std::string occ_why = occupancy_off;
+      std::vector<DispatchShare> shares;
+      if (occ_why.empty() && !pr.raster) shares = dispatch_shares(pr.dispatches, occ_why);
+      nlohmann::json jocc{{"dispatches", nlohmann::json::array()}, {"factor", nlohmann::json::object()}};
+      for (const DispatchShare& d : shares) jocc["dispatches"].push_back({{"fraction", d.fraction}, {"threads", d.threads}});
+      if (pr.raster) occ_why = "a rasterising pass (fill-rate scaling)";
+      if (!occ_why.empty()) jocc["off"] = occ_why;
+      std::string occ_line;
       for (auto* p : w.profiles) {
         std::optional<double> raster = pr.raster ? scale_raster_to_profile(full_ms, thr, *p) : std::nullopt;
         if (pr.raster && !raster) raster_fallback.push_back(p->name);
-        double ms = raster ? *raster : scale_to_profile(split, thr, *p);
+        double occ = 1;
+        if (!shares.empty() && p->resident_threads)
+          occ = pass_occupancy_factor(shares, double(thr.resident_threads), double(p->resident_threads));
+        if (!shares.empty()) jocc["factor"][p->name] = occ;
+        if (std::fabs(occ - 1) > 0.005) occ_line += fmt::format(" x{:.3f} @ {}", occ, p->name);
+        const bool by_fill = raster.has_value();
+        const double fill_ms = raster.value_or(0.0);
+        double ms = by_fill ? fill_ms : scale_to_profile(split, thr, *p, occ);
+        scaled_flop[p->name] = by_fill ? fill_ms : scale_to_profile(split, thr, *p);
         scaled[p->name] = ms;
         scaled_total[p->name] += ms;
         if (aov_only) aov_only_scaled[p->name] += ms;
@@ -676,6 +736,16 @@ int cmd_bench(const BenchOptions& o) {
         pass_order[p->name].push_back({pr.name, ms});
       }
       fmt::print("{}\n", line);
+      if (!occ_line.empty()) {
+        // The dispatches that carry most of the pass's time, with their threads.
+        std::vector<DispatchShare> top = shares;
+        std::sort(top.begin(), top.end(), [](auto& a, auto& b) { return a.fraction > b.fraction; });
+        std::string parts;
+        for (size_t k = 0; k < std::min<size_t>(3, top.size()); ++k)
+          parts += fmt::format("{}{:.0f} threads {:.0f}%", k ? ", " : "", top[k].threads, top[k].fraction * 100);
+        fmt::print("  occupancy:{} on the FLOP ratio ({} dispatches; {}{})\n", occ_line, shares.size(), parts,
+                   top.size() > 3 ? ", ..." : "");
+      }
       if (pr.raster) {
         if (!raster_explained)
           fmt::print("  {} rasterises: scaled by fill rate (this device {:.2f} Gpixel/s calibrated; a profile's ROPs x "
@@ -743,6 +813,8 @@ int cmd_bench(const BenchOptions& o) {
                               {"scaling", pr.raster ? "fill_rate" : "flop_bandwidth_split"},
                               {"aov_only", aov_only},
                               {"scaled_ms", scaled},
+                              {"scaled_ms_flop_split", scaled_flop},
+                              {"occupancy", jocc},
                               {"counters", pr.counters}});
     }
     std::string line = fmt::format("{:<26} {:>10} {:>21} {:>7} {:>10} {:>9.2f} {:>9} {:>9} |", "frame (sum of passes)",

@@ -96,6 +96,14 @@ std::vector<ConsoleProfile> parse_profiles(const std::string& text, const std::s
         throw PerfError(fmt::format("{}: {}/targets/probes_per_frame: expected a positive integer, got {}", file, ptr, got(v)));
       c.probes_per_frame = v.get<uint32_t>();
     }
+    if (p.contains("resident_threads_per_cu")) {  // resident threads = compute_units x this
+      for (const char* key : {"compute_units", "resident_threads_per_cu"}) {
+        const ojson& v = member(p, key, file, ptr, "a positive integer (with resident_threads_per_cu)");
+        if (!v.is_number_unsigned() || v.get<uint64_t>() == 0)
+          throw PerfError(fmt::format("{}: {}/{}: expected a positive integer, got {}", file, ptr, key, got(v)));
+      }
+      c.resident_threads = p["compute_units"].get<uint64_t>() * p["resident_threads_per_cu"].get<uint64_t>();
+    }
     if (t.contains("gi_trace_scale")) c.gi_trace_scale = positive(t, "gi_trace_scale", file, ptr + "/targets");
     if (p.contains("wave_size")) {
       const ojson& w = p["wave_size"];
@@ -370,9 +378,9 @@ PassSplit split_pass(double device_ms, double bytes, const DeviceThroughput& dev
   return s;
 }
 
-double scale_to_profile(const PassSplit& s, const DeviceThroughput& dev, const ConsoleProfile& p) {
+double scale_to_profile(const PassSplit& s, const DeviceThroughput& dev, const ConsoleProfile& p, double occupancy) {
   double mem = p.bandwidth_gbs > 0 ? s.memory_ms * dev.bandwidth_gbs / p.bandwidth_gbs : 0.0;
-  double comp = p.fp32_tflops > 0 ? s.compute_ms * dev.fp32_gflops / (p.fp32_tflops * 1e3) : 0.0;
+  double comp = p.fp32_tflops > 0 ? s.compute_ms * dev.fp32_gflops / (p.fp32_tflops * 1e3) * occupancy : 0.0;
   return mem + comp;
 }
 

@@ -25,6 +25,9 @@ struct ConsoleProfile {
   std::optional<uint32_t> probes_per_frame;     // targets.probes_per_frame
   std::optional<double> gi_trace_scale;         // targets.gi_trace_scale
   std::vector<uint32_t> wave_size;
+  // Threads resident at once: compute_units x resident_threads_per_cu, 0 where the file gives
+  // neither (the occupancy term is then not applied for this profile).
+  uint64_t resident_threads = 0;
 };
 
 // Profiles in file order. `file` only names the source in messages.
@@ -92,6 +95,7 @@ struct DeviceThroughput {
   double fp32_gflops = 0;    // achieved FP32 rate (calibrated)
   double bandwidth_gbs = 0;  // achieved copy bandwidth (calibrated)
   double fill_gpix = 0;      // achieved raster fill rate (calibrated; 0: not measured)
+  uint64_t resident_threads = 0;  // DeviceInfo::resident_threads (0: the driver does not say)
 };
 struct PassSplit {
   double device_ms = 0;   // measured, at the profile's workload
@@ -100,8 +104,9 @@ struct PassSplit {
   double compute_ms = 0;  // device_ms - memory_ms
 };
 PassSplit split_pass(double device_ms, double bytes, const DeviceThroughput& dev);
-// memory_ms x device_bw / console_bw + compute_ms x device_flops / console_flops
-double scale_to_profile(const PassSplit& s, const DeviceThroughput& dev, const ConsoleProfile& p);
+// memory_ms x device_bw / console_bw + compute_ms x device_flops / console_flops x occupancy,
+// where occupancy is the pass's occupancy term (perf/occupancy.h; 1: the plain FLOP split).
+double scale_to_profile(const PassSplit& s, const DeviceThroughput& dev, const ConsoleProfile& p, double occupancy = 1);
 // A rasterising pass (PassKind::graphics): its time is set by the fixed-function raster and ROP
 // rate, which a FLOP split does not see (an H100 rasterises through a few graphics-capable
 // units). device_ms x device fill rate / profile fill rate, when both are known; else nullopt

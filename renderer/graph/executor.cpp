@@ -7,7 +7,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
+#include "renderer/graph/dispatch_log.h"
 #include "renderer/graph/stability_scan_shared.h"
 #include "renderer/scene/bvh.h"
 #include "renderer/scene/material_eval.h"
@@ -442,6 +444,42 @@ std::map<std::string, ResolvedSlot> Executor::bind_slots(const PassDecl& decl) {
   return slots;
 }
 
+namespace {
+
+uint32_t timed_dispatches(const std::vector<LoggedDispatch>& log) {
+  uint32_t n = 0;
+  for (auto& d : log) n += d.query >= 0;
+  return n;
+}
+
+// Thread counts (an indirect dispatch's groups read back now, after the frame ran) and, where
+// a timestamp was written after the dispatch, the time since the previous stamp of the pass.
+std::vector<DispatchTiming> resolve_dispatches(Gpu& gpu, const std::vector<LoggedDispatch>& log,
+                                               const std::vector<double>& ns, double pass_start_ns) {
+  std::vector<DispatchTiming> out;
+  double prev = pass_start_ns;
+  for (const LoggedDispatch& d : log) {
+    DispatchTiming t;
+    uint64_t groups = d.groups;
+    if (d.args) {
+      uint32_t xyz[3] = {0, 0, 0};
+      gpu.download(*d.args, xyz, sizeof(xyz), d.args_offset);
+      groups = uint64_t(xyz[0]) * xyz[1] * xyz[2];
+      t.indirect = true;
+    }
+    t.threads = groups * d.local_threads;
+    t.ms = std::numeric_limits<double>::quiet_NaN();
+    if (d.query >= 0 && size_t(d.query) < ns.size()) {
+      t.ms = (ns[size_t(d.query)] - prev) * 1e-6;
+      prev = ns[size_t(d.query)];
+    }
+    out.push_back(t);
+  }
+  return out;
+}
+
+}  // namespace
+
 FrameResult Executor::run_frame() {
   float time = settings_.scene_time >= 0.0f ? settings_.scene_time : float(frame_) * scene_.frame_time;
   if (!scene_uploaded_ || scene_.features().has(Feature::motion)) {
@@ -467,23 +505,42 @@ FrameResult Executor::run_frame() {
   uint32_t q = 0;
   std::vector<double> ns;
   auto t_frame = std::chrono::steady_clock::now();
+  // Dispatch profile: timestamps after each dispatch (GPU only), up to kProfileQueries a frame.
+  constexpr uint32_t kProfileQueries = 2048;
+  const bool dispatch_timestamps = profile_dispatches_ && !per_pass_submit;
+  const uint32_t query_count = per_pass_submit ? 2u
+                                               : static_cast<uint32_t>(running.size() * 2 + (scan ? 1 : 0)) +
+                                                     (dispatch_timestamps ? kProfileQueries : 0u);
+  std::vector<uint32_t> pass_query(running.size(), 0);  // each pass's start query (GPU)
+  std::vector<std::vector<LoggedDispatch>> logged(running.size());
   for (size_t i = 0; i < running.size(); ++i) {
     const PlannedPass* pp = running[i];
-    if (!cmd) cmd = gpu_.begin(per_pass_submit ? 2u : static_cast<uint32_t>(running.size() * 2 + (scan ? 1 : 0)));
+    if (!cmd) cmd = gpu_.begin(query_count);
     const PassDecl& decl = decls_[pp->decl_index];
     if (!pp->barrier_before.resources.empty())
       cmd->barrier(pp->barrier_before.src_kinds, pp->barrier_before.dst_kind);
     cmd->begin_label(decl.name);
+    pass_query[i] = q;
     cmd->timestamp(q++);
-    RecordContext ctx(gpu_, *cmd, scene_, scene_gpu_, settings_, frame_, decl.name, bind_slots(decl));
-    passes_[pp->decl_index]->record(ctx);
+    if (profile_dispatches_) {
+      // Leave the queries this pass's end, every later pass and the closing scan stamp need.
+      const uint32_t reserved = 1u + 2u * static_cast<uint32_t>(running.size() - 1 - i) + (scan ? 1u : 0u);
+      DispatchLogCmd log(*cmd, q, dispatch_timestamps ? query_count - reserved : 0u, dispatch_timestamps);
+      RecordContext ctx(gpu_, log, scene_, scene_gpu_, settings_, frame_, decl.name, bind_slots(decl));
+      passes_[pp->decl_index]->record(ctx);
+      logged[i] = log.dispatches();
+    } else {
+      RecordContext ctx(gpu_, *cmd, scene_, scene_gpu_, settings_, frame_, decl.name, bind_slots(decl));
+      passes_[pp->decl_index]->record(ctx);
+    }
     cmd->timestamp(q++);
     cmd->end_label();
     if (per_pass_submit) {
       auto t0 = std::chrono::steady_clock::now();
       gpu_.submit(std::move(cmd));
       double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-      fr.passes.push_back({decl.name, ms});
+      fr.passes.push_back({decl.name, ms, {}});
+      fr.passes.back().dispatches = resolve_dispatches(gpu_, logged[i], {}, 0);
       q = 0;
       if (scan && !scan_of_pass_[i].empty()) {
         auto t1 = std::chrono::steady_clock::now();
@@ -505,13 +562,22 @@ FrameResult Executor::run_frame() {
     if (scan) cmd->timestamp(q++);  // closes the last pass's scans
     ns = gpu_.submit(std::move(cmd));
     const size_t n = running.size();
-    for (size_t i = 0; i < n; ++i) fr.passes.push_back({running[i]->name, (ns[2 * i + 1] - ns[2 * i]) * 1e-6});
-    if (n && ns.size() >= 2 * n) {
-      // The scans after pass i lie between its end timestamp and the next one written.
-      for (size_t i = 0; i < n; ++i)
-        if (scanned_after[i] && 2 * i + 2 < ns.size()) fr.scan_ms += (ns[2 * i + 2] - ns[2 * i + 1]) * 1e-6;
-      double last_pass_scan = scanned_after[n - 1] && ns.size() > 2 * n ? (ns[2 * n] - ns[2 * n - 1]) * 1e-6 : 0.0;
-      fr.total_ms = (ns[2 * n - 1] - ns[0]) * 1e-6 - (fr.scan_ms - last_pass_scan);
+    // Pass i's queries: its start at pass_query[i], then one per timed dispatch, then its end.
+    auto end_query = [&](size_t i) { return pass_query[i] + 1 + timed_dispatches(logged[i]); };
+    for (size_t i = 0; i < n; ++i) {
+      fr.passes.push_back({running[i]->name, (ns[end_query(i)] - ns[pass_query[i]]) * 1e-6, {}});
+      fr.passes.back().dispatches = resolve_dispatches(gpu_, logged[i], ns, ns[pass_query[i]]);
+    }
+    if (n && ns.size() > end_query(n - 1)) {
+      // The scans after pass i lie between its end timestamp and the next pass's start.
+      for (size_t i = 0; i + 1 < n; ++i)
+        if (scanned_after[i]) fr.scan_ms += (ns[pass_query[i + 1]] - ns[end_query(i)]) * 1e-6;
+      if (scanned_after[n - 1] && ns.size() > end_query(n - 1) + 1)
+        fr.scan_ms += (ns[end_query(n - 1) + 1] - ns[end_query(n - 1)]) * 1e-6;
+      double last_pass_scan = scanned_after[n - 1] && ns.size() > end_query(n - 1) + 1
+                                  ? (ns[end_query(n - 1) + 1] - ns[end_query(n - 1)]) * 1e-6
+                                  : 0.0;
+      fr.total_ms = (ns[end_query(n - 1)] - ns[0]) * 1e-6 - (fr.scan_ms - last_pass_scan);
     }
   }
   if (scan_reset) collect_scan_results();

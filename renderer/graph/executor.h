@@ -13,9 +13,20 @@
 
 namespace gib {
 
+// One compute dispatch of a pass, with the executor's dispatch profile on.
+struct DispatchTiming {
+  uint64_t threads = 0;  // groups x workgroup size (indirect: the groups read back after the frame)
+  bool indirect = false;
+  // GPU only (NaN on a CPU device, or past the profile's timestamp limit): from the pass's
+  // start, or the previous dispatch's timestamp, to the one written right after this dispatch;
+  // barriers and fills recorded before it count to it.
+  double ms = 0;
+};
+
 struct PassTiming {
   std::string name;
   double ms = 0;
+  std::vector<DispatchTiming> dispatches;  // with the dispatch profile on, in record order
 };
 
 struct FrameResult {
@@ -46,6 +57,10 @@ class Executor {
   // Pass timings exclude it: on a GPU it is recorded after the pass's end timestamp, on a CPU
   // device it is its own submission after the pass's host-timed one.
   void enable_stability_scan(bool on = true) { scan_enabled_ = on; }
+  // Dispatch profile (off by default): every compute dispatch a pass records is logged with its
+  // thread count, and on a GPU a timestamp is written after each (which may serialise
+  // dispatches the pass left unbarriered: bench profiles frames apart from its timed ones).
+  void enable_dispatch_profile(bool on = true) { profile_dispatches_ = on; }
   bool stability_scan_enabled() const { return scan_enabled_; }
   const StabilityReport& stability() const { return stability_; }
   // Any image resource of the plan as float texels (ids and packed formats decoded to floats).
@@ -84,6 +99,7 @@ class Executor {
   uint32_t frame_ = 0;
   bool scene_uploaded_ = false;
   bool scan_enabled_ = false;
+  bool profile_dispatches_ = false;
   std::vector<ScanTarget> scan_targets_;       // execution order, slot order
   std::vector<std::vector<size_t>> scan_of_pass_;  // per running pass: indices into scan_targets_
   std::shared_ptr<Buffer> scan_results_;

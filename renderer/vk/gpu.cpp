@@ -106,6 +106,38 @@ VkInstance make_instance(bool validate, bool* debug_utils) {
   return inst;
 }
 
+bool has_device_extension(VkPhysicalDevice dev, const char* name) {
+  uint32_t n = 0;
+  vkEnumerateDeviceExtensionProperties(dev, nullptr, &n, nullptr);
+  std::vector<VkExtensionProperties> exts(n);
+  vkEnumerateDeviceExtensionProperties(dev, nullptr, &n, exts.data());
+  for (auto& e : exts)
+    if (std::strcmp(e.extensionName, name) == 0) return true;
+  return false;
+}
+
+// Compute units and resident threads, where the driver tells them (DeviceInfo).
+void read_residency(VkPhysicalDevice dev, DeviceInfo& info) {
+  if (has_device_extension(dev, VK_NV_SHADER_SM_BUILTINS_EXTENSION_NAME)) {
+    VkPhysicalDeviceShaderSMBuiltinsPropertiesNV sm{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_SM_BUILTINS_PROPERTIES_NV};
+    VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    props.pNext = &sm;
+    vkGetPhysicalDeviceProperties2(dev, &props);
+    info.compute_units = sm.shaderSMCount;
+    info.resident_threads = uint64_t(sm.shaderSMCount) * sm.shaderWarpsPerSM * 32u;
+    info.residency_source = fmt::format("VK_NV_shader_sm_builtins: {} SMs x {} warps x 32", sm.shaderSMCount, sm.shaderWarpsPerSM);
+  } else if (has_device_extension(dev, VK_AMD_SHADER_CORE_PROPERTIES_EXTENSION_NAME)) {
+    VkPhysicalDeviceShaderCorePropertiesAMD core{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_CORE_PROPERTIES_AMD};
+    VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    props.pNext = &core;
+    vkGetPhysicalDeviceProperties2(dev, &props);
+    info.compute_units = core.shaderEngineCount * core.shaderArraysPerEngineCount * core.computeUnitsPerShaderArray;
+    info.resident_threads = uint64_t(info.compute_units) * core.simdPerComputeUnit * core.wavefrontsPerSimd * core.wavefrontSize;
+    info.residency_source = fmt::format("VK_AMD_shader_core_properties: {} CUs x {} SIMDs x {} waves x {}", info.compute_units,
+                                        core.simdPerComputeUnit, core.wavefrontsPerSimd, core.wavefrontSize);
+  }
+}
+
 struct Candidate {
   VkPhysicalDevice handle;
   DeviceInfo info;
@@ -146,6 +178,7 @@ std::vector<Candidate> enumerate(VkInstance inst) {
     c.info.subgroup_ballot = compute_ops && (sub.supportedOperations & VK_SUBGROUP_FEATURE_BALLOT_BIT);
     c.info.subgroup_arithmetic = compute_ops && (sub.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT);
     c.info.timestamp_period_ns = qf[family].timestampValidBits ? props.properties.limits.timestampPeriod : 0.0;
+    read_residency(devs[i], c.info);
     out.push_back(c);
   }
   // Default: first discrete, else first integrated, else anything (lavapipe).

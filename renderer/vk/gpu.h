@@ -2,6 +2,7 @@
 // and the harness talk to the GPU through these handles, and only renderer/vk/*.cpp includes
 // <vulkan/vulkan.h>. One Gpu per process run; everything it creates dies with it.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -32,6 +33,13 @@ struct DeviceInfo {
   bool subgroup_ballot = false;  // subgroupBallot, subgroupBroadcastFirst
   bool subgroup_arithmetic = false;  // subgroupOr, subgroupAdd
   double timestamp_period_ns = 0;  // 0: no timestamps on the compute queue
+  // Threads the device can hold resident at once (its compute units x the most threads one
+  // unit keeps in flight), from VK_NV_shader_sm_builtins (SMs x warps per SM x 32) or
+  // VK_AMD_shader_core_properties; 0 where the driver does not say (lavapipe). bench's
+  // occupancy term needs it (perf/occupancy.h).
+  uint32_t compute_units = 0;
+  uint64_t resident_threads = 0;
+  std::string residency_source;  // the extension it came from
   bool is_default = false;
   bool is_software() const { return type == "cpu"; }
 };
@@ -66,7 +74,13 @@ class Pipeline {
  public:
   virtual ~Pipeline() = default;
   virtual const std::string& name() const = 0;
+  // A compute pipeline's workgroup size (from its SPIR-V); {0, 0, 0} for a graphics pipeline.
+  virtual std::array<uint32_t, 3> local_size() const = 0;
 };
+
+// The LocalSize execution mode of a SPIR-V module's first compute entry point ({0, 0, 0}
+// when there is none, or the words are not SPIR-V).
+std::array<uint32_t, 3> spirv_local_size(std::span<const uint32_t> words);
 
 struct Bind {
   uint32_t binding;

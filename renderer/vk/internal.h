@@ -52,7 +52,9 @@ class VkPipelineObj final : public Pipeline {
  public:
   ~VkPipelineObj() override;
   const std::string& name() const override { return name_; }
+  std::array<uint32_t, 3> local_size() const override { return local_size_; }
   std::string name_;
+  std::array<uint32_t, 3> local_size_{0, 0, 0};
   VkDevice device = VK_NULL_HANDLE;
   VkPipeline pipeline = VK_NULL_HANDLE;
   VkPipelineLayout layout = VK_NULL_HANDLE;

@@ -3,6 +3,24 @@
 
 #include "renderer/vk/internal.h"
 
+namespace gib {
+
+std::array<uint32_t, 3> spirv_local_size(std::span<const uint32_t> words) {
+  constexpr uint32_t kMagic = 0x07230203, kOpExecutionMode = 16, kLocalSize = 17;
+  if (words.size() < 5 || words[0] != kMagic) return {0, 0, 0};
+  for (size_t i = 5; i < words.size();) {
+    const uint32_t count = words[i] >> 16, op = words[i] & 0xffffu;
+    if (count == 0 || i + count > words.size()) break;
+    // OpExecutionMode %entry LocalSize x y z
+    if (op == kOpExecutionMode && count >= 6 && words[i + 2] == kLocalSize)
+      return {words[i + 3], words[i + 4], words[i + 5]};
+    i += count;
+  }
+  return {0, 0, 0};
+}
+
+}  // namespace gib
+
 namespace gib::vkimpl {
 namespace {
 
@@ -78,6 +96,7 @@ std::shared_ptr<Pipeline> VkGpu::compute_pipeline(const ComputePipelineDesc& des
   p->push_bytes = desc.push_constant_bytes;
   make_layout(*this, *p, VK_SHADER_STAGE_COMPUTE_BIT);
   VkShaderModule module = load_module(device, desc.shader);
+  p->local_size_ = spirv_local_size(shader_registry().at(desc.shader));
   std::vector<VkSpecializationMapEntry> entries;
   std::vector<uint32_t> values;
   for (size_t i = 0; i < desc.spec_constants.size(); ++i) {
