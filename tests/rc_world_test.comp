@@ -23,7 +23,7 @@ void main() {
     ProbeHit h = probe_hits[id];
     RcTestKey k;
     k.position = vec4(0.0);
-    k.key = uvec4(0u);
+    k.key = uvec4(0u, 0u, 0u, h.key);  // w: the key probe_trace stored
     uint probe = id / rays, ray = id - probe * rays;
     uint c = rc_updated_cascade();
     vec3 d = rc_ray_direction(ray, rays, rc_frame_rotation(rc.misc.x));
@@ -33,7 +33,7 @@ void main() {
       float lod;
       uint key = rc_cell_key(p, n, lod);
       k.position = vec4(p, lod);
-      k.key = uvec4(key, rc_cell_first_slot(key), rc_side(n), 0u);
+      k.key = uvec4(key, rc_cell_first_slot(key), rc_side(n), h.key);
     }
     keys[id] = k;
   } else {

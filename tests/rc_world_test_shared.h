@@ -14,7 +14,7 @@ GIB_CONST(uint, kRcTestBindDecoded, 12)
 GIB_CONST(uint, kRcTestSpecMode, 0)  // 0: hit keys, 1: decode the atlas
 struct RcTestKey {
   vec4 position;  // xyz: hit position as radiance_cache_update computes it; w: LOD
-  uvec4 key;      // x: rc_cell_key (0: miss), y: first slot, z: side (rc_side)
+  uvec4 key;      // x: rc_cell_key (0: miss or inside), y: first slot, z: side (rc_side), w: ProbeHit.key as stored
 };
 GIB_SHARED_END
 #endif

@@ -344,10 +344,16 @@ MirrorInsertion mirror_insertion(const std::vector<glsl::RcCell>& before, const 
 
 // The pass's table and counters against the mirror, frame by frame, in the room and with a
 // table so small that most keys collide and many are dropped.
+// Both layouts of rounds 1 .. max_probe (insertion_rounds 0: one workgroup walks every round;
+// 1: one indirect dispatch per round) and both counter layouts (update_counters) are checked.
 TEST_F(RadianceCacheWorld, InsertionMatchesCpuMirrorOfAllRounds) {
   Scene scene = parse_scene(nlohmann::json::parse(kRoom), "room");
-  for (int tiny = 0; tiny < 2; ++tiny) {
+  for (int run = 0; run < 6; ++run) {
+    const int tiny = run % 2;
     Settings s = small_settings();
+    rc(s).insertion_rounds = uint32_t(run / 2 == 1);
+    rc(s).update_counters = run / 2 == 2 ? 1u : 0u;  // lavapipe's default is per subgroup: also the GPUs' layout
+    SCOPED_TRACE(run / 2 == 1 ? "one dispatch per round" : run / 2 == 2 ? "counters per workgroup" : "rounds in one workgroup");
     if (tiny) {
       rc(s).cache_log2_cells = 6;
       rc(s).cache_max_probe = 4;
@@ -359,7 +365,12 @@ TEST_F(RadianceCacheWorld, InsertionMatchesCpuMirrorOfAllRounds) {
       auto cells = as<glsl::RcCell>(ex.read_buffer("rc_cells"));
       RcStats st = rc_stats_from_bytes(ex.read_buffer("rc_counters").data(), sizeof(glsl::RcCounters));
       std::vector<uint32_t> hit_keys;
-      for (auto& k : as<glsl::RcTestKey>(ex.read_buffer("rc_test_keys"))) hit_keys.push_back(k.key.x);
+      uint32_t stored_differ = 0;
+      for (auto& k : as<glsl::RcTestKey>(ex.read_buffer("rc_test_keys"))) {
+        hit_keys.push_back(k.key.x);
+        stored_differ += k.key.w != k.key.x;
+      }
+      EXPECT_EQ(stored_differ, 0u) << "probe_trace's stored keys differ from the keys recomputed from the hits";
       MirrorInsertion m = mirror_insertion(before, hit_keys, s, f);
       std::printf("%s frame %u: gpu insertions %u collisions %u drops %u reused %u active %u; mirror %u %u %u %u %u\n",
                   tiny ? "tiny" : "room", f, st.insertions, st.collisions, st.drops, st.reused, st.active,
@@ -414,6 +425,48 @@ TEST_F(RadianceCacheWorld, VolumeKernelsAgreeBitForBit) {
     size_t differ = 0;
     for (size_t i = 0; i < split[f].size(); ++i) differ += per_probe[f][i] != split[f][i];
     EXPECT_EQ(differ, 0u) << "frame " << f << ": values of the atlas / moments that differ";
+  }
+}
+
+// The carry's contract: each frame's atlas equals last frame's outside the cascade this frame
+// updated (the carry copies only the cascade last frame updated, into a copy two frames old).
+// Four cascades on the interleaved schedule, so the updated and carried cascades both change;
+// both kernel layouts (the per-probe kernel carries inside its dispatch, the split pair in a
+// carry dispatch).
+TEST_F(RadianceCacheWorld, AtlasChangesOnlyInTheUpdatedCascade) {
+  for (uint32_t kernel : {1u, 2u}) {
+  SCOPED_TRACE(kernel == 1 ? "per-probe kernel" : "split pair");
+  Scene scene = parse_scene(nlohmann::json::parse(kRoom), "room");
+  Settings s = small_settings();
+  rc(s).cascades = 4;
+  rc(s).probe_schedule = 1;
+  rc(s).volume_kernel = kernel;
+  Executor ex(gpu(), scene, s, world_passes(), {"probe_irradiance", "rc_test_keys", "rc_test_atlas"});
+  std::vector<uint32_t> last;
+  uint32_t width = 0, changed_elsewhere = 0, changed_inside = 0;
+  for (uint32_t f = 0; f < 8; ++f) {
+    ex.run_frame();
+    const FloatImage atlas = ex.read("rc_test_atlas"), moments = ex.read("probe_visibility");
+    ASSERT_EQ(atlas.height, moments.height);
+    std::vector<uint32_t> bits;  // per texel: the decoded irradiance's channels, then the moments'
+    for (uint32_t y = 0; y < atlas.height; ++y)
+      for (uint32_t x = 0; x < atlas.width; ++x) {
+        for (uint32_t c = 0; c < atlas.channels; ++c) bits.push_back(std::bit_cast<uint32_t>(atlas.at(x, y, c)));
+        for (uint32_t c = 0; c < moments.channels; ++c) bits.push_back(std::bit_cast<uint32_t>(moments.at(x, y, c)));
+      }
+    width = atlas.width * (atlas.channels + moments.channels);
+    if (f > 0) {
+      const uint32_t updated = rc_updated_cascade(rc(s).probe_schedule, rc(s).cascades, f);
+      for (size_t i = 0; i < bits.size(); ++i) {
+        const uint32_t row = uint32_t(i / width), cascade = row / glsl::kProbeAtlasRowsPerCascade;
+        if (bits[i] == last[i]) continue;
+        (cascade == updated ? changed_inside : changed_elsewhere) += 1;
+      }
+    }
+    last = std::move(bits);
+  }
+  EXPECT_EQ(changed_elsewhere, 0u) << "texels outside the updated cascade changed between frames";
+  EXPECT_GT(changed_inside, 0u) << "the updated cascades never changed: the test sees nothing";
   }
 }
 

@@ -131,6 +131,15 @@ std::vector<TechniqueOption> own_options() {
              "irradiance_volume_update's kernels: 0 by device (GPU: one workgroup per probe; CPU device: the split "
              "ray/convolve pair), 1 per-probe, 2 split; the same math, so a cross-device difference can be isolated",
              0, 2, &S::volume_kernel),
+      option("insertion_rounds",
+             "radiance_cache_update's insertion rounds 1 .. cache_max_probe: 0 in one dispatch of one workgroup "
+             "(a barrier between rounds), 1 one indirect dispatch per round; the same table and counters",
+             0, 1, &S::insertion_rounds),
+      option("update_counters",
+             "radiance_cache_update's counters: 0 by device (GPU: summed per workgroup in shared memory, one atomic "
+             "per workgroup; CPU device: one atomic per subgroup, no group barrier), 1 per workgroup, 2 per subgroup; "
+             "the same sums",
+             0, 2, &S::update_counters),
   };
 }
 }  // namespace

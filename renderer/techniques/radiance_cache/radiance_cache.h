@@ -43,6 +43,8 @@ struct RadianceCacheSettings : TechniqueSettingsOf<RadianceCacheSettings>, Direc
   bool dither_stores = false;       // RGB9E5 probe atlas and GI history round stochastically (unbiased blends)
   bool pre_exposure = true;         // screen-space GI works on radiance x P (exposure pass); 0: P = 1 (negative control)
   uint32_t volume_kernel = 0;       // irradiance_volume_update: 0 by device (GPU per-probe, CPU split), 1 per-probe, 2 split
+  uint32_t insertion_rounds = 0;    // radiance_cache_update: 0 rounds 1 .. max_probe in one workgroup, 1 one indirect dispatch per round
+  uint32_t update_counters = 0;     // radiance_cache_update's counters: 0 by device (GPU per workgroup, CPU per subgroup), 1 per workgroup, 2 per subgroup
 };
 
 // The gather's divisor as the passes use it: 1 (full resolution: ultra, beyond the seed), 2 or 4

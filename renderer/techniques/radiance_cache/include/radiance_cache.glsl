@@ -128,13 +128,18 @@ uint rc_find_cell(uint key) {
   return 0xffffffffu;
 }
 
-// Outgoing diffuse radiance stored for p's cell, when the cell exists and was ever shaded.
-bool rc_lookup(vec3 p, vec3 n, out vec3 radiance) {
+// Outgoing diffuse radiance stored for the cell of `key`, when it exists and was ever shaded.
+bool rc_lookup_key(uint key, out vec3 radiance) {
   radiance = vec3(0.0);
-  float lod;
-  uint i = rc_find_cell(rc_cell_key(p, n, lod));
+  uint i = rc_find_cell(key);
   if (i == 0xffffffffu || rc_cell_shaded_frame_at(i) == 0u) return false;
   radiance = gib_unpack_rgb9e5(rc_cell_radiance_at(i));
   return true;
+}
+
+// The same for p's cell (n: the geometric normal facing the ray, rc_facing_normal).
+bool rc_lookup(vec3 p, vec3 n, out vec3 radiance) {
+  float lod;
+  return rc_lookup_key(rc_cell_key(p, n, lod), radiance);
 }
 #endif  // GIB_RADIANCE_CACHE_GLSL

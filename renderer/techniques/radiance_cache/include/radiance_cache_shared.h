@@ -22,7 +22,10 @@ GIB_CONST(uint, kProbeAtlasRowsPerCascade, 160)
 // ---- probe rays: one record per (probe of the updated cascade, ray), 16 bytes
 struct ProbeHit {
   uint triangle_plus1;  // 0: miss (sky)
-  uint instance;
+  // The hit's cache-cell key (rc_cell_key of the hit point and the facing geometric normal), made
+  // where the hit is found (the seed's trace "triggers the cache update"); 0 on a miss and on a
+  // ray inside geometry (rc_probe_ray_inside), so a hit with key 0 is inside.
+  uint key;
   uint barycentrics;    // unorm16 u | unorm16 v << 16
   float distance;       // metres along the ray (max distance on a miss)
 };

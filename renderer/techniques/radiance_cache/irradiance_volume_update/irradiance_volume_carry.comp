@@ -1,6 +1,10 @@
 #version 460
-// Carries last frame's atlas rows into this frame's copy for every cascade not updated this
-// frame (the updated cascade's rows are rewritten whole by irradiance_volume_update.comp).
+// The split path's carry (CPU devices; the GPU kernel irradiance_volume_probe.comp carries inside
+// its own dispatch). Carries the atlas rows of one cascade, the one updated last frame, from last frame's copy into
+// this frame's. The atlas ping-pongs between two copies, one written each frame: this frame's
+// copy holds the state of two frames ago, which differs from last frame's only in the cascade
+// last frame updated. Every other cascade already matches; the cascade updated this frame is
+// rewritten whole by the update kernel after this (irradiance_volume_update.cpp).
 // A compute copy instead of vkCmdCopyImage of the whole atlas: lavapipe's image copy of the
 // 2560 x 160*cascades atlas cost ~300 ms per frame; this skips the rewritten rows too.
 #extension GL_GOOGLE_include_directive : require
@@ -14,10 +18,9 @@ layout(set = 0, binding = kIvBindVisibility, rg16f) uniform writeonly image2D ou
 layout(push_constant) uniform Push { IvCarryPush carry; };
 
 void main() {
-  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, int(carry.cascade * kProbeAtlasRowsPerCascade));
   ivec2 size = imageSize(out_irradiance);
-  if (p.x >= size.x || p.y >= size.y) return;
-  if (uint(p.y) / kProbeAtlasRowsPerCascade == carry.skip_cascade) return;
+  if (p.x >= size.x || p.y >= size.y || gl_GlobalInvocationID.y >= kProbeAtlasRowsPerCascade) return;
   imageStore(out_irradiance, p, imageLoad(prev_irradiance, p));
   imageStore(out_visibility, p, imageLoad(prev_visibility, p));
 }

@@ -42,12 +42,12 @@ const uint kIvRayLit = 0u, kIvRayDropped = 1u, kIvRayInside = 2u;
 // h: sky on a miss, the cache cell at the hit, else the fallback; l is 0 unless kIvRayLit.
 uint iv_ray_radiance(ProbeHit h, vec3 o, vec3 d, uint c, out vec3 l) {
   l = vec3(0.0);
-  if (rc_probe_ray_inside(h, d, c)) return kIvRayInside;
   if (h.triangle_plus1 == 0u) {
     l = gib_sky_radiance(d);
-  } else {
-    vec3 p = rc_hit_position(o, d, h.distance);
-    if (!rc_lookup(p, rc_facing_normal(h.triangle_plus1 - 1u, d), l)) l = iv_fallback_radiance(h, p, d);
+  } else if (h.key == 0u) {
+    return kIvRayInside;  // probe_trace found the ray inside geometry (rc_probe_ray_inside)
+  } else if (!rc_lookup_key(h.key, l)) {
+    l = iv_fallback_radiance(h, rc_hit_position(o, d, h.distance), d);
   }
   if (rc.flags.y == 0u || gib_finite(l)) return kIvRayLit;
   l = vec3(0.0);

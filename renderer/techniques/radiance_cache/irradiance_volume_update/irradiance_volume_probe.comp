@@ -1,6 +1,7 @@
 // irradiance_volume_update on GPUs: one 8x8 workgroup per probe of the updated cascade; the
 // probe's rays are shaded once into group-shared memory, each thread convolves one interior
-// texel, then the 10x10 tile with its border is written. CPU devices (lavapipe) use the
+// texel, then the 10x10 tile with its border is written; each group also carries one tile of
+// the cascade last frame updated (carry_load / carry_store). CPU devices (lavapipe) use the
 // barrier-free pair irradiance_volume_rays.comp + irradiance_volume_update.comp instead (same
 // output): there each barrier costs ~70 us per workgroup, while on an H100 the split pair is
 // 39% slower (0.108 vs 0.078 ms at ultra).
@@ -23,7 +24,7 @@ layout(local_size_x = kIvGroup, local_size_y = kIvGroup) in;
 layout(std430, set = 0, binding = kIvBindHits) readonly buffer HitBuffer { ProbeHit probe_hits[]; };
 layout(set = 0, binding = kIvBindIrradiance, r32ui) uniform writeonly uimage2D out_irradiance;
 layout(set = 0, binding = kIvBindVisibility, rg16f) uniform writeonly image2D out_visibility;
-layout(push_constant) uniform Push { RcParams rc; };
+layout(push_constant) uniform Push { RcParams rc; uvec4 iv_extra; };
 #define RC_PROBE_RAYS
 #include "renderer/techniques/radiance_cache/include/probe_volume.glsl"
 RC_PROBE_IMAGES(kIvBindPrevIrradiance, kIvBindPrevVisibility)
@@ -33,15 +34,56 @@ RC_CELL_BUFFER(kIvBindCells, readonly)
 #include "renderer/techniques/radiance_cache/irradiance_volume_update/irradiance_volume_common.glsl"
 
 const uint kTexels = kProbeTileInterior * kProbeTileInterior;
-shared vec3 s_dir[kIvMaxRays];
-shared vec3 s_radiance[kIvMaxRays];
-shared float s_distance[kIvMaxRays];
+// Per ray, two 16-byte words the texel loop reads with one load each: direction (zero when the
+// ray brings no light) and distance (-1 inside geometry); radiance.
+shared vec4 s_dir_distance[kIvMaxRays];
+shared vec4 s_radiance[kIvMaxRays];
+shared uint s_inside;  // rays of the probe inside geometry (the same for every texel)
 shared uint s_irradiance[kTexels];
 shared vec2 s_moments[kTexels];
+
+// The carry (irradiance_volume_carry.comp's job on the split path), folded into this dispatch:
+// group g copies tile g of the carried cascade's rows from last frame's copy, which this
+// dispatch only reads, to this frame's, whose other cascade it writes. No extra dispatch or
+// barrier, no extra group. The loads are issued first and stored after the rays' barrier, so
+// their latency hides behind the rays' own loads.
+const uint kCarryPerThread = (kProbeTileSize * kProbeTileSize + kProbeTileInterior * kProbeTileInterior - 1u) /
+                             (kProbeTileInterior * kProbeTileInterior);
+struct CarryTexels {
+  ivec2 at[kCarryPerThread];
+  uint irradiance[kCarryPerThread];
+  vec2 moments[kCarryPerThread];
+  bool copy[kCarryPerThread];
+};
+
+CarryTexels carry_load(uint g, uint tid) {
+  CarryTexels c;
+  uint cascade = iv_extra.x;
+  const uint tiles_per_row = kProbeAtlasWidth / kProbeTileSize;
+  ivec2 origin = ivec2(int((g % tiles_per_row) * kProbeTileSize),
+                       int(cascade * kProbeAtlasRowsPerCascade + (g / tiles_per_row) * kProbeTileSize));
+  for (uint k = 0u; k < kCarryPerThread; ++k) {
+    uint t = tid + k * kProbeTileInterior * kProbeTileInterior;
+    c.copy[k] = cascade != kIvNoCarry && t < kProbeTileSize * kProbeTileSize;
+    c.at[k] = origin + ivec2(int(t % kProbeTileSize), int(t / kProbeTileSize));
+    c.irradiance[k] = c.copy[k] ? rc_probe_irradiance_texel(c.at[k]) : 0u;
+    c.moments[k] = c.copy[k] ? rc_probe_visibility_texel(c.at[k]) : vec2(0.0);
+  }
+  return c;
+}
+
+void carry_store(CarryTexels c) {
+  for (uint k = 0u; k < kCarryPerThread; ++k)
+    if (c.copy[k]) {
+      imageStore(out_irradiance, c.at[k], uvec4(c.irradiance[k]));
+      imageStore(out_visibility, c.at[k], vec4(c.moments[k], 0.0, 0.0));
+    }
+}
 
 void main() {
   uint probe = gl_WorkGroupID.x;
   uint tid = gl_LocalInvocationIndex;
+  CarryTexels carried = carry_load(probe, tid);
   uint rays = min(rc_rays_per_probe(), kIvMaxRays);
   uint c = rc_updated_cascade();
   ivec3 ijk = rc_probe_coord(probe);
@@ -49,18 +91,21 @@ void main() {
   mat3 rotation = rc_frame_rotation(rc.misc.x);
   float max_distance = rc_moment_max_distance(c);
 
+  if (tid == 0u) s_inside = 0u;
+  barrier();
   for (uint r = tid; r < rays; r += kTexels) {
     vec3 d = rc_ray_direction(r, rays, rotation);
     ProbeHit h = probe_hits[probe * rc_rays_per_probe() + r];
     vec3 l;
     // A ray that brings no light gets a zero direction (weight 0 in every texel); one inside
-    // geometry a negative distance too, which the texels count.
+    // geometry a negative distance too, and is counted.
     uint state = iv_ray_radiance(h, o, d, c, l);
-    s_dir[r] = state == kIvRayLit ? d : vec3(0.0);
-    s_radiance[r] = l;
-    s_distance[r] = state == kIvRayInside ? -1.0 : min(h.distance, max_distance);
+    s_dir_distance[r] = vec4(state == kIvRayLit ? d : vec3(0.0), state == kIvRayInside ? -1.0 : min(h.distance, max_distance));
+    s_radiance[r] = vec4(l, 0.0);
+    if (state == kIvRayInside) atomicAdd(s_inside, 1u);
   }
   barrier();
+  carry_store(carried);
 
   ivec2 texel = ivec2(gl_LocalInvocationID.xy);
   vec3 n = gib_oct_texel_direction(texel + 1, int(kProbeTileInterior));
@@ -68,18 +113,18 @@ void main() {
   float weight = 0.0;
   vec2 moments = vec2(0.0);
   float moment_weight = 0.0;
-  uint inside = 0u;
   for (uint r = 0u; r < rays; ++r) {
-    inside += s_distance[r] < 0.0 ? 1u : 0u;
-    float w = max(0.0, dot(n, s_dir[r]));
-    sum += s_radiance[r] * w;
+    vec4 dd = s_dir_distance[r];
+    float w = max(0.0, dot(n, dd.xyz));
+    sum += s_radiance[r].rgb * w;
     weight += w;
     // w^16 (kIvDistanceSharpness) by four squarings: pow() is a log/exp pair per ray and texel.
     float w2 = w * w, w4 = w2 * w2, w8 = w4 * w4, wd = w8 * w8;
-    float dist = s_distance[r];
+    float dist = dd.w;
     moments += wd * vec2(dist, dist * dist);
     moment_weight += wd;
   }
+  uint inside = s_inside;
   vec3 irradiance = weight > 0.0 ? sum / weight : vec3(0.0);
   moments = moment_weight > 0.0 ? moments / moment_weight : vec2(max_distance, max_distance * max_distance);
 

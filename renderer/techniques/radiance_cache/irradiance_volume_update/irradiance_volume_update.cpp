@@ -41,25 +41,34 @@ class IrradianceVolumeUpdatePass final : public Pass {
     const std::vector<SpecConstant> ray_specs = {{kIvSpecCacheFallback, 1},
                                                  {kIvSpecAlpha, ctx.scene.features().has(Feature::alpha_tested) ? 1u : 0u},
                                                  {kIvSpecDither, dither}};
-    // Cascades not updated this frame carry over from last frame's copy; the updated one is
-    // rewritten whole by the convolve below.
-    ctx.cmd.begin_label("irradiance_volume_update/carry");
-    IvCarryPush carry{rc_updated_cascade(r.probe_schedule, r.cascades, ctx.frame), 0, 0, 0};
-    const Image& atlas = ctx.image("probe_irradiance");
-    record_compute(ctx, {.shader = "irradiance_volume_carry.comp",
-                         .images = {{kIvBindPrevIrradiance, "probe_irradiance", true},
-                                    {kIvBindPrevVisibility, "probe_visibility", true},
-                                    {kIvBindIrradiance, "probe_irradiance"},
-                                    {kIvBindVisibility, "probe_visibility"}},
-                         .groups_x = div_up(atlas.width(), 16),
-                         .groups_y = div_up(atlas.height(), 16),
-                         .push = &carry,
-                         .push_bytes = sizeof(carry),
-                         .scene = false});
-    ctx.cmd.end_label();
-    ctx.cmd.barrier(kStageCompute, kStageCompute);
-    IvPush push{make_rc_params(ctx.settings, ctx.frame)};
+    // This frame's atlas copy was written two frames ago: it lacks only last frame's update, so
+    // that cascade's rows are carried over from last frame's copy. Nothing to carry on the first
+    // frame (both copies start zeroed) or when last frame updated this frame's cascade (one
+    // cascade); the updated cascade is rewritten whole below. The GPU kernel carries inside its
+    // own dispatch (one tile per probe group); the split pair gets a carry dispatch first.
+    const uint32_t updated = rc_updated_cascade(r.probe_schedule, r.cascades, ctx.frame);
+    const uint32_t last = ctx.frame == 0 ? updated : rc_updated_cascade(r.probe_schedule, r.cascades, ctx.frame - 1);
+    const uint32_t carried = last != updated ? last : kIvNoCarry;
     const bool per_probe = r.volume_kernel == 0 ? !ctx.gpu.info().is_software() : r.volume_kernel == 1;
+    static_assert(kProbesPerCascade * kProbeTileSize * kProbeTileSize == kProbeAtlasWidth * kProbeAtlasRowsPerCascade,
+                  "one probe group per tile of a cascade's rows");
+    if (carried != kIvNoCarry && !per_probe) {
+      ctx.cmd.begin_label("irradiance_volume_update/carry");
+      IvCarryPush carry{carried, 0, 0, 0};
+      record_compute(ctx, {.shader = "irradiance_volume_carry.comp",
+                           .images = {{kIvBindPrevIrradiance, "probe_irradiance", true},
+                                      {kIvBindPrevVisibility, "probe_visibility", true},
+                                      {kIvBindIrradiance, "probe_irradiance"},
+                                      {kIvBindVisibility, "probe_visibility"}},
+                           .groups_x = div_up(kProbeAtlasWidth, 16),
+                           .groups_y = div_up(kProbeAtlasRowsPerCascade, 16),
+                           .push = &carry,
+                           .push_bytes = sizeof(carry),
+                           .scene = false});
+      ctx.cmd.end_label();
+      ctx.cmd.barrier(kStageCompute, kStageCompute);
+    }
+    IvPush push{make_rc_params(ctx.settings, ctx.frame), {carried, 0, 0, 0}};
     if (per_probe) {
       // GPU: one workgroup per probe with its rays in group-shared memory.
       ctx.cmd.begin_label("irradiance_volume_update/probe");

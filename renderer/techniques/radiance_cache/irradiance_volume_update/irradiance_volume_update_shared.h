@@ -22,10 +22,12 @@ GIB_CONST(uint, kIvSpecDither, 2)               // 1: the atlas store rounds sto
 GIB_CONST(float, kIvDistanceSharpness, 16.0)
 struct IvPush {
   RcParams rc;
+  uvec4 extra;  // x: the cascade irradiance_volume_probe.comp carries from last frame's copy (kIvNoCarry: none)
 };
-// irradiance_volume_carry.comp: rows of cascade skip_cascade are not copied.
+GIB_CONST(uint, kIvNoCarry, 0xffffffffu)
+// irradiance_volume_carry.comp: the rows of cascade `cascade` are copied from last frame.
 struct IvCarryPush {
-  uint skip_cascade;
+  uint cascade;  // the cascade whose atlas rows are copied from last frame's copy
   uint pad0, pad1, pad2;
 };
 GIB_SHARED_END

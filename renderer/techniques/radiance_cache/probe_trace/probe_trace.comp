@@ -13,6 +13,7 @@ layout(local_size_x = kProbeTraceGroup) in;
 layout(std430, set = 0, binding = kProbeTraceBindHits) writeonly buffer HitBuffer { ProbeHit probe_hits[]; };
 layout(push_constant) uniform Push { RcParams rc; };
 #include "renderer/techniques/radiance_cache/include/probe_volume.glsl"
+#include "renderer/techniques/radiance_cache/include/radiance_cache.glsl"
 
 void main() {
   uint id = gl_GlobalInvocationID.x;
@@ -26,13 +27,17 @@ void main() {
   ProbeHit h;
   if (trace_closest(o, d, 0.0, kProbeMissDistance, hit)) {
     h.triangle_plus1 = hit.triangle + 1u;
-    h.instance = gib_triangles[hit.triangle].instance;
     uvec2 b = uvec2(clamp(vec2(hit.u, hit.v), 0.0, 1.0) * 65535.0 + 0.5);
     h.barycentrics = b.x | (b.y << 16u);
     h.distance = hit.t;
+    // The cell key, once, here (radiance_cache_update inserts it, irradiance_volume_update looks
+    // it up): the triangle and its vertices were just fetched by the intersection.
+    float lod;
+    h.key = rc_probe_ray_inside(h, d, c) ? 0u
+                                         : rc_cell_key(rc_hit_position(o, d, h.distance), rc_facing_normal(hit.triangle, d), lod);
   } else {
     h.triangle_plus1 = 0u;
-    h.instance = 0u;
+    h.key = 0u;
     h.barycentrics = 0u;
     h.distance = kProbeMissDistance;
   }

@@ -7,10 +7,13 @@
 // same for every probe), closest hit with alpha testing, up to kProbeMissDistance (10 km).
 // Slots: reads the scene and BVH; writes `probe_hits` (buffer, 16^3 x rays_per_probe ProbeHit,
 // probe-major: record probe * rays + ray; radiance_cache_shared.h).
-// Limits: no probe relocation or back-face classification (DDGI's); a probe inside geometry
-// sees its inside. rays_per_probe must be 1..256 (declare() throws otherwise). The hit record
-// holds triangle + 1, instance, unorm16 barycentrics and distance (the seed packs an SBT index;
-// we have one material model).
+// Limits: no probe relocation (DDGI's); a probe inside geometry is found by its rays
+// (rc_probe_ray_inside) and left unused (irradiance_volume_update). rays_per_probe must be
+// 1..256 (declare() throws otherwise). The hit record holds triangle + 1, the hit's cache-cell
+// key (0 on a miss or a ray inside geometry), unorm16 barycentrics and distance (the seed packs
+// an SBT index; we have one material model): the key is made here, where the hit is found, as
+// the seed's trace triggers its cache update, so radiance_cache_update and
+// irradiance_volume_update read it instead of fetching the triangle again.
 #pragma once
 #include <memory>
 

@@ -16,7 +16,7 @@ layout(std430, set = 0, binding = kRcUpdateBindCounters) coherent buffer Counter
   RcCounters counters;
   RcRoundArgs rounds[];  // rounds[r - 1]: insertion round r
 };
-layout(std430, set = 0, binding = kRcUpdateBindPending) buffer PendingBuffer { uvec2 rc_pending[]; };
+layout(std430, set = 0, binding = kRcUpdateBindPending) coherent buffer PendingBuffer { uvec2 rc_pending[]; };
 layout(push_constant) uniform Push { RcParams rc; uvec4 extra; };
 #include "renderer/techniques/radiance_cache/include/probe_volume.glsl"
 #include "renderer/techniques/radiance_cache/include/radiance_cache.glsl"
@@ -24,26 +24,30 @@ RC_CELL_BUFFER(kRcUpdateBindCells, coherent)
 
 const uint kNoCell = 0xffffffffu;
 
-// The probe hit `id`'s committed key, or 0 for a miss / an id past the hit records.
+// The probe hit `id`'s committed key (made by probe_trace), or 0 for a miss, a ray inside
+// geometry (no cell for a point inside a wall) or an id past the hit records.
 uint hit_key(uint id) {
-  uint rays = rc_rays_per_probe();
-  if (id >= kProbeGridDim * kProbeGridDim * kProbeGridDim * rays) return 0u;
-  ProbeHit h = probe_hits[id];
-  if (h.triangle_plus1 == 0u) return 0u;
-  uint probe = id / rays, ray = id - probe * rays;
-  vec3 o = rc_probe_position(rc_updated_cascade(), rc_probe_coord(probe));
-  vec3 d = rc_ray_direction(ray, rays, rc_frame_rotation(rc.misc.x));
-  if (rc_probe_ray_inside(h, d, rc_updated_cascade())) return 0u;  // no cell for a point inside geometry
-  float lod;
-  return rc_cell_key(rc_hit_position(o, d, h.distance), rc_facing_normal(h.triangle_plus1 - 1u, d), lod);
+  if (id >= kProbeGridDim * kProbeGridDim * kProbeGridDim * rc_rays_per_probe()) return 0u;
+  return probe_hits[id].key;
 }
 
-// ---- subgroup-aggregated counters and list appends: one atomic per subgroup instead of one per
-// thread. Used in uniform control flow (every thread of the group, at the end of main).
-#define RC_COUNT(COUNTER, N)                                   \
-  {                                                            \
-    uint total_ = subgroupAdd(N);                              \
-    if (subgroupElect() && total_ != 0u) atomicAdd(COUNTER, total_); \
+// ---- aggregated counters and list appends. Counters are summed per subgroup; on GPUs
+// (kGroupCounts) the subgroups' sums go to group-shared totals that reach the buffer once per
+// workgroup (flush_counts), since atomics on one address serialise and every subgroup of the
+// find dispatch has reused hits to count; on CPU devices a group barrier costs more than the
+// atomics, so each subgroup adds to the buffer. Used in uniform control flow (every thread of
+// the group).
+layout(constant_id = kRcUpdateSpecGroupCounts) const bool kGroupCounts = true;
+shared uint s_counts[4];  // collisions, drops, insertions, reused
+#define RC_COUNT(INDEX, COUNTER, N)                                                                    \
+  {                                                                                                    \
+    uint total_ = subgroupAdd(N);                                                                      \
+    if (subgroupElect() && total_ != 0u) {                                                             \
+      if (kGroupCounts)                                                                                \
+        atomicAdd(s_counts[INDEX], total_);                                                            \
+      else                                                                                             \
+        atomicAdd(COUNTER, total_);                                                                    \
+    }                                                                                                  \
   }
 
 // Appends for every thread whose WANT is true: SLOT receives its entry (consecutive within the
@@ -98,7 +102,11 @@ void bid_for(uint i, uint v, uint bid) {
 // the queueing race. Returns true when this hit appended the cell to rc_active.
 bool queue_cell(uint cell, uint id, inout uint reused) {
   uint now = rc.misc.x + 1u;
-  uint shaded = atomicAdd(rc_cells[cell].shaded_frame, 0u);
+  // A plain (coherent) read, not an atomic one: every hit of a busy cell reads it, and atomics on
+  // one address serialise. A stale read changes nothing: shaded_frame moves only from a value
+  // that is due (not reused) to `now`, by the swap below, so a hit that misses that write still
+  // finds the cell due, loses the swap and goes on as one that saw `now`.
+  uint shaded = rc_cells[cell].shaded_frame;
   bool mine = false;
   if (shaded != now) {
     if (shaded != 0u && now - shaded < rc.misc.y) {
@@ -175,11 +183,12 @@ Outcome round_hit(uint key, uint round) {
   return o;
 }
 
-void main() {
-  uint round = kKernel == kRcUpdateKernelFind ? 0u : extra.y;
-  uint idx = gl_GlobalInvocationID.x;
+// One hit's step in `round`: the hit record `idx` (round 0), or entry `idx` of the round's
+// pending list (idx past its length: nothing, but the thread still joins the subgroup's
+// counters and appends, which need uniform control flow).
+void step(uint round, uint idx) {
   uint id = kNoCell, key = 0u;
-  if (kKernel == kRcUpdateKernelFind) {
+  if (round == 0u) {
     id = idx;
     key = hit_key(id);
     if (idx == 0u) {
@@ -197,14 +206,14 @@ void main() {
     key = e.y;
   }
   Outcome o = Outcome(0u, 0u, 0u, 0u, kNoCell, false);
-  if (key != 0u) o = kKernel == kRcUpdateKernelFind ? find_hit(key) : round_hit(key, round);
+  if (key != 0u) o = round == 0u ? find_hit(key) : round_hit(key, round);
   bool queued = o.cell != kNoCell && queue_cell(o.cell, id, o.reused);
 
   // Uniform control flow from here: aggregated counters and appends.
-  RC_COUNT(counters.collisions, o.collisions);
-  RC_COUNT(counters.drops, o.drops);
-  RC_COUNT(counters.insertions, o.insertions);
-  RC_COUNT(counters.reused, o.reused);
+  RC_COUNT(0, counters.collisions, o.collisions);
+  RC_COUNT(1, counters.drops, o.drops);
+  RC_COUNT(2, counters.insertions, o.insertions);
+  RC_COUNT(3, counters.reused, o.reused);
   uint slot;
   RC_APPEND(queued, slot, counters.active_cells, counters.dispatch_x, kRcShadeGroup, extra.x);
   if (queued && slot < extra.x) rc_active[slot] = o.cell;  // capacity >= hit records: always
@@ -213,4 +222,48 @@ void main() {
     RC_APPEND(o.pending, slot, rounds[next - 1u].count, rounds[next - 1u].groups_x, kRcUpdateGroup, extra.z);
     if (o.pending) rc_pending[(next & 1u) * extra.z + slot] = uvec2(id, key);
   }
+}
+
+shared uint s_round_count;
+
+// The group's counter totals into the buffer: one atomic per counter and workgroup.
+void flush_counts() {
+  if (!kGroupCounts) return;
+  barrier();
+  uint t = gl_LocalInvocationIndex;
+  if (t < 4u && s_counts[t] != 0u) {
+    if (t == 0u) atomicAdd(counters.collisions, s_counts[t]);
+    if (t == 1u) atomicAdd(counters.drops, s_counts[t]);
+    if (t == 2u) atomicAdd(counters.insertions, s_counts[t]);
+    if (t == 3u) atomicAdd(counters.reused, s_counts[t]);
+  }
+}
+
+void main() {
+  if (kGroupCounts) {
+    if (gl_LocalInvocationIndex < 4u) s_counts[gl_LocalInvocationIndex] = 0u;
+    barrier();
+  }
+  if (kKernel == kRcUpdateKernelFind) {
+    step(0u, gl_GlobalInvocationID.x);
+  } else if (kKernel == kRcUpdateKernelRound) {
+    step(extra.y, gl_GlobalInvocationID.x);
+  } else {
+    // Every round in one workgroup (option insertion_rounds 0): the group walks round r's list
+    // in strides of its size, then a buffer barrier and a group barrier close the round, as the
+    // end of a dispatch would. Within a round the strides are one order the threads of a
+    // dispatch could have run in, and the rounds' outcome does not depend on that order, so the
+    // table and counters equal those of one dispatch per round. One dispatch instead of
+    // max_probe indirect ones (each ~4.7 us of launch and barrier on an H100 even with 0 groups).
+    for (uint round = 1u; round <= rc_max_probe(); ++round) {
+      if (gl_LocalInvocationIndex == 0u) s_round_count = rounds[round - 1u].count;
+      barrier();
+      uint n = s_round_count;
+      if (n == 0u) break;  // nothing pending: no later round has anything either (uniform: shared)
+      for (uint base = 0u; base < n; base += kRcUpdateGroup) step(round, base + gl_LocalInvocationIndex);
+      memoryBarrierBuffer();
+      barrier();
+    }
+  }
+  flush_counts();
 }

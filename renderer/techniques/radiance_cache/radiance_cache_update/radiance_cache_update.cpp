@@ -69,6 +69,9 @@ class RadianceCacheUpdatePass final : public Pass {
     ctx.cmd.end_label();
     ctx.cmd.barrier(kStageTransfer, kStageCompute);
 
+    // Counters summed per workgroup on GPUs; on a CPU device a group barrier costs more.
+    const bool per_group = r.update_counters == 0 ? !info.is_software() : r.update_counters == 1;
+    const SpecConstant group_counts{kRcUpdateSpecGroupCounts, per_group ? 1u : 0u};
     const std::vector<BufferBinding> buffers{{kRcUpdateBindHits, "probe_hits"},
                                              {kRcUpdateBindCells, "rc_cells"},
                                              {kRcUpdateBindActive, "rc_active"},
@@ -80,17 +83,29 @@ class RadianceCacheUpdatePass final : public Pass {
                          .groups_x = div_up(hits, kRcUpdateGroup),
                          .push = &push,
                          .push_bytes = sizeof(push),
-                         .spec_constants = {{kRcUpdateSpecKernel, kRcUpdateKernelFind}},
+                         .spec_constants = {{kRcUpdateSpecKernel, kRcUpdateKernelFind}, group_counts},
                          .buffers = buffers,
                          .label = "radiance_cache_update/find",
                          .barrier_after = r.cache_max_probe > 0});
+    if (r.cache_max_probe == 0) return;
+    if (r.insertion_rounds == 0) {
+      // Rounds 1 .. cache_max_probe in one workgroup: one dispatch whatever is pending.
+      record_compute(ctx, {.shader = "radiance_cache_update.comp",
+                           .groups_x = 1,
+                           .push = &push,
+                           .push_bytes = sizeof(push),
+                           .spec_constants = {{kRcUpdateSpecKernel, kRcUpdateKernelRounds}, group_counts},
+                           .buffers = buffers,
+                           .label = "radiance_cache_update/rounds"});
+      return;
+    }
     // Rounds 1 .. cache_max_probe over the hits still unplaced: indirect, 0 groups once none is.
     for (uint32_t round = 1; round <= r.cache_max_probe; ++round) {
       push.extra.y = round;
       record_compute(ctx, {.shader = "radiance_cache_update.comp",
                            .push = &push,
                            .push_bytes = sizeof(push),
-                           .spec_constants = {{kRcUpdateSpecKernel, kRcUpdateKernelRound}},
+                           .spec_constants = {{kRcUpdateSpecKernel, kRcUpdateKernelRound}, group_counts},
                            .buffers = buffers,
                            .indirect = "rc_counters",
                            .indirect_offset = sizeof(RcCounters) + uint64_t(round - 1) * sizeof(RcRoundArgs),
