@@ -248,8 +248,10 @@ std::string seed_column(const SeedTable& table, const TechniqueRun& r) {
 }
 
 // Seed comparison of one run: per table row, our scaled cost of the passes that make it up.
+// `flop_by_pass`: the same scaled costs without the occupancy term (the FLOP split alone).
 void add_seed_rows(const SeedTable& table, const TechniqueRun& r,
-                   const std::map<std::string, std::map<std::string, double>>& scaled_by_pass, nlohmann::json& jseed) {
+                   const std::map<std::string, std::map<std::string, double>>& scaled_by_pass,
+                   const std::map<std::string, std::map<std::string, double>>& flop_by_pass, nlohmann::json& jseed) {
   const std::string selected = seed_column(table, r);
   for (const ConsoleProfile* p : r.workload.profiles)
     for (const SeedPlatform& platform : table.platforms) {
@@ -262,11 +264,13 @@ void add_seed_rows(const SeedTable& table, const TechniqueRun& r,
       const std::string& column = platform.column;
       auto mine = scaled_by_pass.find(p->name);
       if (mine == scaled_by_pass.end()) continue;
-      std::map<std::string, double> ours;
+      std::map<std::string, double> ours, ours_flop;
       std::map<std::string, std::vector<std::string>> passes;
+      const auto& flop = flop_by_pass.at(p->name);
       for (auto& [pass, ms] : mine->second)
         if (auto k = table.pass_row.find(pass); k != table.pass_row.end()) {
           ours[k->second] += ms;
+          ours_flop[k->second] += flop.at(pass);
           passes[k->second].push_back(pass);
         }
       for (auto& [row, ms] : ours) {
@@ -275,6 +279,8 @@ void add_seed_rows(const SeedTable& table, const TechniqueRun& r,
         jseed.push_back({{"table", table.name}, {"technique", r.name}, {"base_technique", r.technique->name},
                          {"column", column}, {"profile", p->name}, {"seed_key", row}, {"passes", passes[row]},
                          {"ours_ms", ms}, {"seed_ms", it->second}, {"ratio", it->second > 0 ? ms / it->second : 0.0},
+                         {"ours_ms_flop_split", ours_flop[row]},
+                         {"ratio_flop_split", it->second > 0 ? ours_flop[row] / it->second : 0.0},
                          {"resolution", {r.workload.width, r.workload.height}},
                          {"seed_resolution", {sp->width, sp->height}}});
       }
@@ -300,25 +306,31 @@ void print_seed_comparison(const std::vector<SeedTable>& seeds, const std::vecto
                  ran ? "no run at a profile the table has" : "not run", fmt::join(profiles, ", "));
       continue;
     }
-    fmt::print("{:<22} {:<14} {:<12} {:<32} {:>10} {:>10} {:>8}  {}\n", "technique", "profile", "column", "seed row",
-               "ours ms", "seed ms", "ratio", "our passes");
-    std::map<std::tuple<std::string, std::string, std::string>, std::pair<double, double>> sums;
+    // "flop only": the ratio the FLOP / bandwidth split gives without the occupancy term.
+    fmt::print("{:<22} {:<14} {:<12} {:<32} {:>10} {:>10} {:>8} {:>10}  {}\n", "technique", "profile", "column", "seed row",
+               "ours ms", "seed ms", "ratio", "flop only", "our passes");
+    struct Sum {
+      double ours = 0, seed = 0, flop = 0;
+    };
+    std::map<std::tuple<std::string, std::string, std::string>, Sum> sums;
     for (auto* e : rows) {
       const std::string column = (*e)["column"];
-      fmt::print("{:<22} {:<14} {:<12} {:<32} {:>10} {:>10} {:>7.2f}x  {}\n", (*e)["technique"].get<std::string>(),
+      fmt::print("{:<22} {:<14} {:<12} {:<32} {:>10} {:>10} {:>7.2f}x {:>9.2f}x  {}\n", (*e)["technique"].get<std::string>(),
                  (*e)["profile"].get<std::string>(), column.empty() ? "-" : column,
                  (*e)["seed_key"].get<std::string>(), fmt_ms((*e)["ours_ms"]), fmt_ms((*e)["seed_ms"]),
-                 (*e)["ratio"].get<double>(), fmt::join((*e)["passes"].get<std::vector<std::string>>(), "+"));
+                 (*e)["ratio"].get<double>(), (*e)["ratio_flop_split"].get<double>(),
+                 fmt::join((*e)["passes"].get<std::vector<std::string>>(), "+"));
       auto& s = sums[{(*e)["technique"], (*e)["profile"], column}];
-      s.first += (*e)["ours_ms"].get<double>();
-      s.second += (*e)["seed_ms"].get<double>();
+      s.ours += (*e)["ours_ms"].get<double>();
+      s.seed += (*e)["seed_ms"].get<double>();
+      s.flop += (*e)["ours_ms_flop_split"].get<double>();
     }
     for (auto& [k, s] : sums) {
       const SeedPlatform* sp = table.find(std::get<1>(k), std::get<2>(k));
       const bool total = sp && !table.total_row.empty() && sp->ms.count(table.total_row);
-      fmt::print("{:<22} {:<14} {:<12} {:<32} {:>10} {:>10} {:>7.2f}x  (seed {} {} ms)\n", std::get<0>(k), std::get<1>(k),
-                 std::get<2>(k).empty() ? "-" : std::get<2>(k), "sum of matched rows", fmt_ms(s.first),
-                 fmt_ms(s.second), s.second > 0 ? s.first / s.second : 0.0,
+      fmt::print("{:<22} {:<14} {:<12} {:<32} {:>10} {:>10} {:>7.2f}x {:>9.2f}x  (seed {} {} ms)\n", std::get<0>(k),
+                 std::get<1>(k), std::get<2>(k).empty() ? "-" : std::get<2>(k), "sum of matched rows", fmt_ms(s.ours),
+                 fmt_ms(s.seed), s.seed > 0 ? s.ours / s.seed : 0.0, s.seed > 0 ? s.flop / s.seed : 0.0,
                  table.total_row.empty() ? "total" : table.total_row,
                  total ? fmt_ms(sp->ms.at(table.total_row)) : "-");
     }
@@ -694,6 +706,7 @@ int cmd_bench(const BenchOptions& o) {
     double aov_only_meas = 0;
     double meas_total = 0, full_total = 0, bytes_total = 0, mem_total = 0, comp_total = 0;
     std::map<std::string, std::map<std::string, double>> scaled_by_pass;  // profile -> pass -> ms
+    std::map<std::string, std::map<std::string, double>> flop_by_pass;    // the same without the occupancy term
     std::map<std::string, std::vector<std::pair<std::string, double>>> pass_order;  // the same, in run order
     for (auto& pr : r.passes) {
       Summary s = summarize_samples(pr.samples);
@@ -733,6 +746,7 @@ int cmd_bench(const BenchOptions& o) {
         if (aov_only) aov_only_scaled[p->name] += ms;
         line += fmt::format(" {:>13}", fmt_ms(ms));
         scaled_by_pass[p->name][pr.name] += ms;
+        flop_by_pass[p->name][pr.name] += scaled_flop[p->name].get<double>();
         pass_order[p->name].push_back({pr.name, ms});
       }
       fmt::print("{}\n", line);
@@ -863,7 +877,7 @@ int cmd_bench(const BenchOptions& o) {
     jruns.push_back(jr);
 
     for (const SeedTable& table : seeds)
-      if (table.technique == r.technique->name) add_seed_rows(table, r, scaled_by_pass, jseed);
+      if (table.technique == r.technique->name) add_seed_rows(table, r, scaled_by_pass, flop_by_pass, jseed);
   }
   print_seed_comparison(seeds, techs, jseed);
   if (!o.budget_html.empty()) {
