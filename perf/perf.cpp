@@ -739,14 +739,15 @@ int cmd_bench(const BenchOptions& o) {
         if (std::fabs(occ - 1) > 0.005) occ_line += fmt::format(" x{:.3f} @ {}", occ, p->name);
         const bool by_fill = raster.has_value();
         const double fill_ms = raster.value_or(0.0);
-        double ms = by_fill ? fill_ms : scale_to_profile(split, thr, *p, occ);
-        scaled_flop[p->name] = by_fill ? fill_ms : scale_to_profile(split, thr, *p);
+        const double ms = by_fill ? fill_ms : scale_to_profile(split, thr, *p, occ);
+        const double flop_ms = by_fill ? fill_ms : scale_to_profile(split, thr, *p);
+        scaled_flop[p->name] = flop_ms;
         scaled[p->name] = ms;
         scaled_total[p->name] += ms;
         if (aov_only) aov_only_scaled[p->name] += ms;
         line += fmt::format(" {:>13}", fmt_ms(ms));
         scaled_by_pass[p->name][pr.name] += ms;
-        flop_by_pass[p->name][pr.name] += scaled_flop[p->name].get<double>();
+        flop_by_pass[p->name][pr.name] += flop_ms;
         pass_order[p->name].push_back({pr.name, ms});
       }
       fmt::print("{}\n", line);

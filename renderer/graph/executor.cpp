@@ -446,12 +446,6 @@ std::map<std::string, ResolvedSlot> Executor::bind_slots(const PassDecl& decl) {
 
 namespace {
 
-uint32_t timed_dispatches(const std::vector<LoggedDispatch>& log) {
-  uint32_t n = 0;
-  for (auto& d : log) n += d.query >= 0;
-  return n;
-}
-
 // Thread counts (an indirect dispatch's groups read back now, after the frame ran) and, where
 // a timestamp was written after the dispatch, the time since the previous stamp of the pass.
 std::vector<DispatchTiming> resolve_dispatches(Gpu& gpu, const std::vector<LoggedDispatch>& log,
@@ -511,7 +505,8 @@ FrameResult Executor::run_frame() {
   const uint32_t query_count = per_pass_submit ? 2u
                                                : static_cast<uint32_t>(running.size() * 2 + (scan ? 1 : 0)) +
                                                      (dispatch_timestamps ? kProfileQueries : 0u);
-  std::vector<uint32_t> pass_query(running.size(), 0);  // each pass's start query (GPU)
+  // Each pass's start and end queries (GPU): dispatch stamps of the profile lie between them.
+  std::vector<uint32_t> pass_query(running.size(), 0), pass_end_query(running.size(), 0);
   std::vector<std::vector<LoggedDispatch>> logged(running.size());
   for (size_t i = 0; i < running.size(); ++i) {
     const PlannedPass* pp = running[i];
@@ -533,6 +528,7 @@ FrameResult Executor::run_frame() {
       RecordContext ctx(gpu_, *cmd, scene_, scene_gpu_, settings_, frame_, decl.name, bind_slots(decl));
       passes_[pp->decl_index]->record(ctx);
     }
+    pass_end_query[i] = q;
     cmd->timestamp(q++);
     cmd->end_label();
     if (per_pass_submit) {
@@ -562,22 +558,20 @@ FrameResult Executor::run_frame() {
     if (scan) cmd->timestamp(q++);  // closes the last pass's scans
     ns = gpu_.submit(std::move(cmd));
     const size_t n = running.size();
-    // Pass i's queries: its start at pass_query[i], then one per timed dispatch, then its end.
-    auto end_query = [&](size_t i) { return pass_query[i] + 1 + timed_dispatches(logged[i]); };
     for (size_t i = 0; i < n; ++i) {
-      fr.passes.push_back({running[i]->name, (ns[end_query(i)] - ns[pass_query[i]]) * 1e-6, {}});
+      fr.passes.push_back({running[i]->name, (ns[pass_end_query[i]] - ns[pass_query[i]]) * 1e-6, {}});
       fr.passes.back().dispatches = resolve_dispatches(gpu_, logged[i], ns, ns[pass_query[i]]);
     }
-    if (n && ns.size() > end_query(n - 1)) {
-      // The scans after pass i lie between its end timestamp and the next pass's start.
+    if (n && ns.size() > pass_end_query[n - 1]) {
+      // The scans after pass i lie between its end timestamp and the next pass's start; the
+      // last pass's, between its end and the closing stamp, outside the frame's span.
+      double between = 0;
       for (size_t i = 0; i + 1 < n; ++i)
-        if (scanned_after[i]) fr.scan_ms += (ns[pass_query[i + 1]] - ns[end_query(i)]) * 1e-6;
-      if (scanned_after[n - 1] && ns.size() > end_query(n - 1) + 1)
-        fr.scan_ms += (ns[end_query(n - 1) + 1] - ns[end_query(n - 1)]) * 1e-6;
-      double last_pass_scan = scanned_after[n - 1] && ns.size() > end_query(n - 1) + 1
-                                  ? (ns[end_query(n - 1) + 1] - ns[end_query(n - 1)]) * 1e-6
-                                  : 0.0;
-      fr.total_ms = (ns[end_query(n - 1)] - ns[0]) * 1e-6 - (fr.scan_ms - last_pass_scan);
+        if (scanned_after[i]) between += (ns[pass_query[i + 1]] - ns[pass_end_query[i]]) * 1e-6;
+      const size_t last = pass_end_query[n - 1];
+      const double last_pass_scan = scanned_after[n - 1] && ns.size() > last + 1 ? (ns[last + 1] - ns[last]) * 1e-6 : 0.0;
+      fr.scan_ms += between + last_pass_scan;
+      fr.total_ms = (ns[last] - ns[0]) * 1e-6 - between;
     }
   }
   if (scan_reset) collect_scan_results();
