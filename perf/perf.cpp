@@ -35,12 +35,44 @@
 
 namespace gib::perf {
 
-PassBytes pass_bytes(const Plan& plan, const PlannedPass& pass) {
+std::optional<double> touched_elements(const Touched& t, const std::map<std::string, double>& counters) {
+  double elements = t.fixed;
+  for (const Touched::Per& p : t.per) {
+    const auto it = counters.find(p.counter);
+    if (it == counters.end()) return std::nullopt;
+    elements += p.count * it->second;
+  }
+  return std::max(0.0, elements);
+}
+
+uint64_t touched_bytes(const Touched& t, double elements, uint64_t resource_bytes) {
+  constexpr double kSectorBytes = 32;
+  const double each = t.contiguous ? double(t.element_bytes) : std::max(kSectorBytes, double(t.element_bytes));
+  return uint64_t(std::min(double(resource_bytes), std::ceil(std::max(0.0, elements) * each)));
+}
+
+PassBytes pass_bytes(const Plan& plan, const PlannedPass& pass, const std::map<std::string, double>* counters) {
   PassBytes b;
   b.written = pass.bytes_written;
   for (auto& s : pass.slots) {
-    if (s.access == Access::write) continue;
-    if (const ResolvedResource* r = plan.find(s.name)) b.read += r->bytes_per_copy ? r->bytes_per_copy : r->bytes;
+    const ResolvedResource* r = plan.find(s.name);
+    if (!r) continue;
+    const uint64_t size = r->bytes_per_copy ? r->bytes_per_copy : r->bytes;
+    uint64_t moved = size;
+    if (s.touched) {
+      const std::optional<double> elements = counters ? touched_elements(*s.touched, *counters) : std::nullopt;
+      if (elements) {
+        moved = touched_bytes(*s.touched, *elements, size);
+        b.sparse.push_back(fmt::format("{} {} bytes ({:.0f} elements)", s.name, moved, *elements));
+      } else {
+        b.unresolved.push_back(s.name);
+      }
+    }
+    if (s.access != Access::write) b.read += moved;
+    // The plan's bytes_written counts each written slot's copy (compile.cpp): the sparse one
+    // moves less.
+    if (s.touched && (s.access == Access::write || s.access == Access::read_write))
+      b.written = b.written - r->bytes_per_copy + std::min(moved, r->bytes_per_copy);
   }
   return b;
 }
@@ -623,6 +655,28 @@ int cmd_bench(const BenchOptions& o) {
       std::fflush(stdout);
     }
   const double run_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  // Sparse slots (Slot::touched) count the bytes their GPU-counted work moves, known only now:
+  // the run's measured counters by name (PassDecl::measured; declared work is not used, its
+  // names repeat across passes).
+  for (auto& r : runs) {
+    std::map<std::string, double> measured;
+    for (auto* pp : r.plan_run.running())
+      for (const MeasuredCounter& m : pp->measured)
+        for (auto& pr : r.passes)
+          if (pr.name == pp->name && pr.counters.contains(m.name)) measured[m.name] = pr.counters[m.name].get<double>();
+    for (auto& pr : r.passes) {
+      const PlannedPass *run_pass = nullptr, *full_pass = nullptr;
+      for (auto* pp : r.plan_run.running())
+        if (pp->name == pr.name) run_pass = pp;
+      for (auto* pp : r.plan_full.running())
+        if (pp->name == pr.name) full_pass = pp;
+      if (!run_pass) continue;
+      if (!full_pass) full_pass = run_pass;
+      pr.bytes_run = pass_bytes(r.plan_run, *run_pass, &measured);
+      pr.bytes_full = pass_bytes(full_pass == run_pass ? r.plan_run : r.plan_full, *full_pass, &measured);
+      if (pr.bytes_run.total()) pr.work_scale = double(pr.bytes_full.total()) / double(pr.bytes_run.total());
+    }
+  }
 
   nlohmann::json out;
   out["format"] = "gibench-perf-1";
@@ -820,6 +874,8 @@ int cmd_bench(const BenchOptions& o) {
                               {"bytes_read", pr.bytes_run.read},
                               {"bytes_written", pr.bytes_run.written},
                               {"bytes_read_full", pr.bytes_full.read},
+                              {"sparse_slots", pr.bytes_full.sparse},
+                              {"sparse_slots_unresolved", pr.bytes_full.unresolved},
                               {"bytes_written_full", pr.bytes_full.written},
                               {"work_scale", pr.work_scale},
                               {"device_ms_full", full_ms},
@@ -859,6 +915,13 @@ int cmd_bench(const BenchOptions& o) {
           fmt::print("measured work (GPU counters after the timed frames, at {}): {}: {}\n", w.run_name(), pr.name,
                      fmt::join(parts, ", "));
         }
+    }
+    for (auto& pr : r.passes) {
+      if (!pr.bytes_full.sparse.empty())
+        fmt::print("sparse access (bytes moved, not the buffer's size): {}: {}\n", pr.name, fmt::join(pr.bytes_full.sparse, "; "));
+      if (!pr.bytes_full.unresolved.empty())
+        fmt::print("sparse access counted at the buffer's size (its counter was not measured): {}: {}\n", pr.name,
+                   fmt::join(pr.bytes_full.unresolved, ", "));
     }
     const std::string fkey = fmt::format("{}/frame/{}", r.name, w.run_name());
     medians[fkey] = fs.median;

@@ -10,6 +10,7 @@
 #pragma once
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -77,12 +78,24 @@ struct DiffOptions {
 int cmd_perf_diff(const DiffOptions& o);
 
 // Bytes a running pass touches per frame: resources it reads (read, read_write, read_prev; one
-// copy each) and the plan's bytes_written.
+// copy each) and the plan's bytes_written. A slot that declares a sparse access (Slot::touched)
+// counts the bytes it moves instead of the resource's size, once `counters` (the run's
+// GPU-counted work by name: PassDecl::measured, read back by bench) are known; without them, or
+// when its counter was not measured, the resource's size (and `unresolved` names the slot).
 struct PassBytes {
   uint64_t read = 0, written = 0;
   uint64_t total() const { return read + written; }
+  std::vector<std::string> sparse;      // "slot: N bytes (E elements)" for each touched slot counted
+  std::vector<std::string> unresolved;  // touched slots counted at full size: their counter is unknown
 };
-PassBytes pass_bytes(const Plan& plan, const PlannedPass& pass);
+PassBytes pass_bytes(const Plan& plan, const PlannedPass& pass,
+                     const std::map<std::string, double>* counters = nullptr);
+// The elements a sparse access moves (Slot::touched) given the measured counters; nullopt when
+// one of its counters is not among them.
+std::optional<double> touched_elements(const Touched& t, const std::map<std::string, double>& counters);
+// The bytes those elements move: elements x element_bytes (rounded up to a 32-byte sector
+// unless contiguous), at most `resource_bytes`.
+uint64_t touched_bytes(const Touched& t, double elements, uint64_t resource_bytes);
 
 // Samples per benchmark key from a `gibench bench --json` file ("<technique>/<pass>/<WxH>",
 // ms per frame) or a Google Benchmark JSON file (run_name, one sample per repetition, ms).

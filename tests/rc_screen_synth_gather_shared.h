@@ -15,7 +15,8 @@ struct SynthPush {
   float split_y;      // gather pixels whose surface lies above this height get `high`
   float low, high;    // L0 of every channel; +-noise added per pixel
   float noise;
-  uint pad0, pad1, pad2;
+  uint nan_every;     // > 0: every nan_every-th surface gather pixel (g.x + 7 g.y) gets a NaN in SH r's L1 x
+  uint pad1, pad2;
 };
 GIB_SHARED_END
 #endif

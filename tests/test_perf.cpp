@@ -196,6 +196,52 @@ TEST(PerfModel, PassBytesFromThePlan) {
   EXPECT_EQ(b.written, 8u * 4 * 4);
 }
 
+// Sparse slots (Slot::touched) count the bytes their measured work moves: a scattered element
+// moves a 32-byte sector, an appended one its own size, never more than the buffer; a
+// read_write slot counts them as read and as written; without the counters (or with one
+// missing) the buffer's size, and the slot is named as unresolved.
+TEST(PerfModel, SparseSlotsCountTheBytesTheirWorkMoves) {
+  Touched cells{1000, {{"collisions", 1}, {"queued", 2}}, 16, false};
+  const std::map<std::string, double> counters = {{"collisions", 10}, {"queued", 5}};
+  ASSERT_TRUE(touched_elements(cells, counters).has_value());
+  EXPECT_DOUBLE_EQ(*touched_elements(cells, counters), 1000 + 10 + 2 * 5);
+  EXPECT_FALSE(touched_elements(cells, {{"collisions", 10}}).has_value());
+  EXPECT_EQ(touched_bytes(cells, 1020, 1u << 20), 1020u * 32);        // 16-byte cells: a sector each
+  EXPECT_EQ(touched_bytes(cells, 1e9, 1u << 20), uint64_t(1) << 20);  // never more than the buffer
+  Touched list{0, {{"queued", 1}}, 4, true};
+  EXPECT_EQ(touched_bytes(list, 5, 1u << 20), 20u);  // appended: 4 bytes each
+  Touched big{0, {}, 48, false};
+  EXPECT_EQ(touched_bytes(big, 2, 1u << 20), 96u);  // elements larger than a sector: their size
+
+  std::vector<PassDecl> decls(2);
+  decls[0].name = "make";
+  ResourceDesc table{Format::buffer, SizeRule::buffer};
+  table.bytes = 1u << 20;
+  ResourceDesc list_desc{Format::buffer, SizeRule::buffer};
+  list_desc.bytes = 4096;
+  decls[0].slots = {{"table", Access::write, table}, {"list", Access::write, list_desc}};
+  decls[1].name = "update";
+  decls[1].slots = {{"table", Access::read_write, {}, cells}, {"list", Access::read, {}, list}};
+  decls[1].side_effect = true;
+  CompileOptions co;
+  Plan plan = compile(decls, co);
+  auto running = plan.running();
+  ASSERT_EQ(running.size(), 2u);
+  const PassBytes before = pass_bytes(plan, *running[1]);
+  EXPECT_EQ(before.read, (1u << 20) + 4096u);
+  EXPECT_EQ(before.written, 1u << 20);
+  EXPECT_EQ(before.unresolved, (std::vector<std::string>{"table", "list"}));
+  const PassBytes after = pass_bytes(plan, *running[1], &counters);
+  EXPECT_EQ(after.read, 1020u * 32 + 5u * 4);
+  EXPECT_EQ(after.written, 1020u * 32);
+  EXPECT_TRUE(after.unresolved.empty());
+  EXPECT_EQ(after.sparse.size(), 2u);
+  const std::map<std::string, double> partial = {{"queued", 5}};
+  const PassBytes half = pass_bytes(plan, *running[1], &partial);
+  EXPECT_EQ(half.read, (1u << 20) + 5u * 4);
+  EXPECT_EQ(half.unresolved, std::vector<std::string>{"table"});
+}
+
 TEST(PerfModel, ScaleParsing) {
   EXPECT_DOUBLE_EQ(parse_scale("1/8"), 0.125);
   EXPECT_DOUBLE_EQ(parse_scale("0.25"), 0.25);

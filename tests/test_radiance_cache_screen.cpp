@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
@@ -18,6 +19,7 @@
 #include "renderer/techniques/radiance_cache/final_gather/final_gather_shared.h"
 #include "renderer/passes/gbuffer/gbuffer.h"
 #include "renderer/techniques/radiance_cache/gi_denoise/gi_denoise.h"
+#include "renderer/techniques/radiance_cache/gi_denoise/gi_denoise_shared.h"
 #include "renderer/techniques/radiance_cache/gi_upscale/gi_upscale.h"
 #include "renderer/techniques/radiance_cache/irradiance_volume_update/irradiance_volume_update.h"
 #include "renderer/techniques/radiance_cache/probe_trace/probe_trace.h"
@@ -503,6 +505,155 @@ TEST_F(RadianceCacheScreen, DenoiseTileKnownAnswersAtRadius0And16) {
       EXPECT_GT(differing, values / 8);  // radius 16 does filter
     }
   }
+}
+
+// Values of a and b (float bit patterns) that differ: a NaN equals any NaN (its payload may
+// differ between two paths that both propagate it).
+size_t bits_differ(const std::vector<uint32_t>& a, const std::vector<uint32_t>& b) {
+  size_t n = 0;
+  auto nan = [](uint32_t u) { return (u & 0x7fffffffu) > 0x7f800000u; };
+  for (size_t i = 0; i < a.size(); ++i) n += a[i] != b[i] && !(nan(a[i]) && nan(b[i]));
+  return n;
+}
+
+// A NaN G-buffer normal written at frame 1 on the representative pixel of a gather pixel near
+// the centre (as tests/test_nan_guards.cpp), with the NaN guards on or off.
+void inject_nan_normal(Settings& s, bool guards) {
+  const uint32_t div = gather_divisor(rc(s));
+  s.nan_guards = guards;
+  s.debug.inject_nan = 1;
+  s.debug.inject_frame = 1;
+  s.debug.inject_x = s.width / 2 / div * div + div / 2;
+  s.debug.inject_y = s.height / 2 / div * div + div / 2;
+}
+
+// gi_denoise's two kernels (denoise_kernel 0: taps preloaded to a group-shared tile; 1: each tap
+// reads the images) give the same SH and direct part bit for bit, frame after frame, at radii up
+// to the tile's limit, with the hit-distance weight off and on, on a size whose gather
+// resolution is not a multiple of the 8x8 groups (partial tiles at the right and bottom edges).
+// A tile indexed one texel off, or a tap outside the image not skipped, fails it.
+TEST_F(RadianceCacheScreen, DenoiseKernelsAgreeBitForBit) {
+  Scene scene = box_scene();
+  // mode 0: no injection; 1, 2: a NaN normal with the guards on, off.
+  for (uint32_t radius : {1u, 3u, glsl::kDenoiseTileMaxRadius})
+    for (uint32_t hit_weight : {0u, 1u})
+      for (int mode = 0; mode < 3; ++mode) {
+        SCOPED_TRACE("radius " + std::to_string(radius) + ", hit weight " + std::to_string(hit_weight) +
+                     (mode == 0 ? "" : mode == 1 ? ", NaN normal, guards on" : ", NaN normal, guards off"));
+        auto run = [&](uint32_t kernel) {
+          Settings s = small_settings(72, 40);
+          rc(s).denoise_radius = radius;
+          rc(s).denoise_hit_weight = hit_weight;
+          rc(s).denoise_kernel = kernel;
+          if (mode) inject_nan_normal(s, mode == 1);
+          Executor ex(gpu(), scene, s, screen_passes(), {"final_color", "gi_sh_r", "gi_sh_g", "gi_sh_b", "gi_direct"});
+          std::vector<uint32_t> bits;
+          for (int f = 0; f < 3; ++f) {  // the screen cache answers from frame 1: bounce light in the SH
+            ex.run_frame();
+            for (const char* name : {"gi_sh_r", "gi_sh_g", "gi_sh_b", "gi_direct"})
+              for (float v : ex.read(name).pixels) bits.push_back(std::bit_cast<uint32_t>(v));
+          }
+          return bits;
+        };
+        const std::vector<uint32_t> tiled = run(0), per_tap = run(1);
+        ASSERT_EQ(tiled.size(), per_tap.size());
+        size_t nonzero = 0, nan = 0;
+        for (uint32_t u : per_tap) {
+          nonzero += (u & 0x7fffffffu) != 0;
+          nan += (u & 0x7fffffffu) > 0x7f800000u;
+        }
+        EXPECT_EQ(bits_differ(tiled, per_tap), 0u) << "of " << tiled.size() << " values";
+        EXPECT_GT(nonzero, tiled.size() / 8) << "the outputs are mostly zero: the comparison sees nothing";
+        if (mode == 2) {
+          EXPECT_GT(nan, 0u) << "without guards the injected NaN must reach the denoise's output";
+        } else {
+          EXPECT_EQ(nan, 0u);
+        }
+      }
+}
+
+// The tiled denoise tests each tile texel's values for the NaN guard once, the per-tap kernel at
+// every tap: on a synthetic gather with a NaN in some pixels' SH, both skip the same taps (the
+// output is finite and equal bit for bit), and without guards both spread the NaN.
+TEST_F(RadianceCacheScreen, DenoiseKernelsSkipTheSameNanTaps) {
+  Scene scene = box_scene();
+  for (bool guards : {true, false}) {
+    SCOPED_TRACE(guards ? "guards on" : "guards off");
+    auto run = [&](uint32_t kernel) {
+      Settings s = small_settings(72, 40);
+      s.nan_guards = guards;
+      rc(s).denoise_kernel = kernel;
+      std::vector<std::unique_ptr<Pass>> passes;
+      passes.push_back(make_visibility_pass());
+      passes.push_back(make_gbuffer_pass());
+      passes.push_back(std::make_unique<SynthGather>(glsl::SynthPush{2, 1.5f, 1, 4, 0.5f, 5, 0, 0}));
+      passes.push_back(make_gi_denoise_pass());
+      Executor ex(gpu(), scene, s, std::move(passes), {"gi_sh_r", "gi_sh_g", "gi_sh_b", "gi_direct"});
+      ex.run_frame();
+      std::vector<uint32_t> bits;
+      for (const char* name : {"gi_sh_r", "gi_sh_g", "gi_sh_b", "gi_direct"})
+        for (float v : ex.read(name).pixels) bits.push_back(std::bit_cast<uint32_t>(v));
+      return bits;
+    };
+    const std::vector<uint32_t> tiled = run(0), per_tap = run(1);
+    ASSERT_EQ(tiled.size(), per_tap.size());
+    size_t nan = 0;
+    for (uint32_t u : tiled) nan += (u & 0x7fffffffu) > 0x7f800000u;
+    EXPECT_EQ(bits_differ(tiled, per_tap), 0u) << "of " << tiled.size() << " values";
+    if (guards) {
+      EXPECT_EQ(nan, 0u);
+    } else {
+      EXPECT_GT(nan, 0u) << "without guards the NaN taps must reach the output";
+    }
+  }
+}
+
+// gi_upscale's two kernels (upscale_kernel 0: the group's gather samples preloaded to a
+// group-shared tile; 1: each tap reads the images) give the same history, frame counter and
+// outputs bit for bit, frame after frame, at every gather divisor (the tile's extent differs:
+// 11, 8 and 6 gather pixels), on a size that is not a multiple of the 8x8 groups, with the
+// camera moving between frames (so the history is reprojected, not copied).
+TEST_F(RadianceCacheScreen, UpscaleKernelsAgreeBitForBit) {
+  Scene scene = box_scene();
+  scene.camera.animation = {{0, {0, 3, 5}, {0, 0.5f, 0}, 50}, {3, {0.3f, 3.1f, 5}, {0.3f, 0.5f, 0}, 50}};
+  // mode 0: no injection; 1, 2: a NaN normal with the guards on, off (history RGBA16F, which can
+  // hold the NaN).
+  for (uint32_t divisor : {1u, 2u, 4u})
+    for (int mode = 0; mode < 3; ++mode) {
+      SCOPED_TRACE("divisor " + std::to_string(divisor) +
+                   (mode == 0 ? "" : mode == 1 ? ", NaN normal, guards on" : ", NaN normal, guards off"));
+      auto run = [&](uint32_t kernel) {
+        Settings s = small_settings(76, 44);
+        rc(s).gather_divisor = divisor;
+        rc(s).upscale_kernel = kernel;
+        if (mode) {
+          inject_nan_normal(s, mode == 1);
+          rc(s).history_format = 1;
+        }
+        Executor ex(gpu(), scene, s, screen_passes(), {"final_color", "gi_irradiance", "gi_direct_irradiance"});
+        std::vector<uint32_t> bits;
+        for (int f = 0; f < 4; ++f) {  // the screen cache answers from frame 1: bounce light in the SH
+          ex.run_frame();
+          for (const char* name : {"gi_irradiance", "gi_direct_irradiance", "gi_history_frames"})
+            for (float v : ex.read(name).pixels) bits.push_back(std::bit_cast<uint32_t>(v));
+        }
+        return bits;
+      };
+      const std::vector<uint32_t> tiled = run(0), per_tap = run(1);
+      ASSERT_EQ(tiled.size(), per_tap.size());
+      size_t nonzero = 0, nan = 0;
+      for (uint32_t u : per_tap) {
+        nonzero += (u & 0x7fffffffu) != 0;
+        nan += (u & 0x7fffffffu) > 0x7f800000u;
+      }
+      EXPECT_EQ(bits_differ(tiled, per_tap), 0u) << "of " << tiled.size() << " values";
+      EXPECT_GT(nonzero, tiled.size() / 4) << "the outputs are mostly zero: the comparison sees nothing";
+      if (mode == 2) {
+        EXPECT_GT(nan, 0u) << "without guards the injected NaN must reach the upscale's output";
+      } else {
+        EXPECT_EQ(nan, 0u);
+      }
+    }
 }
 
 // Every history format runs; RGB9E5 and RGBA16F stay within their precision of RGBA32F (the

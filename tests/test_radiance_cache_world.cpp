@@ -345,15 +345,20 @@ MirrorInsertion mirror_insertion(const std::vector<glsl::RcCell>& before, const 
 // The pass's table and counters against the mirror, frame by frame, in the room and with a
 // table so small that most keys collide and many are dropped.
 // Both layouts of rounds 1 .. max_probe (insertion_rounds 0: one workgroup walks every round;
-// 1: one indirect dispatch per round) and both counter layouts (update_counters) are checked.
+// 1: one indirect dispatch per round), both counter layouts (update_counters) and both places of
+// round 0 (insertion_find 0: in probe_trace; 1: a dispatch of radiance_cache_update) are checked.
 TEST_F(RadianceCacheWorld, InsertionMatchesCpuMirrorOfAllRounds) {
   Scene scene = parse_scene(nlohmann::json::parse(kRoom), "room");
-  for (int run = 0; run < 6; ++run) {
-    const int tiny = run % 2;
+  for (int run = 0; run < 8; ++run) {
+    const int tiny = run % 2, layout = run / 2;
     Settings s = small_settings();
-    rc(s).insertion_rounds = uint32_t(run / 2 == 1);
-    rc(s).update_counters = run / 2 == 2 ? 1u : 0u;  // lavapipe's default is per subgroup: also the GPUs' layout
-    SCOPED_TRACE(run / 2 == 1 ? "one dispatch per round" : run / 2 == 2 ? "counters per workgroup" : "rounds in one workgroup");
+    rc(s).insertion_rounds = uint32_t(layout == 1);
+    rc(s).update_counters = layout == 2 ? 1u : 0u;  // lavapipe's default is per subgroup: also the GPUs' layout
+    rc(s).insertion_find = uint32_t(layout == 3);
+    SCOPED_TRACE(layout == 1   ? "one dispatch per round"
+                 : layout == 2 ? "counters per workgroup"
+                 : layout == 3 ? "find in a dispatch of its own"
+                               : "rounds in one workgroup");
     if (tiny) {
       rc(s).cache_log2_cells = 6;
       rc(s).cache_max_probe = 4;

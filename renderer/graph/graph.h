@@ -94,10 +94,29 @@ std::string describe(const ResourceDesc& d);  // "rgba16_float half persistent"
 enum class Access : uint32_t { read, write, read_write, read_prev };
 const char* access_name(Access a);
 
+// What a pass moves of a buffer it touches sparsely (a hash table's cells, a list's entries),
+// for `gibench bench`'s memory time in place of the buffer's size (perf.h, pass_bytes):
+// elements = fixed + the sum of count x the GPU-counted work `counter` over `per` (each counter
+// a PassDecl::measured name of any running pass, read back after the timed frames). Each element
+// moves element_bytes rounded up to a 32-byte sector (a scattered access moves a whole sector),
+// or exactly element_bytes when `contiguous` (an appended list). Never more than the buffer.
+// An upper bound: no element is assumed to stay in a cache.
+struct Touched {
+  struct Per {
+    std::string counter;
+    double count = 0;  // elements per unit of the counter
+  };
+  double fixed = 0;
+  std::vector<Per> per;
+  uint32_t element_bytes = 0;
+  bool contiguous = false;
+};
+
 struct Slot {
   std::string name;  // resource name: a noun, e.g. "vbuffer", "gbuffer_normal"
   Access access = Access::read;
   ResourceDesc desc;  // meaningful on write / read_write (the producer defines the resource)
+  std::optional<Touched> touched;  // a sparse access: the bytes it moves (bench only)
 };
 
 enum class PassKind : uint32_t { compute, graphics, transfer };

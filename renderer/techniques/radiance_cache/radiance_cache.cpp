@@ -135,11 +135,24 @@ std::vector<TechniqueOption> own_options() {
              "radiance_cache_update's insertion rounds 1 .. cache_max_probe: 0 in one dispatch of one workgroup "
              "(a barrier between rounds), 1 one indirect dispatch per round; the same table and counters",
              0, 1, &S::insertion_rounds),
+      option("insertion_find",
+             "radiance-cache insertion round 0 (the find: each hit's key searched, placed, queued or bid): 0 in "
+             "probe_trace as each ray is traced (the seed's: the trace triggers the cache update), 1 in a dispatch "
+             "of its own at the start of radiance_cache_update over every hit record; the same table and counters",
+             0, 1, &S::insertion_find),
       option("update_counters",
              "radiance_cache_update's counters: 0 by device (GPU: summed per workgroup in shared memory, one atomic "
              "per workgroup; CPU device: one atomic per subgroup, no group barrier), 1 per workgroup, 2 per subgroup; "
              "the same sums",
              0, 2, &S::update_counters),
+      option("denoise_kernel",
+             "gi_denoise's kernel: 0 each group preloads its taps into shared memory (the seed's) where the radius "
+             "fits the tile (<= 8), else as 1; 1 each tap reads the images; the same values and arithmetic",
+             0, 1, &S::denoise_kernel),
+      option("upscale_kernel",
+             "gi_upscale's kernel: 0 each group preloads the gather samples its taps reach into shared memory, 1 "
+             "each tap reads the images; the same values and arithmetic",
+             0, 1, &S::upscale_kernel),
   };
 }
 }  // namespace

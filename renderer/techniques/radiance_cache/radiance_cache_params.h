@@ -21,6 +21,19 @@ inline uint32_t rc_updated_cascade(uint32_t schedule, uint32_t cascades, uint32_
   return frame % 2 == 0 ? 0 : 1 + (frame / 2) % (cascades - 1);
 }
 
+// Probe hit records per frame: one per ray of the updated cascade.
+inline uint32_t rc_hit_records(const Settings& s) {
+  return kProbesPerCascade * s.params<RadianceCacheSettings>().rays_per_probe;
+}
+// Entries of the active-cell list (rc_active): one per ray at most (kRcActivePerProbe, or
+// rays_per_probe if larger), so it cannot overflow (a cell is queued at most once per frame).
+uint32_t rc_active_capacity(const Settings& s);
+// The insertion's counters summed per workgroup in shared memory (option update_counters: 0 by
+// device: GPUs yes, CPU devices no, where a group barrier costs more than the atomics).
+inline bool rc_group_counts(const DeviceInfo& info, const RadianceCacheSettings& r) {
+  return r.update_counters == 0 ? !info.is_software() : r.update_counters == 1;
+}
+
 static_assert(sizeof(glsl::RcParams) == 80, "RcParams: 80 bytes in every radiance-cache push block");
 
 inline glsl::RcParams make_rc_params(const Settings& s, uint32_t frame) {

@@ -31,6 +31,7 @@ class GiDenoisePass final : public Pass {
     const RadianceCacheSettings& r = ctx.settings.params<RadianceCacheSettings>();
     const uint32_t divisor = gather_divisor(r);
     const uint32_t radius = r.denoise_radius;
+    const bool tiled = r.denoise_kernel == 0 && radius <= kDenoiseTileMaxRadius;
     auto run = [&](const char* label, int ax, int ay, const char* in, const char* in_direct, const char* out) {
       const std::string ir = std::string(in) + "_r", ig = std::string(in) + "_g", ib = std::string(in) + "_b";
       const std::string o_r = std::string(out) + "_r", og = std::string(out) + "_g", ob = std::string(out) + "_b";
@@ -54,6 +55,8 @@ class GiDenoisePass final : public Pass {
                            .groups_y = div_up(ctx.height("gi_sh_r"), kDenoiseGroup),
                            .push = &push,
                            .push_bytes = sizeof(push),
+                           .spec_constants = {{kDenoiseSpecTiled, tiled ? 1u : 0u},
+                                              {kDenoiseSpecTileTexels, tiled ? kDenoiseGroup * (kDenoiseGroup + 2 * radius) : 1u}},
                            .scene = false});
       ctx.cmd.end_label();
     };

@@ -16,8 +16,13 @@
 // Seed: the idTech 8 "Global Illumination" talk, "Denoise + Upscale" (spatial denoise at final-gather
 // resolution, separable bilateral gaussian weighted by normal/depth and hit-distance deltas).
 // Departure: the hit-distance weight is off by default (see above).
-// Limits: no group-shared preload (each tap reads the images; the seed preloads to LDS in FP16);
-// the vertical pass weighs hit distances of the unfiltered gather, as the horizontal one does.
+// Group-shared preload (the seed's "pre-load to group shared memory"): each 8x8 group loads its
+// tile (the group widened by the radius either side along the axis) once, and every tap reads it
+// there, where the radius fits the tile (<= kDenoiseTileMaxRadius, 8); option denoise_kernel 1 (and a
+// larger radius) reads each tap from the images. Both give the same output bit for bit.
+// The tile keeps the FP16 values (normal, SH, direct part) as FP16, as the seed's, and the
+// position and hit distance as fp32: 60 B a texel.
+// Limits: the vertical pass weighs hit distances of the unfiltered gather, as the horizontal one does.
 // radius 0 copies.
 // NaN guard (DenoisePush.nan_guards): taps with a non-finite weight or SH are skipped.
 #pragma once

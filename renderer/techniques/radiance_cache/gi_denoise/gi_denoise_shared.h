@@ -14,6 +14,12 @@ GIB_CONST(uint, kDenoiseBindOutG, 15)
 GIB_CONST(uint, kDenoiseBindOutB, 16)
 GIB_CONST(uint, kDenoiseBindInDirect, 17)  // horizontal: gather_direct; vertical: gi_denoise_tmp_direct
 GIB_CONST(uint, kDenoiseBindOutDirect, 18) // horizontal: gi_denoise_tmp_direct; vertical: gi_direct
+GIB_CONST(uint, kDenoiseSpecTiled, 0)      // bool: taps preloaded into group-shared memory
+GIB_CONST(uint, kDenoiseSpecTileTexels, 1) // the tile's texels (1 for the per-tap kernel)
+// The tiled kernel's largest radius: its tile is kDenoiseGroup x (kDenoiseGroup + 2 x radius)
+// texels of 60 bytes (at most 11.3 KB, under Vulkan's guaranteed 16 KB of shared memory); a
+// larger radius runs the per-tap kernel.
+GIB_CONST(uint, kDenoiseTileMaxRadius, 8)
 // Edge-stopping weights of a tap q for the centre g (gather pixels; geometry from their
 // representative full-res pixels g * divisor + divisor / 2, as final_gather):
 //   normal    pow(max(0, dot(n_g, n_q)), kDenoiseNormalPower)

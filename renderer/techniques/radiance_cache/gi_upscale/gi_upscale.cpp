@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "renderer/techniques/radiance_cache/gi_upscale/gi_upscale_shared.h"
 #include "renderer/techniques/radiance_cache/radiance_cache.h"
 
@@ -19,6 +21,18 @@ Format gi_history_format(uint32_t history_format) {
 }
 
 namespace {
+
+// The side of the gather-pixel tile an 8x8 group of full-res pixels reads (gi_upscale.glsl,
+// load_gather_tile): from one before the first bilinear tap of its first pixel to two after
+// that of its last (the 4x4 fallback). Groups start at multiples of 8, which every divisor
+// divides, so the first group's extent is every group's: 11, 8 and 6 at divisors 1, 2 and 4
+// (121 x 56 B = 6.6 KB at most).
+uint32_t upscale_tile_side(uint32_t divisor) {
+  auto first_tap = [&](int p) {  // floor((p - divisor / 2) / divisor), as the shader
+    return int(std::floor((float(p) - float(divisor / 2)) / float(divisor)));
+  };
+  return uint32_t((first_tap(glsl::kUpscaleGroup - 1) + 2) - (first_tap(0) - 1) + 1);
+}
 
 const char* shader_for(uint32_t history_format) {
   static const char* const kShaders[] = {"gi_upscale_rgb9e5.comp", "gi_upscale_rgba16f.comp",
@@ -71,6 +85,9 @@ class GiUpscalePass final : public Pass {
     desc.shader = shader_for(r.history_format);
     desc.bindings = scene_bindings();
     desc.push_constant_bytes = sizeof(push);
+    const bool tiled = r.upscale_kernel == 0;
+    desc.spec_constants = {{kUpscaleSpecTiled, tiled ? 1u : 0u},
+                           {kUpscaleSpecTileSide, tiled ? upscale_tile_side(push.divisor) : 1u}};
     std::vector<Bind> binds = ctx.scene_gpu.binds();
     auto image = [&](uint32_t binding, const Image& img) {
       desc.bindings.push_back({binding, DescriptorKind::storage_image});

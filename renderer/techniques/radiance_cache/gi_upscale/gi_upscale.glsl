@@ -91,14 +91,84 @@ void write_out(ivec2 p, vec3 value, vec3 direct, float frames) {
   imageStore(out_direct_irradiance, p, vec4(stored_direct / exposure[kUpscaleExposureNow], 1.0));
 }
 
+// ---- gather samples: read from the images, or (kTiled) from the group's tile of them.
+// true: each group first loads every gather sample its pixels' taps can reach (the 4 bilinear
+// taps and the 4x4 fallback around them) into group-shared memory, and every tap reads them
+// there; false: each tap reads the images (option upscale_kernel 1). The tile keeps the
+// rgba32f position as fp32 and the rgba16f normal, SH and direct part as FP16, packed (each was
+// an FP16 value in its image, so unpacking gives back the same numbers): 56 bytes a texel.
+// Both kernels give the same output bit for bit.
+layout(constant_id = kUpscaleSpecTiled) const bool kTiled = true;
+// The tile's side in gather pixels (gi_upscale.cpp: 11, 8 and 6 at divisors 1, 2 and 4), 1 for
+// the per-tap kernel, which then reserves no shared memory (on NVIDIA a kernel's shared memory
+// takes L1 cache away from image loads).
+layout(constant_id = kUpscaleSpecTileSide) const uint kTileSide = 1u;
+shared vec4 s_gpos[kTileSide * kTileSide];     // gather sample's full-res position
+shared uvec2 s_gnormal[kTileSide * kTileSide];  // and normal
+shared uvec4 s_sh_rg[kTileSide * kTileSide];    // SH r, g
+shared uvec4 s_sh_b_direct[kTileSide * kTileSide];  // SH b, the direct part
+ivec2 g_tile_origin;  // gather pixel of tile texel (0, 0)
+int g_tile_w;
+
+bool sh_finite(vec4 r, vec4 gg, vec4 b, vec3 d) { return gib_finite(r) && gib_finite(gg) && gib_finite(b) && gib_finite(d); }
+
+uvec2 pack4(vec4 v) { return uvec2(packHalf2x16(v.xy), packHalf2x16(v.zw)); }
+vec4 unpack4(uvec2 u) { return vec4(unpackHalf2x16(u.x), unpackHalf2x16(u.y)); }
+
+// Gather pixel g's full-res pixel (final_gather's convention).
+ivec2 gather_source(ivec2 g) {
+  int div = int(push.divisor);
+  return min(g * div + div / 2, imageSize(gb_position) - 1);
+}
+
+int tile_index(ivec2 g) {
+  ivec2 t = clamp(g - g_tile_origin, ivec2(0), ivec2(g_tile_w - 1));
+  return t.y * g_tile_w + t.x;
+}
+
+// The gather pixel of the first bilinear tap of full-res pixel p, and p's bilinear fraction.
+ivec2 first_tap(ivec2 p, out vec2 f) {
+  int div = int(push.divisor);
+  vec2 xg = (vec2(p) - float(div / 2)) / float(div);
+  ivec2 g0 = ivec2(floor(xg));
+  f = xg - vec2(g0);
+  return g0;
+}
+
+// Loads the group's tile: the gather pixels from one before the group's first tap to two after
+// its last (the fallback's 4x4), clamped to the image as the taps are. Called by every thread,
+// before any returns; ends with the group barrier.
+void load_gather_tile() {
+  ivec2 p0 = ivec2(gl_WorkGroupID.xy * kUpscaleGroup);
+  vec2 f;
+  ivec2 lo = first_tap(p0, f) - 1, hi = first_tap(p0 + int(kUpscaleGroup) - 1, f) + 2;
+  g_tile_origin = lo;
+  g_tile_w = min(hi.x - lo.x + 1, int(kTileSide));
+  int tile_h = min(hi.y - lo.y + 1, int(kTileSide));
+  ivec2 gsize = imageSize(sh_r);
+  for (int l = int(gl_LocalInvocationIndex); l < g_tile_w * tile_h; l += int(kUpscaleGroup * kUpscaleGroup)) {
+    ivec2 g = clamp(lo + ivec2(l % g_tile_w, l / g_tile_w), ivec2(0), gsize - 1);
+    ivec2 src = gather_source(g);
+    s_gpos[l] = imageLoad(gb_position, src);
+    vec4 r = imageLoad(sh_r, g), gg = imageLoad(sh_g, g), b = imageLoad(sh_b, g), d = imageLoad(gi_direct, g);
+    // The normal's fourth half: whether this sample's SH and direct part are all finite, tested
+    // here once instead of at every tap (tap_sh).
+    s_gnormal[l] = pack4(vec4(imageLoad(gb_normal, src).xyz, sh_finite(r, gg, b, d.rgb) ? 1.0 : 0.0));
+    s_sh_rg[l] = uvec4(pack4(r), pack4(gg));
+    s_sh_b_direct[l] = uvec4(pack4(b), pack4(d));
+  }
+  barrier();
+}
+
+vec4 gather_position(ivec2 g) { return kTiled ? s_gpos[tile_index(g)] : imageLoad(gb_position, gather_source(g)); }
+vec3 gather_normal(ivec2 g) { return (kTiled ? unpack4(s_gnormal[tile_index(g)]) : imageLoad(gb_normal, gather_source(g))).xyz; }
+
 // How much gather sample g (a gather-res pixel) lies on the surface at x with normal n: normal
 // agreement times distance from the plane; 0 when that gather pixel saw the sky.
 float tap_similarity(ivec2 g, vec3 x, vec3 n, float dist) {
-  int div = int(push.divisor);
-  ivec2 src = min(g * div + div / 2, imageSize(gb_position) - 1);  // gather pixel g's full-res pixel
-  vec4 gp = imageLoad(gb_position, src);
+  vec4 gp = gather_position(g);
   if (gp.w == 0.0) return 0.0;
-  vec3 gn = imageLoad(gb_normal, src).xyz;
+  vec3 gn = gather_normal(g);
   float s = pow(max(0.0, dot(n, gn)), kUpscaleNormalPower) * exp(-abs(dot(n, gp.xyz - x)) / (dist * kUpscaleDepthSigma));
   // Guard: a tap with a non-finite similarity (NaN normal) is not on any surface. (Its SH are
   // checked where they are loaded anyway: loading them here too cost gi_upscale +27% on an H100.)
@@ -109,11 +179,20 @@ float tap_similarity(ivec2 g, vec3 x, vec3 n, float dist) {
 // Gather sample g's SH (r, g, b) and direct part; false when the guards are on and one is not
 // finite (such a tap is not on any surface).
 bool tap_sh(ivec2 g, out vec4 r, out vec4 gg, out vec4 b, out vec3 d) {
+  if (kTiled) {
+    int t = tile_index(g);
+    uvec4 rg = s_sh_rg[t], bd = s_sh_b_direct[t];
+    r = unpack4(rg.xy);
+    gg = unpack4(rg.zw);
+    b = unpack4(bd.xy);
+    d = unpack4(bd.zw).rgb;
+    return push.nan_guards == 0u || unpack4(s_gnormal[t]).w != 0.0;  // sh_finite, tested at the load
+  }
   r = imageLoad(sh_r, g);
   gg = imageLoad(sh_g, g);
   b = imageLoad(sh_b, g);
   d = imageLoad(gi_direct, g).rgb;
-  return push.nan_guards == 0u || (gib_finite(r) && gib_finite(gg) && gib_finite(b) && gib_finite(d));
+  return push.nan_guards == 0u || sh_finite(r, gg, b, d);
 }
 
 // 4-tap bilateral upscale of the denoised gather SH, evaluated with the full-res normal, and of
@@ -123,11 +202,9 @@ bool upscale(ivec2 p, vec3 x, vec3 n, float dist, out vec3 irradiance, out vec3 
   irradiance = vec3(0.0);
   direct = vec3(0.0);
   vec3 acc_d = vec3(0.0);
-  int div = int(push.divisor);
   ivec2 gsize = imageSize(sh_r);
-  vec2 xg = (vec2(p) - float(div / 2)) / float(div);
-  ivec2 g0 = ivec2(floor(xg));
-  vec2 f = xg - vec2(g0);
+  vec2 f;
+  ivec2 g0 = first_tap(p, f);
   vec4 acc_r = vec4(0.0), acc_g = vec4(0.0), acc_b = vec4(0.0);
   float acc_w = 0.0, best = 0.0;
   ivec2 best_g = ivec2(-1);
@@ -211,8 +288,13 @@ bool reproject(vec3 x, vec3 n, out vec3 prev, out vec3 prev_direct, out float fr
     }
     vec3 h = load_history(q), hd = load_history_direct(q);
     float hn = imageLoad(prev_frames, q).x;
-    // Guard: a non-finite history texel is dropped (formats 1-3 can hold NaN and Inf; RGB9E5 cannot).
+    // Guard: a non-finite history texel is dropped (formats 1-3 can hold NaN and Inf; RGB9E5
+    // cannot: its decode is always finite, so only n is tested).
+#if GI_HISTORY_FORMAT == 0
+    if (push.nan_guards != 0u && !gib_finite(hn)) continue;
+#else
     if (push.nan_guards != 0u && !(gib_finite(h) && gib_finite(hd) && gib_finite(hn))) continue;
+#endif
     sum += w * h;
     sum_d += w * hd;
     sum_n += w * hn;
@@ -228,6 +310,7 @@ bool reproject(vec3 x, vec3 n, out vec3 prev, out vec3 prev_direct, out float fr
 }
 
 void main() {
+  if (kTiled) load_gather_tile();
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(p, imageSize(out_irradiance)))) return;
   vec4 pos = imageLoad(gb_position, p);

@@ -26,6 +26,9 @@
 // Seed: the idTech 8 "Global Illumination" talk, "Denoise + Upscale" (bilateral upscale weighted by
 // normal/depth, temporal filter with a valid-fragment frame counter, RGB9E5 or RGBA16F history)
 // and "RGB9E5 vs R11G11B10F".
+// Each 8x8 group first loads every gather sample its taps can reach (geometry, SH, direct part)
+// into group-shared memory, once; option upscale_kernel 1 reads each tap from the images instead
+// (the same output bit for bit). The reprojection's last-frame texels are read from the images.
 // Limits: the seed's 4 poisson taps are the 4 bilinear neighbours here; no history clamping
 // (lighting changes fade in over n_max frames); n is interpolated with the history, so it may
 // be fractional after camera motion. One kernel per history format (gi_upscale_<format>.comp).

@@ -20,6 +20,8 @@ GIB_CONST(uint, kUpscaleBindDirect, 21)             // gi_direct (gather resolut
 GIB_CONST(uint, kUpscaleBindPrevHistoryDirect, 22)  // last frame's gi_history_direct
 GIB_CONST(uint, kUpscaleBindHistoryDirect, 23)      // gi_history_direct (format: history_format)
 GIB_CONST(uint, kUpscaleBindDirectIrradiance, 24)   // gi_direct_irradiance (rgba32f: irradiance / pi)
+GIB_CONST(uint, kUpscaleSpecTiled, 0)     // bool: the group's gather samples preloaded into shared memory
+GIB_CONST(uint, kUpscaleSpecTileSide, 1)  // the tile's side in gather pixels (1 for the per-tap kernel)
 GIB_CONST(uint, kUpscaleExposureNow, 0)
 GIB_CONST(uint, kUpscaleExposurePrev, 1)
 // Upscale weights of gather sample g for full-res pixel p (normal n_p, position x_p, view

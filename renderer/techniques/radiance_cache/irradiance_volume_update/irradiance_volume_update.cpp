@@ -29,6 +29,9 @@ class IrradianceVolumeUpdatePass final : public Pass {
                {"probe_visibility", Access::write, vis},
                {"probe_irradiance", Access::read_prev},
                {"probe_visibility", Access::read_prev}};
+    // The cache is read sparsely (bench's memory time counts what moves): each hit record looks
+    // its key up, one slot plus its probing collisions.
+    d.slots[1].touched = Touched{double(rc_hit_records(s)), {{"probing_collisions", 1}}, sizeof(glsl::RcCell), false};
     d.work = {{"probes", kProbesPerCascade}};
     return d;
   }

@@ -1,5 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 #include "renderer/techniques/radiance_cache/probe_trace/probe_trace_shared.h"
 #include "frame.glsl"
 #include "scene.glsl"
@@ -11,14 +14,23 @@ GIB_SCENE_BUFFERS(0, kBindSceneFirst)
 
 layout(local_size_x = kProbeTraceGroup) in;
 layout(std430, set = 0, binding = kProbeTraceBindHits) writeonly buffer HitBuffer { ProbeHit probe_hits[]; };
-layout(push_constant) uniform Push { RcParams rc; };
+layout(std430, set = 0, binding = kProbeTraceBindActive) writeonly buffer ActiveBuffer { uint rc_active[]; };
+layout(std430, set = 0, binding = kProbeTraceBindCounters) coherent buffer CounterBuffer {
+  RcCounters counters;
+  RcRoundArgs rounds[];  // rounds[r - 1]: insertion round r
+};
+layout(std430, set = 0, binding = kProbeTraceBindPending) coherent buffer PendingBuffer { uvec2 rc_pending[]; };
+layout(push_constant) uniform Push { RcParams rc; uvec4 extra; };
 #include "renderer/techniques/radiance_cache/include/probe_volume.glsl"
 #include "renderer/techniques/radiance_cache/include/radiance_cache.glsl"
+RC_CELL_BUFFER(kProbeTraceBindCells, coherent)
+#define RC_INSERT_SPEC_GROUP_COUNTS kProbeTraceSpecGroupCounts
+#include "renderer/techniques/radiance_cache/include/rc_insert.glsl"
 
-void main() {
-  uint id = gl_GlobalInvocationID.x;
+// Traces ray `id` (probe id / rays, ray id % rays of the updated cascade) and stores its hit
+// record; returns its cell key (0: a miss, or a ray inside geometry).
+uint trace_ray(uint id) {
   uint rays = rc_rays_per_probe();
-  if (id >= kProbeGridDim * kProbeGridDim * kProbeGridDim * rays) return;
   uint probe = id / rays, ray = id - probe * rays;
   uint c = rc_updated_cascade();
   vec3 o = rc_probe_position(c, rc_probe_coord(probe));
@@ -30,8 +42,9 @@ void main() {
     uvec2 b = uvec2(clamp(vec2(hit.u, hit.v), 0.0, 1.0) * 65535.0 + 0.5);
     h.barycentrics = b.x | (b.y << 16u);
     h.distance = hit.t;
-    // The cell key, once, here (radiance_cache_update inserts it, irradiance_volume_update looks
-    // it up): the triangle and its vertices were just fetched by the intersection.
+    // The cell key, once, here (the insertion below, radiance_cache_update's rounds and
+    // irradiance_volume_update read it): the triangle and its vertices were just fetched by the
+    // intersection.
     float lod;
     h.key = rc_probe_ray_inside(h, d, c) ? 0u
                                          : rc_cell_key(rc_hit_position(o, d, h.distance), rc_facing_normal(hit.triangle, d), lod);
@@ -42,4 +55,25 @@ void main() {
     h.distance = kProbeMissDistance;
   }
   probe_hits[id] = h;
+  return h.key;
+}
+
+// true: insertion round 0 (the find) runs here, as each ray is traced; false (option
+// insertion_find 1): radiance_cache_update runs it in a dispatch of its own.
+layout(constant_id = kProbeTraceSpecFind) const bool kFind = true;
+
+void main() {
+  uint id = gl_GlobalInvocationID.x;
+  bool valid = id < kProbeGridDim * kProbeGridDim * kProbeGridDim * rc_rays_per_probe();
+  if (!kFind) {
+    if (valid) trace_ray(id);
+    return;
+  }
+  rc_insert_begin();
+  uint key = valid ? trace_ray(id) : 0u;
+  if (id == 0u) rc_insert_init_args();
+  // Each ray hit triggers its cache update (the seed's): insertion round 0, the find, in uniform
+  // control flow (every thread of the group reaches it).
+  rc_insert_step(0u, valid ? id : kNoCell, key);
+  rc_insert_flush();
 }

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cstddef>
+#include <stdexcept>
 
 #include "renderer/techniques/radiance_cache/probe_trace/probe_trace_shared.h"
 #include "renderer/techniques/radiance_cache/radiance_cache_params.h"
@@ -24,21 +25,67 @@ class ProbeTracePass final : public Pass {
     ResourceDesc hits{Format::buffer, SizeRule::buffer};
     hits.bytes = uint64_t(kProbesPerCascade) * rays * sizeof(glsl::ProbeHit);
     hits.values = non_negative_values().layout(sizeof(glsl::ProbeHit) / 4, offsetof(glsl::ProbeHit, distance) / 4, 1);
-    d.slots = {{"probe_hits", Access::write, hits}};
+    // The world radiance cache, which the trace's insertion round 0 searches and bids into.
+    ResourceDesc cells{Format::buffer, SizeRule::buffer};
+    cells.bytes = (uint64_t(1) << r.cache_log2_cells) * sizeof(glsl::RcCell);
+    cells.persistent = true;  // the executor zeroes it when it creates it
+    cells.values = non_negative_values().encoded(Encoding::rgb9e5).layout(  // cell radiance
+        sizeof(glsl::RcCell) / 4, offsetof(glsl::RcCell, radiance) / 4, 1);
+    ResourceDesc active{Format::buffer, SizeRule::buffer};
+    active.bytes = uint64_t(rc_active_capacity(s)) * sizeof(uint32_t);
+    // RcCounters, then the indirect args and length of insertion rounds 1 .. cache_max_probe.
+    ResourceDesc counters{Format::buffer, SizeRule::buffer};
+    counters.bytes = sizeof(glsl::RcCounters) + uint64_t(r.cache_max_probe) * sizeof(glsl::RcRoundArgs);
+    // The hits still unplaced after a round, (hit id, key): two lists, rounds alternate.
+    ResourceDesc pending{Format::buffer, SizeRule::buffer};
+    pending.bytes = 2 * uint64_t(rc_hit_records(s)) * 2 * sizeof(uint32_t);
+    d.slots = {{"probe_hits", Access::write, hits},
+               {"rc_cells", Access::read_write, cells},
+               {"rc_active", Access::write, active},
+               {"rc_counters", Access::write, counters},
+               {"rc_pending", Access::write, pending}};
+    // The find touches the table sparsely (bench's memory time counts what it moves, not the
+    // 2^cache_log2_cells x 16 bytes): each hit record reads its key's slots, one plus its probing
+    // collisions, and writes at most one cell (a bid, the queue marker, hit_index); each queued
+    // cell appends one rc_active entry, each new key one rc_pending entry. Nothing of them with
+    // option insertion_find 1 (radiance_cache_update's find then does it).
+    const bool find = r.insertion_find == 0;
+    const double records = find ? double(rc_hit_records(s)) : 0.0, per = find ? 1.0 : 0.0;
+    d.slots[1].touched = Touched{records, {{"probing_collisions", per}}, sizeof(glsl::RcCell), false};
+    d.slots[2].touched = Touched{0, {{"cells_queued", per}}, sizeof(uint32_t), true};
+    d.slots[4].touched = Touched{0, {{"hits_pending_round1", per}}, 2 * sizeof(uint32_t), true};
     d.work = {{"probes", kProbesPerCascade}, {"rays", double(kProbesPerCascade) * rays}};
     return d;
   }
 
   void record(RecordContext& ctx) override {
     using namespace glsl;
-    ProbeTracePush push{make_rc_params(ctx.settings, ctx.frame)};
-    uint32_t threads = kProbesPerCascade * ctx.settings.params<RadianceCacheSettings>().rays_per_probe;
+    const DeviceInfo& info = ctx.gpu.info();
+    if (!info.subgroup_ballot || !info.subgroup_arithmetic)
+      throw std::runtime_error(
+          "probe_trace: the device lacks compute subgroup ballot/arithmetic operations "
+          "(VkPhysicalDeviceSubgroupProperties), which the cache insertion (rc_insert.glsl) needs");
+    const RadianceCacheSettings& r = ctx.settings.params<RadianceCacheSettings>();
+    // Last frame's shade read rc_counters (indirect args): order the fill after it.
+    ctx.cmd.barrier(kStageCompute, kStageTransfer);
+    ctx.cmd.begin_label("probe_trace/reset");
+    ctx.cmd.fill(ctx.buffer("rc_counters"), 0);
+    ctx.cmd.end_label();
+    ctx.cmd.barrier(kStageTransfer, kStageCompute);
+    ProbeTracePush push{make_rc_params(ctx.settings, ctx.frame),
+                        {rc_active_capacity(ctx.settings), 0, rc_hit_records(ctx.settings), 0}};
     record_compute(ctx, {.shader = "probe_trace.comp",
-                         .groups_x = div_up(threads, kProbeTraceGroup),
+                         .groups_x = div_up(rc_hit_records(ctx.settings), kProbeTraceGroup),
                          .push = &push,
                          .push_bytes = sizeof(push),
-                         .spec_constants = {{kProbeTraceSpecAlpha, ctx.scene.features().has(Feature::alpha_tested)}},
-                         .buffers = {{kProbeTraceBindHits, "probe_hits"}}});
+                         .spec_constants = {{kProbeTraceSpecAlpha, ctx.scene.features().has(Feature::alpha_tested)},
+                                            {kProbeTraceSpecGroupCounts, rc_group_counts(info, r) ? 1u : 0u},
+                                            {kProbeTraceSpecFind, r.insertion_find == 0 ? 1u : 0u}},
+                         .buffers = {{kProbeTraceBindHits, "probe_hits"},
+                                     {kProbeTraceBindCells, "rc_cells"},
+                                     {kProbeTraceBindActive, "rc_active"},
+                                     {kProbeTraceBindCounters, "rc_counters"},
+                                     {kProbeTraceBindPending, "rc_pending"}}});
   }
 };
 

@@ -19,6 +19,11 @@ class RadianceCacheShadePass final : public Pass {
                {"rc_cells", Access::read_write},
                {"probe_irradiance", Access::read_prev},
                {"probe_visibility", Access::read_prev}};
+    // Sparse accesses (bench's memory time counts what they move): each shaded cell reads its
+    // rc_active entry and its hit record, and reads and writes its cell.
+    d.slots[0].touched = Touched{0, {{"cells_shaded", 1}}, sizeof(glsl::ProbeHit), false};
+    d.slots[1].touched = Touched{0, {{"cells_shaded", 1}}, sizeof(uint32_t), true};
+    d.slots[3].touched = Touched{0, {{"cells_shaded", 1}}, sizeof(glsl::RcCell), false};
     if (scene.features().has(Feature::local_lights)) d.slots.push_back({"light_grid", Access::read});
     // One thread per cell queued this frame: how many, only the GPU knows (read back by bench
     // after its timed frames).

@@ -7,7 +7,7 @@
 #include "frame.glsl"
 #include "scene.glsl"
 GIB_SCENE_BUFFERS(0, kBindSceneFirst)
-layout(constant_id = kRcUpdateSpecKernel) const uint kKernel = kRcUpdateKernelFind;
+layout(constant_id = kRcUpdateSpecKernel) const uint kKernel = kRcUpdateKernelRounds;
 
 layout(local_size_x = kRcUpdateGroup) in;
 layout(std430, set = 0, binding = kRcUpdateBindHits) readonly buffer HitBuffer { ProbeHit probe_hits[]; };
@@ -22,232 +22,33 @@ layout(push_constant) uniform Push { RcParams rc; uvec4 extra; };
 #include "renderer/techniques/radiance_cache/include/radiance_cache.glsl"
 RC_CELL_BUFFER(kRcUpdateBindCells, coherent)
 
-const uint kNoCell = 0xffffffffu;
+#define RC_INSERT_SPEC_GROUP_COUNTS kRcUpdateSpecGroupCounts
+#include "renderer/techniques/radiance_cache/include/rc_insert.glsl"
 
-// The probe hit `id`'s committed key (made by probe_trace), or 0 for a miss, a ray inside
-// geometry (no cell for a point inside a wall) or an id past the hit records.
-uint hit_key(uint id) {
-  if (id >= kProbeGridDim * kProbeGridDim * kProbeGridDim * rc_rays_per_probe()) return 0u;
-  return probe_hits[id].key;
-}
+shared uint s_round_count;
 
-// ---- aggregated counters and list appends. Counters are summed per subgroup; on GPUs
-// (kGroupCounts) the subgroups' sums go to group-shared totals that reach the buffer once per
-// workgroup (flush_counts), since atomics on one address serialise and every subgroup of the
-// find dispatch has reused hits to count; on CPU devices a group barrier costs more than the
-// atomics, so each subgroup adds to the buffer. Used in uniform control flow (every thread of
-// the group).
-layout(constant_id = kRcUpdateSpecGroupCounts) const bool kGroupCounts = true;
-shared uint s_counts[4];  // collisions, drops, insertions, reused
-#define RC_COUNT(INDEX, COUNTER, N)                                                                    \
-  {                                                                                                    \
-    uint total_ = subgroupAdd(N);                                                                      \
-    if (subgroupElect() && total_ != 0u) {                                                             \
-      if (kGroupCounts)                                                                                \
-        atomicAdd(s_counts[INDEX], total_);                                                            \
-      else                                                                                             \
-        atomicAdd(COUNTER, total_);                                                                    \
-    }                                                                                                  \
-  }
-
-// Appends for every thread whose WANT is true: SLOT receives its entry (consecutive within the
-// subgroup), LENGTH counts the entries, and GROUPS the groups of GROUP threads the list spans up
-// to CAP entries: each subgroup adds the multiples of GROUP it crosses, so the sum over all of
-// them is ceil(min(length, CAP) / GROUP) whatever the order.
-#define RC_APPEND(WANT, SLOT, LENGTH, GROUPS, GROUP, CAP)                                  \
-  {                                                                                        \
-    uvec4 ballot_ = subgroupBallot(WANT);                                                  \
-    uint n_ = subgroupBallotBitCount(ballot_), base_ = 0u;                                 \
-    if (n_ != 0u) {                                                                        \
-      if (subgroupElect()) {                                                               \
-        base_ = atomicAdd(LENGTH, n_);                                                     \
-        uint lo_ = min(base_, CAP), hi_ = min(base_ + n_, CAP);                            \
-        uint crossed_ = (hi_ + (GROUP) - 1u) / (GROUP) - (lo_ + (GROUP) - 1u) / (GROUP);   \
-        if (crossed_ != 0u) atomicAdd(GROUPS, crossed_);                                   \
-      }                                                                                    \
-      base_ = subgroupBroadcastFirst(base_);                                               \
-    }                                                                                      \
-    SLOT = base_ + subgroupBallotExclusiveBitCount(ballot_);                               \
-  }
-
-// ---- deterministic insertion (radiance_cache.glsl, "Insertion"). Round r = 0 .. max_probe lets
-// every key not yet in the table bid for slot first + r of its probe sequence: a bid is the key
-// tagged with the round's parity (2 | r & 1), the largest bid wins (atomicMax), so the winner
-// depends on the set of keys, not on thread order; the winner commits (tag -> 1) in round r + 1,
-// the losers move on; keys still unplaced after round max_probe - 1's commit are dropped.
-//
-// Round 0 (kernel find, every hit record): the key is searched in the table as the frame found
-// it (nothing but round-0 bids is written during this kernel, and only into slots empty at the
-// frame's start; cells are never removed, so every slot before a committed key is occupied).
-// Found at step s: placed (the rounds would find it in round s, counting s collisions). All
-// max_probe slots held by other keys: dropped (every round counts a collision). Else the key is
-// new: it bids here if its first slot is empty (or holds round-0 bids), and joins the pending
-// list of round 1. Round r >= 1 (kernel round, indirect over that list): looks at slot first +
-// r - 1 (its own bid of round r - 1 won: commit; a sibling hit committed it: found; else a
-// collision), then bids for slot first + r, or, in round max_probe, is dropped; still unplaced
-// hits join round r + 1's list, so a round with nothing left dispatches 0 groups. Each hit meets
-// exactly the table states and takes exactly the steps of the former design (every hit in every
-// round), so the table and the counters are the same.
-
-// Bids `bid` for slot i, which held v when read: empty, or holding this round's bids (same
-// parity tag). Anything else (a committed key, the previous round's winner) is occupied.
-void bid_for(uint i, uint v, uint bid) {
-  if (v == 0u || (v & 3u) == (bid & 3u)) atomicMax(rc_cells[i].key, bid);
-}
-
-// A placed hit: queue its cell for shading unless it was shaded recently (reused), and offer the
-// hit as the cell's shading input: RcCell.hit_index holds ~(lowest hit id) of the queued cell's
-// hits (atomicMax of ~id; radiance_cache_shade reads it and resets it to 0, so it is 0 whenever
-// this pass starts). Which hit shades the cell then depends on the set of hits, not on who won
-// the queueing race. Returns true when this hit appended the cell to rc_active.
-bool queue_cell(uint cell, uint id, inout uint reused) {
-  uint now = rc.misc.x + 1u;
-  // A plain (coherent) read, not an atomic one: every hit of a busy cell reads it, and atomics on
-  // one address serialise. A stale read changes nothing: shaded_frame moves only from a value
-  // that is due (not reused) to `now`, by the swap below, so a hit that misses that write still
-  // finds the cell due, loses the swap and goes on as one that saw `now`.
-  uint shaded = rc_cells[cell].shaded_frame;
-  bool mine = false;
-  if (shaded != now) {
-    if (shaded != 0u && now - shaded < rc.misc.y) {
-      reused = 1u;
-      return false;
-    }
-    // Within this pass shaded_frame only ever changes to `now`: losing the swap means another
-    // hit queued the cell.
-    mine = atomicCompSwap(rc_cells[cell].shaded_frame, shaded, now) == shaded;
-  }
-  atomicMax(rc_cells[cell].hit_index, ~id);
-  return mine;
-}
-
-struct Outcome {
-  uint collisions, drops, insertions, reused;
-  uint cell;     // placed: the cell to queue, else kNoCell
-  bool pending;  // goes on to the next round
-};
-
-Outcome find_hit(uint key) {
-  Outcome o = Outcome(0u, 0u, 0u, 0u, kNoCell, false);
-  if (key == 0u) return o;
-  uint mask = rc_cell_mask(), first = rc_cell_first_slot(key), n = rc_max_probe();
-  uint s = 0u, v = 0u;
-  for (; s < n; ++s) {
-    v = rc_cells[(first + s) & mask].key;
-    if (v == key) {
-      o.collisions = s;
-      o.cell = (first + s) & mask;
-      return o;
-    }
-    if ((v & 3u) != 1u) break;  // empty when the frame started (a round-0 bid at most)
-  }
-  if (s == n) {
-    o.collisions = n;
-    o.drops = 1u;
-    return o;
-  }
-  if (s == 0u) bid_for(first & mask, v, (key & ~3u) | 2u);
-  o.pending = true;
-  return o;
-}
-
-Outcome round_hit(uint key, uint round) {
-  Outcome o = Outcome(0u, 0u, 0u, 0u, kNoCell, false);
-  uint mask = rc_cell_mask(), first = rc_cell_first_slot(key), hash = key & ~3u;
-  uint last_bid = hash | (2u + ((round + 1u) & 1u));
-  uint i = (first + round - 1u) & mask;
-  uint v = rc_cells[i].key;
-  if (v == key) {
-    o.cell = i;
-    return o;
-  }
-  if (v == last_bid) {
-    // Our bid of the previous round won: commit it (one of the key's hits counts it).
-    if (atomicCompSwap(rc_cells[i].key, v, key) == v) o.insertions = 1u;
-    o.cell = i;
-    return o;
-  }
-  o.collisions = 1u;  // passed last round's slot
-  if (round == rc_max_probe()) {
-    o.drops = 1u;
-    return o;
-  }
-  i = (first + round) & mask;
-  v = rc_cells[i].key;
-  if (v == key) {  // not reachable (a key enters an empty slot only by its own bid); kept as a guard
-    o.cell = i;
-    return o;
-  }
-  bid_for(i, v, hash | (2u + (round & 1u)));
-  o.pending = true;
-  return o;
-}
-
-// One hit's step in `round`: the hit record `idx` (round 0), or entry `idx` of the round's
-// pending list (idx past its length: nothing, but the thread still joins the subgroup's
-// counters and appends, which need uniform control flow).
-void step(uint round, uint idx) {
+// Round `round`'s pending entry idx (nothing past the list's length).
+void round_step(uint round, uint idx) {
   uint id = kNoCell, key = 0u;
-  if (round == 0u) {
-    id = idx;
-    key = hit_key(id);
-    if (idx == 0u) {
-      // The y, z of every indirect dispatch this pass writes (the reset filled them with 0).
-      counters.dispatch_y = 1u;
-      counters.dispatch_z = 1u;
-      for (uint r = 0u; r < rc_max_probe(); ++r) {
-        rounds[r].groups_y = 1u;
-        rounds[r].groups_z = 1u;
-      }
-    }
-  } else if (idx < rounds[round - 1u].count) {
+  if (idx < rounds[round - 1u].count) {
     uvec2 e = rc_pending[(round & 1u) * extra.z + idx];
     id = e.x;
     key = e.y;
   }
-  Outcome o = Outcome(0u, 0u, 0u, 0u, kNoCell, false);
-  if (key != 0u) o = round == 0u ? find_hit(key) : round_hit(key, round);
-  bool queued = o.cell != kNoCell && queue_cell(o.cell, id, o.reused);
-
-  // Uniform control flow from here: aggregated counters and appends.
-  RC_COUNT(0, counters.collisions, o.collisions);
-  RC_COUNT(1, counters.drops, o.drops);
-  RC_COUNT(2, counters.insertions, o.insertions);
-  RC_COUNT(3, counters.reused, o.reused);
-  uint slot;
-  RC_APPEND(queued, slot, counters.active_cells, counters.dispatch_x, kRcShadeGroup, extra.x);
-  if (queued && slot < extra.x) rc_active[slot] = o.cell;  // capacity >= hit records: always
-  if (round < rc_max_probe()) {
-    uint next = round + 1u;
-    RC_APPEND(o.pending, slot, rounds[next - 1u].count, rounds[next - 1u].groups_x, kRcUpdateGroup, extra.z);
-    if (o.pending) rc_pending[(next & 1u) * extra.z + slot] = uvec2(id, key);
-  }
-}
-
-shared uint s_round_count;
-
-// The group's counter totals into the buffer: one atomic per counter and workgroup.
-void flush_counts() {
-  if (!kGroupCounts) return;
-  barrier();
-  uint t = gl_LocalInvocationIndex;
-  if (t < 4u && s_counts[t] != 0u) {
-    if (t == 0u) atomicAdd(counters.collisions, s_counts[t]);
-    if (t == 1u) atomicAdd(counters.drops, s_counts[t]);
-    if (t == 2u) atomicAdd(counters.insertions, s_counts[t]);
-    if (t == 3u) atomicAdd(counters.reused, s_counts[t]);
-  }
+  rc_insert_step(round, id, key);
 }
 
 void main() {
-  if (kGroupCounts) {
-    if (gl_LocalInvocationIndex < 4u) s_counts[gl_LocalInvocationIndex] = 0u;
-    barrier();
-  }
+  rc_insert_begin();
   if (kKernel == kRcUpdateKernelFind) {
-    step(0u, gl_GlobalInvocationID.x);
+    // Round 0 over every hit record (option insertion_find 1; by default probe_trace runs it as
+    // it traces): the same step on the same committed keys.
+    uint id = gl_GlobalInvocationID.x;
+    bool valid = id < kProbeGridDim * kProbeGridDim * kProbeGridDim * rc_rays_per_probe();
+    if (id == 0u) rc_insert_init_args();
+    rc_insert_step(0u, valid ? id : kNoCell, valid ? probe_hits[id].key : 0u);
   } else if (kKernel == kRcUpdateKernelRound) {
-    step(extra.y, gl_GlobalInvocationID.x);
+    round_step(extra.y, gl_GlobalInvocationID.x);
   } else {
     // Every round in one workgroup (option insertion_rounds 0): the group walks round r's list
     // in strides of its size, then a buffer barrier and a group barrier close the round, as the
@@ -260,10 +61,10 @@ void main() {
       barrier();
       uint n = s_round_count;
       if (n == 0u) break;  // nothing pending: no later round has anything either (uniform: shared)
-      for (uint base = 0u; base < n; base += kRcUpdateGroup) step(round, base + gl_LocalInvocationIndex);
+      for (uint base = 0u; base < n; base += kRcUpdateGroup) round_step(round, base + gl_LocalInvocationIndex);
       memoryBarrierBuffer();
       barrier();
     }
   }
-  flush_counts();
+  rc_insert_flush();
 }

@@ -3,91 +3,84 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstring>
-#include <stdexcept>
 
 #include "renderer/techniques/radiance_cache/radiance_cache_update/radiance_cache_update_shared.h"
 #include "renderer/techniques/radiance_cache/radiance_cache_params.h"
 
 namespace gib {
-namespace {
 
-uint32_t active_capacity(const Settings& s) {
+uint32_t rc_active_capacity(const Settings& s) {
   return kProbesPerCascade * std::max(glsl::kRcActivePerProbe, s.params<RadianceCacheSettings>().rays_per_probe);
 }
 
-uint32_t hit_records(const Settings& s) { return kProbesPerCascade * s.params<RadianceCacheSettings>().rays_per_probe; }
+namespace {
+
+bool separate_find(const Settings& s) { return s.params<RadianceCacheSettings>().insertion_find == 1; }
 
 class RadianceCacheUpdatePass final : public Pass {
  public:
   PassDecl declare(const Scene&, const Settings& s) const override {
-    const RadianceCacheSettings& r = s.params<RadianceCacheSettings>();
     PassDecl d;
     d.name = "radiance_cache_update";
-    ResourceDesc cells{Format::buffer, SizeRule::buffer};
-    cells.bytes = (uint64_t(1) << r.cache_log2_cells) * sizeof(glsl::RcCell);
-    cells.persistent = true;
-    cells.values = non_negative_values().encoded(Encoding::rgb9e5).layout(  // cell radiance
-        sizeof(glsl::RcCell) / 4, offsetof(glsl::RcCell, radiance) / 4, 1);
-    ResourceDesc active{Format::buffer, SizeRule::buffer};
-    active.bytes = uint64_t(active_capacity(s)) * sizeof(uint32_t);
-    // RcCounters, then the indirect args and length of insertion rounds 1 .. cache_max_probe.
-    ResourceDesc counters{Format::buffer, SizeRule::buffer};
-    counters.bytes = sizeof(glsl::RcCounters) + uint64_t(r.cache_max_probe) * sizeof(glsl::RcRoundArgs);
-    // The hits still unplaced after a round, (hit id, key): two lists, rounds alternate.
-    ResourceDesc pending{Format::buffer, SizeRule::buffer};
-    pending.bytes = 2 * uint64_t(hit_records(s)) * 2 * sizeof(uint32_t);
+    // probe_trace made them (and, by default, ran insertion round 0, the find); rounds 1 ..
+    // cache_max_probe go on from its pending list.
+    // (probe_hits: read by the find kernel of option insertion_find 1; every kernel of the
+    // shader declares it.)
     d.slots = {{"probe_hits", Access::read},
-               {"rc_cells", Access::read_write, cells},
-               {"rc_active", Access::write, active},
-               {"rc_counters", Access::write, counters},
-               {"rc_pending", Access::write, pending}};
-    d.work = {{"hits", double(hit_records(s))}};
-    // Read back by bench after its timed frames (never in a frame): what the frame really did.
+               {"rc_cells", Access::read_write},
+               {"rc_active", Access::read_write},
+               {"rc_counters", Access::read_write},
+               {"rc_pending", Access::read_write}};
+    // Sparse accesses (bench's memory time counts what they move): each pending hit reads at most
+    // two slots a round and writes one, and is read and appended once a round; queued cells
+    // append an rc_active entry. The separate find (insertion_find 1) reads every hit record and,
+    // per record, its key's slots (one plus the probing collisions); without it, probe_hits is
+    // not read.
+    const RadianceCacheSettings& r = s.params<RadianceCacheSettings>();
+    const bool find = separate_find(s);
+    const double rounds = double(r.cache_max_probe);
+    if (!find) d.slots[0].touched = Touched{0, {}, sizeof(glsl::ProbeHit), false};
+    d.slots[1].touched = Touched{find ? double(rc_hit_records(s)) : 0.0,
+                                 {{"hits_pending_round1", 2 * rounds}, {"probing_collisions", find ? 1.0 : 0.0}},
+                                 sizeof(glsl::RcCell), false};
+    d.slots[2].touched = Touched{0, {{"cells_queued", 1}}, sizeof(uint32_t), true};
+    d.slots[4].touched = Touched{0, {{"hits_pending_round1", 2 * rounds}}, 2 * sizeof(uint32_t), true};
+    // Read back by bench after its timed frames (never in a frame): what the frame really did
+    // (the find's counts, probe_trace's, included).
     d.measured = {{"cells_queued", "rc_counters", offsetof(glsl::RcCounters, active_cells)},
                   {"cells_inserted", "rc_counters", offsetof(glsl::RcCounters, insertions)},
                   {"hits_reused", "rc_counters", offsetof(glsl::RcCounters, reused)},
                   {"hits_dropped", "rc_counters", offsetof(glsl::RcCounters, drops)},
+                  {"probing_collisions", "rc_counters", offsetof(glsl::RcCounters, collisions)},
                   {"hits_pending_round1", "rc_counters", sizeof(glsl::RcCounters) + offsetof(glsl::RcRoundArgs, count)}};
     return d;
   }
 
   void record(RecordContext& ctx) override {
     using namespace glsl;
-    const DeviceInfo& info = ctx.gpu.info();
-    if (!info.subgroup_ballot || !info.subgroup_arithmetic)
-      throw std::runtime_error(
-          "radiance_cache_update: the device lacks compute subgroup ballot/arithmetic operations "
-          "(VkPhysicalDeviceSubgroupProperties), which radiance_cache_update.comp needs");
     const RadianceCacheSettings& r = ctx.settings.params<RadianceCacheSettings>();
-    const uint32_t hits = hit_records(ctx.settings);
-    RcUpdatePush push{make_rc_params(ctx.settings, ctx.frame), {active_capacity(ctx.settings), 0, hits, 0}};
-    // Last frame's shade read rc_counters (indirect args): order the fill after it. (rc_cells is
-    // persistent: the executor zeroes it when it creates it.)
-    ctx.cmd.barrier(kStageCompute, kStageTransfer);
-    ctx.cmd.begin_label("radiance_cache_update/reset");
-    ctx.cmd.fill(ctx.buffer("rc_counters"), 0);
-    ctx.cmd.end_label();
-    ctx.cmd.barrier(kStageTransfer, kStageCompute);
-
-    // Counters summed per workgroup on GPUs; on a CPU device a group barrier costs more.
-    const bool per_group = r.update_counters == 0 ? !info.is_software() : r.update_counters == 1;
-    const SpecConstant group_counts{kRcUpdateSpecGroupCounts, per_group ? 1u : 0u};
+    RcUpdatePush push{make_rc_params(ctx.settings, ctx.frame),
+                      {rc_active_capacity(ctx.settings), 0, rc_hit_records(ctx.settings), 0}};
     const std::vector<BufferBinding> buffers{{kRcUpdateBindHits, "probe_hits"},
                                              {kRcUpdateBindCells, "rc_cells"},
                                              {kRcUpdateBindActive, "rc_active"},
                                              {kRcUpdateBindCounters, "rc_counters"},
                                              {kRcUpdateBindPending, "rc_pending"}};
-    // Round 0 over every hit record: keys found in the table are placed and queued at once, new
-    // ones bid and join round 1's list (radiance_cache_update.comp).
-    record_compute(ctx, {.shader = "radiance_cache_update.comp",
-                         .groups_x = div_up(hits, kRcUpdateGroup),
-                         .push = &push,
-                         .push_bytes = sizeof(push),
-                         .spec_constants = {{kRcUpdateSpecKernel, kRcUpdateKernelFind}, group_counts},
-                         .buffers = buffers,
-                         .label = "radiance_cache_update/find",
-                         .barrier_after = r.cache_max_probe > 0});
-    if (r.cache_max_probe == 0) return;
+    const SpecConstant group_counts{kRcUpdateSpecGroupCounts, rc_group_counts(ctx.gpu.info(), r) ? 1u : 0u};
+    if (separate_find(ctx.settings)) {
+      // Round 0 over every hit record in a dispatch of its own (option insertion_find 1, the
+      // former layout): keys found in the table are placed and queued, new ones bid and join
+      // round 1's list.
+      record_compute(ctx, {.shader = "radiance_cache_update.comp",
+                           .groups_x = div_up(rc_hit_records(ctx.settings), kRcUpdateGroup),
+                           .push = &push,
+                           .push_bytes = sizeof(push),
+                           .spec_constants = {{kRcUpdateSpecKernel, kRcUpdateKernelFind}, group_counts},
+                           .buffers = buffers,
+                           .label = "radiance_cache_update/find",
+                           .barrier_after = r.cache_max_probe > 0});
+    }
+    if (r.cache_max_probe == 0) return;  // the find placed or dropped every hit
     if (r.insertion_rounds == 0) {
       // Rounds 1 .. cache_max_probe in one workgroup: one dispatch whatever is pending.
       record_compute(ctx, {.shader = "radiance_cache_update.comp",

@@ -2,18 +2,20 @@
 // queues the cells that need shading (the idTech 8 "Global Illumination" talk,
 // "Sampling the World": each ray hit triggers a cache update; spatial hashing [Gautron 2020],
 // 25 cm cells with distance LODs, linear probing, an active-cell counter and list, indirect
-// dispatch args). Kernels, in one pass (labels radiance_cache_update/<kernel>):
-//   reset  fill rc_counters (RcCounters and the rounds' indirect args) with 0 (rc_cells is
-//          persistent: the executor zeroes it when it creates it)
-//   find   one thread per hit record; misses are skipped. The hit position probe + dir *
-//          distance is hashed (rc_cell_key, radiance_cache.glsl: LOD = 2^floor(log2(1 + d_cam /
-//          lod_distance)), cell = floor(p / (cell_size * LOD)), key = hash(cell, LOD) | 1) once,
-//          and searched over at most cache_max_probe slots: a key in the table is placed now, a
-//          new key bids for its first slot if empty (insertion round 0) and joins the pending
-//          list (hit id, key) of round 1, a key whose slots are all taken is dropped.
-//   round  r = 1 .. cache_max_probe, indirect over the hits still pending (0 groups once none
-//          is): commit a won bid, else bid for the next slot (deterministic insertion,
-//          radiance_cache_update.comp); still pending hits join round r + 1's list.
+// dispatch args). Insertion round 0, the find, runs in probe_trace as each ray is traced (the
+// seed's: the trace triggers the cache update); this pass goes on from its pending list.
+// Kernels (labels radiance_cache_update/<kernel>; the insertion's code: include/rc_insert.glsl):
+//   find   (option insertion_find 1 only: the former layout) one thread per hit record; misses
+//          are skipped. The hit's committed key (made by probe_trace: rc_cell_key,
+//          radiance_cache.glsl: LOD = 2^floor(log2(1 + d_cam / lod_distance)), cell = floor(p /
+//          (cell_size * LOD)), key = hash(cell, LOD) | 1) is searched over at most
+//          cache_max_probe slots: a key in the table is placed now, a new key bids for its first
+//          slot if empty (insertion round 0) and joins the pending list (hit id, key) of round
+//          1, a key whose slots are all taken is dropped. By default probe_trace does this.
+//   rounds r = 1 .. cache_max_probe in one workgroup (option insertion_rounds 0), or `round`,
+//          one indirect dispatch per round over the hits still pending (0 groups once none is;
+//          insertion_rounds 1): commit a won bid, else bid for the next slot (deterministic
+//          insertion, rc_insert.glsl); still pending hits join round r + 1's list.
 // A placed hit queues its cell unless its shaded_frame is within cache_reuse_frames: the queued
 // marker is RcCell.shaded_frame itself, atomicCompSwap'd from its old value to frame + 1 (so a
 // cell is queued once per frame; radiance_cache_shade then writes the radiance, and shaded_frame
@@ -27,12 +29,11 @@
 // steps past occupied slots of other keys; `active` = cells queued. So insertions + reused +
 // drops <= hits and insertions <= active. The same table and counters as the former design
 // (every round a dispatch over every hit record, then a pick and an args kernel).
-// Work: `hits` declared; bench reads back cells_queued, cells_inserted, hits_reused,
-// hits_dropped and hits_pending_round1 (the hits of new keys) after its timed frames.
-// Slots: reads probe_hits; writes rc_cells (persistent buffer, read_write, 2^cache_log2_cells x
-// 16 bytes), rc_active (buffer, 16^3 x max(64, rays_per_probe) uint), rc_counters (32 bytes +
-// 16 per round), rc_pending (two lists of 16^3 x rays_per_probe (hit id, key)).
-// Needs compute subgroup ballot and arithmetic operations (a clear error without them).
+// Work: none declared (probe_trace declares the rays); bench reads back cells_queued,
+// cells_inserted, hits_reused, hits_dropped and hits_pending_round1 (the hits of new keys) after
+// its timed frames.
+// Slots: reads probe_hits (the find kernel's); reads and writes rc_cells, rc_active,
+// rc_counters and rc_pending, which probe_trace creates and zeroes (probe_trace.h).
 // Limits: cells are never evicted (a long camera path fills the table, then insertions are
 // dropped and counted); between this pass and radiance_cache_shade a queued cell reads as shaded
 // this frame (readers run after the shade); the key ignores the normal, so both faces of a wall

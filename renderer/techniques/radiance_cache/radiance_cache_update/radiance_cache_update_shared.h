@@ -4,13 +4,13 @@
 #include "frame_shared.h"
 #include "renderer/techniques/radiance_cache/include/radiance_cache_shared.h"
 GIB_SHARED_BEGIN
-GIB_CONST(uint, kRcUpdateGroup, 256)         // find: one thread per probe hit record; round: per pending hit
-GIB_CONST(uint, kRcUpdateBindHits, 8)        // readonly ProbeHit probe_hits[]
+GIB_CONST(uint, kRcUpdateGroup, 256)         // find: one thread per probe hit record; rounds: per pending hit
+GIB_CONST(uint, kRcUpdateBindHits, 8)        // readonly ProbeHit probe_hits[] (the find kernel's, option insertion_find 1)
 GIB_CONST(uint, kRcUpdateBindCells, 9)       // coherent RcCell rc_cells[2^cache_log2_cells]
 GIB_CONST(uint, kRcUpdateBindActive, 10)     // uint rc_active[capacity]: queued cell indices
 GIB_CONST(uint, kRcUpdateBindCounters, 11)   // RcCounters (indirect args first), then RcRoundArgs[max_probe]
 GIB_CONST(uint, kRcUpdateBindPending, 12)    // uvec2 rc_pending[2 * hits]: (hit id, key), two lists
-GIB_CONST(uint, kRcUpdateSpecKernel, 0)      // 0: find (round 0), 1: round r >= 1, 2: rounds 1 .. max_probe in one group
+GIB_CONST(uint, kRcUpdateSpecKernel, 0)      // 0: find (round 0; option insertion_find 1, else probe_trace runs it), 1: round r >= 1, 2: rounds 1 .. max_probe in one group
 GIB_CONST(uint, kRcUpdateSpecGroupCounts, 1) // bool: counters summed per workgroup in shared memory (GPUs; not on CPU devices)
 GIB_CONST(uint, kRcUpdateKernelFind, 0)
 GIB_CONST(uint, kRcUpdateKernelRound, 1)
