@@ -527,6 +527,26 @@ void inject_nan_normal(Settings& s, bool guards) {
   s.debug.inject_y = s.height / 2 / div * div + div / 2;
 }
 
+// The checks of a kernel-agreement test: the tiled kernel's values equal the per-tap kernel's bit
+// for bit (a NaN equals a NaN), more than min_nonzero of them are not 0 (else the comparison sees
+// nothing), and NaNs reach the output exactly when `expect_nan` (a NaN injected, guards off).
+void expect_kernels_agree(const std::vector<uint32_t>& tiled, const std::vector<uint32_t>& per_tap, double min_nonzero,
+                          bool expect_nan) {
+  ASSERT_EQ(tiled.size(), per_tap.size());
+  size_t nonzero = 0, nan = 0;
+  for (uint32_t u : per_tap) {
+    nonzero += (u & 0x7fffffffu) != 0;
+    nan += (u & 0x7fffffffu) > 0x7f800000u;
+  }
+  EXPECT_EQ(bits_differ(tiled, per_tap), 0u) << "of " << tiled.size() << " values";
+  EXPECT_GT(double(nonzero), min_nonzero * double(tiled.size())) << "the outputs are mostly zero: the comparison sees nothing";
+  if (expect_nan) {
+    EXPECT_GT(nan, 0u) << "without guards the injected NaN must reach the output";
+  } else {
+    EXPECT_EQ(nan, 0u);
+  }
+}
+
 // gi_denoise's two kernels (denoise_kernel 0: taps preloaded to a group-shared tile; 1: each tap
 // reads the images) give the same SH and direct part bit for bit, frame after frame, at radii up
 // to the tile's limit, with the hit-distance weight off and on, on a size whose gather
@@ -555,20 +575,7 @@ TEST_F(RadianceCacheScreen, DenoiseKernelsAgreeBitForBit) {
           }
           return bits;
         };
-        const std::vector<uint32_t> tiled = run(0), per_tap = run(1);
-        ASSERT_EQ(tiled.size(), per_tap.size());
-        size_t nonzero = 0, nan = 0;
-        for (uint32_t u : per_tap) {
-          nonzero += (u & 0x7fffffffu) != 0;
-          nan += (u & 0x7fffffffu) > 0x7f800000u;
-        }
-        EXPECT_EQ(bits_differ(tiled, per_tap), 0u) << "of " << tiled.size() << " values";
-        EXPECT_GT(nonzero, tiled.size() / 8) << "the outputs are mostly zero: the comparison sees nothing";
-        if (mode == 2) {
-          EXPECT_GT(nan, 0u) << "without guards the injected NaN must reach the denoise's output";
-        } else {
-          EXPECT_EQ(nan, 0u);
-        }
+        expect_kernels_agree(run(0), run(1), 1.0 / 8, mode == 2);
       }
 }
 
@@ -595,16 +602,7 @@ TEST_F(RadianceCacheScreen, DenoiseKernelsSkipTheSameNanTaps) {
         for (float v : ex.read(name).pixels) bits.push_back(std::bit_cast<uint32_t>(v));
       return bits;
     };
-    const std::vector<uint32_t> tiled = run(0), per_tap = run(1);
-    ASSERT_EQ(tiled.size(), per_tap.size());
-    size_t nan = 0;
-    for (uint32_t u : tiled) nan += (u & 0x7fffffffu) > 0x7f800000u;
-    EXPECT_EQ(bits_differ(tiled, per_tap), 0u) << "of " << tiled.size() << " values";
-    if (guards) {
-      EXPECT_EQ(nan, 0u);
-    } else {
-      EXPECT_GT(nan, 0u) << "without guards the NaN taps must reach the output";
-    }
+    expect_kernels_agree(run(0), run(1), 1.0 / 8, !guards);
   }
 }
 
@@ -639,20 +637,7 @@ TEST_F(RadianceCacheScreen, UpscaleKernelsAgreeBitForBit) {
         }
         return bits;
       };
-      const std::vector<uint32_t> tiled = run(0), per_tap = run(1);
-      ASSERT_EQ(tiled.size(), per_tap.size());
-      size_t nonzero = 0, nan = 0;
-      for (uint32_t u : per_tap) {
-        nonzero += (u & 0x7fffffffu) != 0;
-        nan += (u & 0x7fffffffu) > 0x7f800000u;
-      }
-      EXPECT_EQ(bits_differ(tiled, per_tap), 0u) << "of " << tiled.size() << " values";
-      EXPECT_GT(nonzero, tiled.size() / 4) << "the outputs are mostly zero: the comparison sees nothing";
-      if (mode == 2) {
-        EXPECT_GT(nan, 0u) << "without guards the injected NaN must reach the upscale's output";
-      } else {
-        EXPECT_EQ(nan, 0u);
-      }
+      expect_kernels_agree(run(0), run(1), 1.0 / 4, mode == 2);
     }
 }
 
