@@ -600,15 +600,14 @@ int cmd_bench(const BenchOptions& o) {
           PassRun pr;
           pr.name = pp->name;
           pr.raster = pp->kind == PassKind::graphics;
-          pr.bytes_run = pass_bytes(r.plan_run, *pp);
-          // Bytes and work at the profile's workload: from the plan compiled at that size.
+          // Work at the profile's workload: from the plan compiled at that size. (Bytes, which
+          // need the measured counters, are counted after the repeats.)
           const PlannedPass* full = pp;
           for (auto* fp : r.plan_full.running())
             if (fp->name == pp->name) full = fp;
-          if (full != pp) pr.bytes_full = pass_bytes(r.plan_full, *full);
           pr.counters = work_counters(*full, r.settings_full);
-          double pixel_ratio = double(r.workload.width) * r.workload.height / (double(r.workload.run_width) * r.workload.run_height);
-          pr.work_scale = pr.bytes_run.total() ? double(pr.bytes_full.total()) / double(pr.bytes_run.total()) : pixel_ratio;
+          // The scale to the workload when the pass moves no plan bytes: the pixel ratio.
+          pr.work_scale = double(r.workload.width) * r.workload.height / (double(r.workload.run_width) * r.workload.run_height);
           r.passes.push_back(std::move(pr));
         }
       }
@@ -655,9 +654,9 @@ int cmd_bench(const BenchOptions& o) {
       std::fflush(stdout);
     }
   const double run_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
-  // Sparse slots (Slot::touched) count the bytes their GPU-counted work moves, known only now:
-  // the run's measured counters by name (PassDecl::measured; declared work is not used, its
-  // names repeat across passes).
+  // Bytes per pass, at the run's size and the profile's: sparse slots (Slot::touched) count the
+  // bytes their GPU-counted work moves, known only now: the run's measured counters by name
+  // (PassDecl::measured; declared work is not used, its names repeat across passes).
   for (auto& r : runs) {
     std::map<std::string, double> measured;
     for (auto* pp : r.plan_run.running())

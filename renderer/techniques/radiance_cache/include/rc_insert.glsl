@@ -6,8 +6,8 @@
 //   coherent buffer { uvec2 rc_pending[]; }, writeonly buffer { uint rc_active[]; }
 //   RC_CELL_BUFFER(..., coherent), and #define RC_INSERT_SPEC_GROUP_COUNTS (a constant_id);
 // and enables GL_KHR_shader_subgroup_basic, _ballot and _arithmetic.
-// and calls, in uniform control flow: rc_insert_begin(), rc_insert_step(round, id, key) per
-// hit, rc_insert_flush() at the end.
+// and calls, in uniform control flow: rc_insert_begin(), rc_insert_find(id, key) (round 0) or
+// rc_insert_step(round, id, key) (round >= 1) per hit, rc_insert_flush() at the end.
 #ifndef GIB_RC_INSERT_GLSL
 #define GIB_RC_INSERT_GLSL
 #include "renderer/techniques/radiance_cache/radiance_cache_update/radiance_cache_update_shared.h"
@@ -190,15 +190,22 @@ void rc_insert_step(uint round, uint id, uint key) {
   }
 }
 
-// Round 0's thread 0 writes the y, z of every indirect dispatch of the insertion (the reset
-// filled them with 0).
-void rc_insert_init_args() {
-  counters.dispatch_y = 1u;
-  counters.dispatch_z = 1u;
-  for (uint r = 0u; r < rc_max_probe(); ++r) {
-    rounds[r].groups_y = 1u;
-    rounds[r].groups_z = 1u;
+// Whether thread `id` of a round-0 dispatch has a hit record (one per ray of the updated cascade).
+bool rc_is_hit_record(uint id) { return id < kProbeGridDim * kProbeGridDim * kProbeGridDim * rc_rays_per_probe(); }
+
+// Round 0, the find, for thread `id` and its hit record's committed key (0 past the records).
+// Thread 0 also writes the y, z of every indirect dispatch of the insertion (the reset filled
+// them with 0).
+void rc_insert_find(uint id, uint key) {
+  if (id == 0u) {
+    counters.dispatch_y = 1u;
+    counters.dispatch_z = 1u;
+    for (uint r = 0u; r < rc_max_probe(); ++r) {
+      rounds[r].groups_y = 1u;
+      rounds[r].groups_z = 1u;
+    }
   }
+  rc_insert_step(0u, id, key);
 }
 
 // Zeroes the group's counter totals (kGroupCounts); call first, in uniform control flow.

@@ -22,16 +22,16 @@ class IrradianceVolumeUpdatePass final : public Pass {
     ResourceDesc rays{Format::buffer, SizeRule::buffer};
     rays.bytes = uint64_t(kProbesPerCascade) * r.rays_per_probe * 16;  // vec4 per ray
     rays.values = non_negative_values().layout(4, 0, 3);                 // rgb radiance
+    // The cache is read sparsely (bench's memory time counts what moves): each hit record looks
+    // its key up, one slot plus its probing collisions.
     d.slots = {{"probe_hits", Access::read},
-               {"rc_cells", Access::read},
+               {"rc_cells", Access::read, {},
+                Touched{double(rc_hit_records(s)), {{"probing_collisions", 1}}, sizeof(glsl::RcCell), false}},
                {"probe_ray_radiance", Access::write, rays},
                {"probe_irradiance", Access::write, irr},
                {"probe_visibility", Access::write, vis},
                {"probe_irradiance", Access::read_prev},
                {"probe_visibility", Access::read_prev}};
-    // The cache is read sparsely (bench's memory time counts what moves): each hit record looks
-    // its key up, one slot plus its probing collisions.
-    d.slots[1].touched = Touched{double(rc_hit_records(s)), {{"probing_collisions", 1}}, sizeof(glsl::RcCell), false};
     d.work = {{"probes", kProbesPerCascade}};
     return d;
   }

@@ -64,16 +64,15 @@ layout(constant_id = kProbeTraceSpecFind) const bool kFind = true;
 
 void main() {
   uint id = gl_GlobalInvocationID.x;
-  bool valid = id < kProbeGridDim * kProbeGridDim * kProbeGridDim * rc_rays_per_probe();
+  bool valid = rc_is_hit_record(id);
   if (!kFind) {
     if (valid) trace_ray(id);
     return;
   }
   rc_insert_begin();
   uint key = valid ? trace_ray(id) : 0u;
-  if (id == 0u) rc_insert_init_args();
   // Each ray hit triggers its cache update (the seed's): insertion round 0, the find, in uniform
   // control flow (every thread of the group reaches it).
-  rc_insert_step(0u, valid ? id : kNoCell, key);
+  rc_insert_find(id, key);
   rc_insert_flush();
 }

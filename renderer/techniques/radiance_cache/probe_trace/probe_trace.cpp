@@ -39,11 +39,6 @@ class ProbeTracePass final : public Pass {
     // The hits still unplaced after a round, (hit id, key): two lists, rounds alternate.
     ResourceDesc pending{Format::buffer, SizeRule::buffer};
     pending.bytes = 2 * uint64_t(rc_hit_records(s)) * 2 * sizeof(uint32_t);
-    d.slots = {{"probe_hits", Access::write, hits},
-               {"rc_cells", Access::read_write, cells},
-               {"rc_active", Access::write, active},
-               {"rc_counters", Access::write, counters},
-               {"rc_pending", Access::write, pending}};
     // The find touches the table sparsely (bench's memory time counts what it moves, not the
     // 2^cache_log2_cells x 16 bytes): each hit record reads its key's slots, one plus its probing
     // collisions, and writes at most one cell (a bid, the queue marker, hit_index); each queued
@@ -51,9 +46,13 @@ class ProbeTracePass final : public Pass {
     // option insertion_find 1 (radiance_cache_update's find then does it).
     const bool find = r.insertion_find == 0;
     const double records = find ? double(rc_hit_records(s)) : 0.0, per = find ? 1.0 : 0.0;
-    d.slots[1].touched = Touched{records, {{"probing_collisions", per}}, sizeof(glsl::RcCell), false};
-    d.slots[2].touched = Touched{0, {{"cells_queued", per}}, sizeof(uint32_t), true};
-    d.slots[4].touched = Touched{0, {{"hits_pending_round1", per}}, 2 * sizeof(uint32_t), true};
+    d.slots = {{"probe_hits", Access::write, hits},
+               {"rc_cells", Access::read_write, cells,
+                Touched{records, {{"probing_collisions", per}}, sizeof(glsl::RcCell), false}},
+               {"rc_active", Access::write, active, Touched{0, {{"cells_queued", per}}, sizeof(uint32_t), true}},
+               {"rc_counters", Access::write, counters},
+               {"rc_pending", Access::write, pending,
+                Touched{0, {{"hits_pending_round1", per}}, 2 * sizeof(uint32_t), true}}};
     d.work = {{"probes", kProbesPerCascade}, {"rays", double(kProbesPerCascade) * rays}};
     return d;
   }

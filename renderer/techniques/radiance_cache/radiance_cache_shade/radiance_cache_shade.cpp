@@ -13,17 +13,14 @@ class RadianceCacheShadePass final : public Pass {
   PassDecl declare(const Scene& scene, const Settings&) const override {
     PassDecl d;
     d.name = "radiance_cache_shade";
-    d.slots = {{"probe_hits", Access::read},
-               {"rc_active", Access::read},
-               {"rc_counters", Access::read},
-               {"rc_cells", Access::read_write},
-               {"probe_irradiance", Access::read_prev},
-               {"probe_visibility", Access::read_prev}};
     // Sparse accesses (bench's memory time counts what they move): each shaded cell reads its
     // rc_active entry and its hit record, and reads and writes its cell.
-    d.slots[0].touched = Touched{0, {{"cells_shaded", 1}}, sizeof(glsl::ProbeHit), false};
-    d.slots[1].touched = Touched{0, {{"cells_shaded", 1}}, sizeof(uint32_t), true};
-    d.slots[3].touched = Touched{0, {{"cells_shaded", 1}}, sizeof(glsl::RcCell), false};
+    d.slots = {{"probe_hits", Access::read, {}, Touched{0, {{"cells_shaded", 1}}, sizeof(glsl::ProbeHit), false}},
+               {"rc_active", Access::read, {}, Touched{0, {{"cells_shaded", 1}}, sizeof(uint32_t), true}},
+               {"rc_counters", Access::read},
+               {"rc_cells", Access::read_write, {}, Touched{0, {{"cells_shaded", 1}}, sizeof(glsl::RcCell), false}},
+               {"probe_irradiance", Access::read_prev},
+               {"probe_visibility", Access::read_prev}};
     if (scene.features().has(Feature::local_lights)) d.slots.push_back({"light_grid", Access::read});
     // One thread per cell queued this frame: how many, only the GPU knows (read back by bench
     // after its timed frames).

@@ -44,9 +44,7 @@ void main() {
     // Round 0 over every hit record (option insertion_find 1; by default probe_trace runs it as
     // it traces): the same step on the same committed keys.
     uint id = gl_GlobalInvocationID.x;
-    bool valid = id < kProbeGridDim * kProbeGridDim * kProbeGridDim * rc_rays_per_probe();
-    if (id == 0u) rc_insert_init_args();
-    rc_insert_step(0u, valid ? id : kNoCell, valid ? probe_hits[id].key : 0u);
+    rc_insert_find(id, rc_is_hit_record(id) ? probe_hits[id].key : 0u);
   } else if (kKernel == kRcUpdateKernelRound) {
     round_step(extra.y, gl_GlobalInvocationID.x);
   } else {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstring>
+#include <optional>
 
 #include "renderer/techniques/radiance_cache/radiance_cache_update/radiance_cache_update_shared.h"
 #include "renderer/techniques/radiance_cache/radiance_cache_params.h"
@@ -24,27 +25,25 @@ class RadianceCacheUpdatePass final : public Pass {
     d.name = "radiance_cache_update";
     // probe_trace made them (and, by default, ran insertion round 0, the find); rounds 1 ..
     // cache_max_probe go on from its pending list.
-    // (probe_hits: read by the find kernel of option insertion_find 1; every kernel of the
-    // shader declares it.)
-    d.slots = {{"probe_hits", Access::read},
-               {"rc_cells", Access::read_write},
-               {"rc_active", Access::read_write},
-               {"rc_counters", Access::read_write},
-               {"rc_pending", Access::read_write}};
     // Sparse accesses (bench's memory time counts what they move): each pending hit reads at most
     // two slots a round and writes one, and is read and appended once a round; queued cells
     // append an rc_active entry. The separate find (insertion_find 1) reads every hit record and,
     // per record, its key's slots (one plus the probing collisions); without it, probe_hits is
-    // not read.
+    // not read (every kernel of the shader declares it, so it is bound).
     const RadianceCacheSettings& r = s.params<RadianceCacheSettings>();
     const bool find = separate_find(s);
     const double rounds = double(r.cache_max_probe);
-    if (!find) d.slots[0].touched = Touched{0, {}, sizeof(glsl::ProbeHit), false};
-    d.slots[1].touched = Touched{find ? double(rc_hit_records(s)) : 0.0,
-                                 {{"hits_pending_round1", 2 * rounds}, {"probing_collisions", find ? 1.0 : 0.0}},
-                                 sizeof(glsl::RcCell), false};
-    d.slots[2].touched = Touched{0, {{"cells_queued", 1}}, sizeof(uint32_t), true};
-    d.slots[4].touched = Touched{0, {{"hits_pending_round1", 2 * rounds}}, 2 * sizeof(uint32_t), true};
+    const std::optional<Touched> hits_read =
+        find ? std::nullopt : std::optional<Touched>(Touched{0, {}, sizeof(glsl::ProbeHit), false});
+    d.slots = {{"probe_hits", Access::read, {}, hits_read},
+               {"rc_cells", Access::read_write, {},
+                Touched{find ? double(rc_hit_records(s)) : 0.0,
+                        {{"hits_pending_round1", 2 * rounds}, {"probing_collisions", find ? 1.0 : 0.0}},
+                        sizeof(glsl::RcCell), false}},
+               {"rc_active", Access::read_write, {}, Touched{0, {{"cells_queued", 1}}, sizeof(uint32_t), true}},
+               {"rc_counters", Access::read_write},
+               {"rc_pending", Access::read_write, {},
+                Touched{0, {{"hits_pending_round1", 2 * rounds}}, 2 * sizeof(uint32_t), true}}};
     // Read back by bench after its timed frames (never in a frame): what the frame really did
     // (the find's counts, probe_trace's, included).
     d.measured = {{"cells_queued", "rc_counters", offsetof(glsl::RcCounters, active_cells)},
