@@ -34,10 +34,15 @@ RC_CELL_BUFFER(kIvBindCells, readonly)
 #include "renderer/techniques/radiance_cache/irradiance_volume_update/irradiance_volume_common.glsl"
 
 const uint kTexels = kProbeTileInterior * kProbeTileInterior;
+// Rays per probe (rays_per_probe, at most kIvMaxRays): sizes the group-shared ray arrays, so a
+// group reserves what its rays need (2 KB at 64 rays instead of 8 KB at 256: more groups fit an
+// SM, and on NVIDIA shared memory is carved out of the L1 the cache lookups use), and is the
+// texel loop's trip count.
+layout(constant_id = kIvSpecRays) const uint kRays = kIvMaxRays;
 // Per ray, two 16-byte words the texel loop reads with one load each: direction (zero when the
 // ray brings no light) and distance (-1 inside geometry); radiance.
-shared vec4 s_dir_distance[kIvMaxRays];
-shared vec4 s_radiance[kIvMaxRays];
+shared vec4 s_dir_distance[kRays];
+shared vec4 s_radiance[kRays];
 shared uint s_inside;  // rays of the probe inside geometry (the same for every texel)
 shared uint s_irradiance[kTexels];
 shared vec2 s_moments[kTexels];
@@ -84,7 +89,7 @@ void main() {
   uint probe = gl_WorkGroupID.x;
   uint tid = gl_LocalInvocationIndex;
   CarryTexels carried = carry_load(probe, tid);
-  uint rays = min(rc_rays_per_probe(), kIvMaxRays);
+  const uint rays = kRays;  // rc_rays_per_probe(), as a constant
   uint c = rc_updated_cascade();
   ivec3 ijk = rc_probe_coord(probe);
   vec3 o = rc_probe_position(c, ijk);

@@ -22,6 +22,10 @@ class IrradianceVolumeUpdatePass final : public Pass {
     ResourceDesc rays{Format::buffer, SizeRule::buffer};
     rays.bytes = uint64_t(kProbesPerCascade) * r.rays_per_probe * 16;  // vec4 per ray
     rays.values = non_negative_values().layout(4, 0, 3);                 // rgb radiance
+    // Persistent only so that the executor zeroes it once: the GPU kernel never writes it, and
+    // the stability scan or a dump then reads zeros, not undefined memory (a fill every frame
+    // cost that kernel a 4 MB transfer).
+    rays.persistent = true;
     // The cache is read sparsely (bench's memory time counts what moves): each hit record looks
     // its key up, one slot plus its probing collisions.
     d.slots = {{"probe_hits", Access::read},
@@ -73,6 +77,8 @@ class IrradianceVolumeUpdatePass final : public Pass {
     }
     IvPush push{make_rc_params(ctx.settings, ctx.frame), {carried, 0, 0, 0}};
     if (per_probe) {
+      std::vector<SpecConstant> probe_specs = ray_specs;
+      probe_specs.push_back({kIvSpecRays, r.rays_per_probe});  // 1..kIvMaxRays (probe_trace checks)
       // GPU: one workgroup per probe with its rays in group-shared memory.
       ctx.cmd.begin_label("irradiance_volume_update/probe");
       record_compute(ctx, {.shader = "irradiance_volume_probe.comp",
@@ -83,13 +89,10 @@ class IrradianceVolumeUpdatePass final : public Pass {
                            .groups_x = kProbesPerCascade,
                            .push = &push,
                            .push_bytes = sizeof(push),
-                           .spec_constants = ray_specs,
+                           .spec_constants = probe_specs,
                            .buffers = {{kIvBindHits, "probe_hits"}, {kIvBindCells, "rc_cells"}}});
       ctx.cmd.end_label();
-      // The split path's ray buffer is unused here: zeroed so nothing (the stability scan, a
-      // dump) reads undefined memory.
-      ctx.cmd.fill(ctx.buffer("probe_ray_radiance"), 0);
-      return;
+      return;  // probe_ray_radiance, the split path's, stays as created: zero
     }
     // CPU device: two barrier-free kernels (see irradiance_volume_probe.comp for why).
     ctx.cmd.begin_label("irradiance_volume_update/rays");

@@ -18,6 +18,7 @@ GIB_CONST(uint, kIvBindRays, 14)                // probe_ray_radiance: vec4 (rgb
 GIB_CONST(uint, kIvSpecCacheFallback, 0)        // 1: hits without a shaded cell use last frame's volumes
 GIB_CONST(uint, kIvSpecAlpha, 1)                // 1: the scene has alpha-tested materials (probe rays test them)
 GIB_CONST(uint, kIvSpecDither, 2)               // 1: the atlas store rounds stochastically (option dither_stores)
+GIB_CONST(uint, kIvSpecRays, 3)                 // irradiance_volume_probe.comp: rays_per_probe (group-shared array size)
 // Exponent k of the max(0, n.d)^k weight of the distance moments.
 GIB_CONST(float, kIvDistanceSharpness, 16.0)
 struct IvPush {

@@ -34,8 +34,13 @@ class ProbeTracePass final : public Pass {
     ResourceDesc active{Format::buffer, SizeRule::buffer};
     active.bytes = uint64_t(rc_active_capacity(s)) * sizeof(uint32_t);
     // RcCounters, then the indirect args and length of insertion rounds 1 .. cache_max_probe.
+    // Two copies (ping-pong by frame): this frame's counts into one while its kernel zeroes the
+    // other, last frame's, for the next frame (read_prev below), so no fill and no barrier
+    // precede the trace. Frames are fenced, so last frame's readers (the shade's indirect args)
+    // are done with that copy. Persistent: both copies start zeroed.
     ResourceDesc counters{Format::buffer, SizeRule::buffer};
     counters.bytes = sizeof(glsl::RcCounters) + uint64_t(r.cache_max_probe) * sizeof(glsl::RcRoundArgs);
+    counters.persistent = true;
     // The hits still unplaced after a round, (hit id, key): two lists, rounds alternate.
     ResourceDesc pending{Format::buffer, SizeRule::buffer};
     pending.bytes = 2 * uint64_t(rc_hit_records(s)) * 2 * sizeof(uint32_t);
@@ -51,6 +56,7 @@ class ProbeTracePass final : public Pass {
                 Touched{records, {{"probing_collisions", per}}, sizeof(glsl::RcCell), false}},
                {"rc_active", Access::write, active, Touched{0, {{"cells_queued", per}}, sizeof(uint32_t), true}},
                {"rc_counters", Access::write, counters},
+               {"rc_counters", Access::read_prev},  // written: zeroed for the next frame
                {"rc_pending", Access::write, pending,
                 Touched{0, {{"hits_pending_round1", per}}, 2 * sizeof(uint32_t), true}}};
     d.work = {{"probes", kProbesPerCascade}, {"rays", double(kProbesPerCascade) * rays}};
@@ -65,12 +71,6 @@ class ProbeTracePass final : public Pass {
           "probe_trace: the device lacks compute subgroup ballot/arithmetic operations "
           "(VkPhysicalDeviceSubgroupProperties), which the cache insertion (rc_insert.glsl) needs");
     const RadianceCacheSettings& r = ctx.settings.params<RadianceCacheSettings>();
-    // Last frame's shade read rc_counters (indirect args): order the fill after it.
-    ctx.cmd.barrier(kStageCompute, kStageTransfer);
-    ctx.cmd.begin_label("probe_trace/reset");
-    ctx.cmd.fill(ctx.buffer("rc_counters"), 0);
-    ctx.cmd.end_label();
-    ctx.cmd.barrier(kStageTransfer, kStageCompute);
     ProbeTracePush push{make_rc_params(ctx.settings, ctx.frame),
                         {rc_active_capacity(ctx.settings), 0, rc_hit_records(ctx.settings), 0}};
     record_compute(ctx, {.shader = "probe_trace.comp",
@@ -84,6 +84,7 @@ class ProbeTracePass final : public Pass {
                                      {kProbeTraceBindCells, "rc_cells"},
                                      {kProbeTraceBindActive, "rc_active"},
                                      {kProbeTraceBindCounters, "rc_counters"},
+                                     {kProbeTraceBindNextCounters, "rc_counters", true},
                                      {kProbeTraceBindPending, "rc_pending"}}});
   }
 };

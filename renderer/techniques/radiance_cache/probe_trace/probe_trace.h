@@ -9,13 +9,13 @@
 // find (include/rc_insert.glsl, radiance_cache_update.h): the hit's key is searched in the world
 // radiance cache; a key found is placed and its cell queued for shading (rc_active, the shade's
 // indirect args), a new key bids for its first slot and joins round 1's pending list, a key whose
-// slots are all taken is dropped. Before the dispatch the pass zeroes rc_counters (a transfer
-// fill). Option insertion_find 1 moves the find to a dispatch of radiance_cache_update over
+// slots are all taken is dropped. rc_counters has two copies (ping-pong): a frame counts into
+// one while its first workgroup zeroes the other for the next frame (no fill, no barrier). Option insertion_find 1 moves the find to a dispatch of radiance_cache_update over
 // every hit record (the former layout): the same table and counters.
 // Slots: reads the scene and BVH; writes `probe_hits` (buffer, 16^3 x rays_per_probe ProbeHit,
 // probe-major: record probe * rays + ray; radiance_cache_shared.h), and creates the insertion's
 // buffers: rc_cells (persistent, read_write, 2^cache_log2_cells x 16 bytes), rc_active (16^3 x
-// max(64, rays_per_probe) uint), rc_counters (32 bytes + 16 per round), rc_pending (two lists
+// max(64, rays_per_probe) uint), rc_counters (persistent ping-pong, 32 bytes + 16 per round), rc_pending (two lists
 // of 16^3 x rays_per_probe (hit id, key)).
 // Needs compute subgroup ballot and arithmetic operations (a clear error without them).
 // Limits: no probe relocation (DDGI's); a probe inside geometry is found by its rays

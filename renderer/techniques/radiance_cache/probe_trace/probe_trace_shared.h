@@ -12,6 +12,7 @@ GIB_CONST(uint, kProbeTraceBindCells, 9)    // coherent RcCell rc_cells[2^cache_
 GIB_CONST(uint, kProbeTraceBindActive, 10)  // uint rc_active[capacity]: queued cell indices
 GIB_CONST(uint, kProbeTraceBindCounters, 11)  // RcCounters (indirect args first), then RcRoundArgs[max_probe]
 GIB_CONST(uint, kProbeTraceBindPending, 12)   // uvec2 rc_pending[2 * hits]: (hit id, key), two lists
+GIB_CONST(uint, kProbeTraceBindNextCounters, 13)  // last frame's rc_counters copy, zeroed for the next frame
 GIB_CONST(uint, kProbeTraceSpecAlpha, 0)
 GIB_CONST(uint, kProbeTraceSpecGroupCounts, 1)  // bool: insertion counters summed per workgroup (GPUs)
 GIB_CONST(uint, kProbeTraceSpecFind, 2)         // bool: insertion round 0 runs in the trace (option insertion_find 0)
