@@ -21,6 +21,7 @@
 #include "perf/calibration.h"
 #include "perf/frame_timing.h"
 #include "perf/occupancy.h"
+#include "perf/pipeline_stats.h"
 #include "perf/profiles.h"
 #include "perf/stats.h"
 #include "revision.h"
@@ -202,6 +203,7 @@ struct PassRun {
   bool raster = false;           // a graphics pass: scaled by fill rate (scale_raster_to_profile)
   nlohmann::json counters;
   DispatchSamples dispatches;    // from the profiled frames (occupancy term); empty: not profiled
+  std::vector<const Pipeline*> pipelines;  // the compute pipelines it ran (profiled frames), with their statistics
 };
 
 struct TechniqueRun {
@@ -455,7 +457,8 @@ int cmd_bench(const BenchOptions& o) {
   const std::string scene_path = resolve_scene(o.case_name);
   Scene scene = load_scene(scene_path);
 
-  auto gpu = Gpu::create({o.device, false});
+  // Pipeline statistics on: each pass's registers and shared memory where the driver says them.
+  auto gpu = Gpu::create({.device = o.device, .validate = false, .pipeline_statistics = true});
   const DeviceInfo& dev = gpu->info();
   const bool cpu = dev.is_software();
   const double scale = o.scale_resolution.empty() ? (cpu ? 0.125 : 1.0) : parse_scale(o.scale_resolution);
@@ -636,7 +639,12 @@ int cmd_bench(const BenchOptions& o) {
         const FrameResult fr = ex.run_frame();
         for (auto& pt : fr.passes)
           for (auto& pr : r.passes)
-            if (pr.name == pt.name) add_dispatch_samples(pr.dispatches, pt.dispatches);
+            if (pr.name == pt.name) {
+              add_dispatch_samples(pr.dispatches, pt.dispatches);
+              std::vector<const Pipeline*> ran;
+              for (const DispatchTiming& d : pt.dispatches) ran.push_back(d.pipeline);
+              add_pipelines(pr.pipelines, ran);
+            }
       }
       ex.enable_dispatch_profile(false);
       for (const FrameResult& fr : timed.frames) {
@@ -814,6 +822,8 @@ int cmd_bench(const BenchOptions& o) {
         fmt::print("  occupancy:{} on the FLOP ratio ({} dispatches; {}{})\n", occ_line, shares.size(), parts,
                    top.size() > 3 ? ", ..." : "");
       }
+      if (const std::string stats = pipeline_statistics_line(pr.pipelines); !stats.empty())
+        fmt::print("  pipelines: {}\n", stats);
       if (pr.raster) {
         if (!raster_explained)
           fmt::print("  {} rasterises: scaled by fill rate (this device {:.2f} Gpixel/s calibrated; a profile's ROPs x "
@@ -885,6 +895,7 @@ int cmd_bench(const BenchOptions& o) {
                               {"scaled_ms", scaled},
                               {"scaled_ms_flop_split", scaled_flop},
                               {"occupancy", jocc},
+                              {"pipelines", pipeline_statistics_json(pr.pipelines)},
                               {"counters", pr.counters}});
     }
     std::string line = fmt::format("{:<26} {:>10} {:>21} {:>7} {:>10} {:>9.2f} {:>9} {:>9} |", "frame (sum of passes)",

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "perf/occupancy.h"
+#include "perf/pipeline_stats.h"
 #include "perf/profiles.h"
 #include "renderer/graph/executor.h"
 #include "renderer/passes/direct_lighting/direct_lighting_shared.h"
@@ -174,3 +175,71 @@ TEST_F(DispatchProfile, ThreadCountsAndUnchangedOutput) {
 
 }  // namespace
 }  // namespace gib
+
+namespace gib::perf {
+namespace {
+
+// A pipeline with what a driver might report (Pipeline::statistics).
+class FakePipeline final : public Pipeline {
+ public:
+  FakePipeline(std::string name, std::vector<PipelineStatistic> stats) : name_(std::move(name)), stats_(std::move(stats)) {}
+  const std::string& name() const override { return name_; }
+  std::array<uint32_t, 3> local_size() const override { return {8, 8, 1}; }
+  const std::vector<PipelineStatistic>& statistics() const override { return stats_; }
+
+ private:
+  std::string name_;
+  std::vector<PipelineStatistic> stats_;
+};
+
+TEST(PipelineStatistics, LineAndJsonSayWhatTheDriverReported) {
+  FakePipeline a("a.comp", {{"Compute", "Register Count", "", 96}, {"Compute", "Local Memory Size", "", 68719477088.0}});
+  FakePipeline b("b.comp", {});  // not captured: no line, an empty list in the JSON
+  FakePipeline c("c.comp", {{"pre", "Instructions", "", 12}, {"main", "Instructions", "", 340}, {"main", "Ratio", "", 0.125}});
+  std::vector<const Pipeline*> ps;
+  add_pipelines(ps, {&a, nullptr, &b, &a});
+  add_pipelines(ps, {&c, &b});
+  ASSERT_EQ(ps, (std::vector<const Pipeline*>{&a, &b, &c}));  // first use order, once each, no null
+  EXPECT_EQ(pipeline_statistics_line(ps),
+            "a.comp: Register Count 96, Local Memory Size 0x1000000160; "
+            "c.comp: pre Instructions 12, main Instructions 340, main Ratio 0.125");
+  EXPECT_EQ(pipeline_statistics_line({&b}), "");
+  const nlohmann::json j = pipeline_statistics_json(ps);
+  ASSERT_EQ(j.size(), 3u);
+  EXPECT_EQ(j[0]["name"], "a.comp");
+  EXPECT_EQ(j[0]["statistics"][0]["name"], "Register Count");
+  EXPECT_EQ(j[0]["statistics"][0]["value"].get<double>(), 96.0);
+  EXPECT_EQ(j[0]["statistics"][1]["value"].get<double>(), 68719477088.0);  // raw in the JSON
+  EXPECT_TRUE(j[1]["statistics"].empty());
+  EXPECT_EQ(j[2]["statistics"][1]["executable"], "main");
+}
+
+// The dispatch profile names each dispatch's pipeline; a Gpu asked for pipeline statistics
+// gives every compute pipeline the driver's figures where it supports them (NVIDIA: register
+// count, shared and local memory), and none where it does not (lavapipe).
+TEST(PipelineStatistics, ProfiledDispatchesCarryTheirPipeline) {
+  auto gpu = Gpu::create({.device = "", .validate = false, .pipeline_statistics = true});
+  const Technique& t = find_technique("radiance-cache");
+  Scene scene = load_scene(std::string(GIB_SOURCE_DIR) + "/cases/scenes/thin_wall_005.json");
+  Settings s = apply_preset(t, "low", Settings{});
+  s.width = 40;
+  s.height = 24;
+  Executor ex(*gpu, scene, s, make_passes(t), {t.output});
+  ex.enable_dispatch_profile(true);
+  const FrameResult fr = ex.run_frame();
+  bool saw_direct = false;
+  for (const PassTiming& pt : fr.passes)
+    for (const DispatchTiming& d : pt.dispatches) {
+      ASSERT_NE(d.pipeline, nullptr) << pt.name;
+      EXPECT_EQ(d.pipeline->statistics().empty(), !gpu->info().pipeline_statistics) << d.pipeline->name();
+      if (pt.name == "direct_lighting") {
+        EXPECT_EQ(d.pipeline->name(), "direct_lighting.comp");  // pass name = file stem
+        saw_direct = true;
+      }
+    }
+  EXPECT_TRUE(saw_direct);
+  std::printf("pipeline statistics: %s\n", gpu->info().pipeline_statistics ? "captured" : "not supported by this device");
+}
+
+}  // namespace
+}  // namespace gib::perf

@@ -5,11 +5,13 @@ namespace gib {
 void DispatchLogCmd::bind(const Pipeline& pipeline, std::span<const Bind> binds, const void* push, uint32_t push_bytes) {
   const auto ls = pipeline.local_size();
   local_threads_ = uint64_t(ls[0]) * ls[1] * ls[2];
+  pipeline_ = &pipeline;
   inner_.bind(pipeline, binds, push, push_bytes);
 }
 
 void DispatchLogCmd::log(LoggedDispatch d) {
   d.local_threads = local_threads_;
+  d.pipeline = pipeline_;
   if (timestamps_ && next_query_ < query_limit_) {
     d.query = next_query_;
     inner_.timestamp(next_query_++);

@@ -3,7 +3,7 @@
 // read back after the submission) and, where asked, a timestamp written right after it. The
 // executor wraps a pass's commands in one when its dispatch profile is on (Executor::
 // enable_dispatch_profile), so bench can tell how a pass's time splits over its dispatches and
-// how many threads each ran (perf/occupancy.h). Knows no pass and no technique.
+// how many threads each ran (perf/occupancy.h), and with which pipeline (its statistics). Knows no pass and no technique.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -19,6 +19,7 @@ struct LoggedDispatch {
   const Buffer* args = nullptr;    // indirect dispatch: where its (x, y, z) lie
   uint64_t args_offset = 0;
   int64_t query = -1;              // timestamp written after it (-1: none)
+  const Pipeline* pipeline = nullptr;  // the bound pipeline (the Gpu's pipeline cache owns it)
 };
 
 class DispatchLogCmd final : public Cmd {
@@ -55,6 +56,7 @@ class DispatchLogCmd final : public Cmd {
   uint32_t query_limit_;
   bool timestamps_;
   uint64_t local_threads_ = 0;
+  const Pipeline* pipeline_ = nullptr;
   std::vector<LoggedDispatch> log_;
 };
 

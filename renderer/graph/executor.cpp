@@ -462,6 +462,7 @@ std::vector<DispatchTiming> resolve_dispatches(Gpu& gpu, const std::vector<Logge
       t.indirect = true;
     }
     t.threads = groups * d.local_threads;
+    t.pipeline = d.pipeline;
     t.ms = std::numeric_limits<double>::quiet_NaN();
     if (d.query >= 0 && size_t(d.query) < ns.size()) {
       t.ms = (ns[size_t(d.query)] - prev) * 1e-6;

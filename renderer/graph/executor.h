@@ -21,6 +21,9 @@ struct DispatchTiming {
   // start, or the previous dispatch's timestamp, to the one written right after this dispatch;
   // barriers and fills recorded before it count to it.
   double ms = 0;
+  // The pipeline it ran (name, Pipeline::statistics); owned by the Gpu's pipeline cache, so valid
+  // while the Gpu lives.
+  const Pipeline* pipeline = nullptr;
 };
 
 struct PassTiming {

@@ -259,6 +259,22 @@ VkGpu::VkGpu(const GpuOptions& options) {
   e12.shaderFloat16 = f12.shaderFloat16;
   VkPhysicalDeviceFeatures2 e2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
   e2.pNext = &e12;
+  // Pipeline statistics, only when asked (GpuOptions::pipeline_statistics) and supported.
+  std::vector<const char*> device_exts;
+  VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR exec{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
+  if (options.pipeline_statistics && has_device_extension(physical, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME)) {
+    VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR have{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
+    VkPhysicalDeviceFeatures2 query{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    query.pNext = &have;
+    vkGetPhysicalDeviceFeatures2(physical, &query);
+    if (have.pipelineExecutableInfo) {
+      exec.pipelineExecutableInfo = VK_TRUE;
+      e13.pNext = &exec;
+      device_exts.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+    }
+  }
   e2.features.shaderInt64 = f2.features.shaderInt64;
   e2.features.shaderStorageImageWriteWithoutFormat = f2.features.shaderStorageImageWriteWithoutFormat;
   e2.features.shaderStorageImageReadWithoutFormat = f2.features.shaderStorageImageReadWithoutFormat;
@@ -273,7 +289,16 @@ VkGpu::VkGpu(const GpuOptions& options) {
   dci.pNext = &e2;
   dci.queueCreateInfoCount = 1;
   dci.pQueueCreateInfos = &qci;
+  dci.enabledExtensionCount = static_cast<uint32_t>(device_exts.size());
+  dci.ppEnabledExtensionNames = device_exts.data();
   check(vkCreateDevice(physical, &dci, nullptr, &device), "vkCreateDevice");
+  if (!device_exts.empty()) {
+    executable_properties_fn = reinterpret_cast<PFN_vkGetPipelineExecutablePropertiesKHR>(
+        vkGetDeviceProcAddr(device, "vkGetPipelineExecutablePropertiesKHR"));
+    executable_statistics_fn = reinterpret_cast<PFN_vkGetPipelineExecutableStatisticsKHR>(
+        vkGetDeviceProcAddr(device, "vkGetPipelineExecutableStatisticsKHR"));
+    info_.pipeline_statistics = executable_properties_fn && executable_statistics_fn;
+  }
   vkGetDeviceQueue(device, queue_family, 0, &queue);
   VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;

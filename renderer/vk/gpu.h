@@ -41,12 +41,19 @@ struct DeviceInfo {
   uint64_t resident_threads = 0;
   std::string residency_source;  // the extension it came from
   bool is_default = false;
+  // Compute pipelines carry the driver's statistics of their compiled code (GpuOptions::
+  // pipeline_statistics, where VK_KHR_pipeline_executable_properties is supported).
+  bool pipeline_statistics = false;
   bool is_software() const { return type == "cpu"; }
 };
 
 struct GpuOptions {
   std::string device;     // "" default; an index; or a substring of the device name
   bool validate = false;  // Khronos validation layer + messenger (also env GIB_VALIDATE=1)
+  // Capture each compute pipeline's statistics (VK_KHR_pipeline_executable_properties: register
+  // count, shared memory, code size, as the driver names them) where the device supports it.
+  // Off by default: capturing may bypass a driver's pipeline cache (bench turns it on).
+  bool pipeline_statistics = false;
 };
 
 enum class BufferUsage : uint32_t { storage, uniform, indirect };
@@ -70,12 +77,24 @@ class Image {
   virtual uint32_t width() const = 0;
   virtual uint32_t height() const = 0;
 };
+// One statistic of a compiled pipeline executable, as the driver reports it
+// (VkPipelineExecutableStatisticKHR): e.g. NVIDIA's "Register Count", Mesa's "SSA values".
+struct PipelineStatistic {
+  std::string executable;  // the executable's name (a pipeline may compile to several)
+  std::string name;
+  std::string description;
+  double value = 0;        // a boolean reads 0 / 1
+};
+
 class Pipeline {
  public:
   virtual ~Pipeline() = default;
   virtual const std::string& name() const = 0;
   // A compute pipeline's workgroup size (from its SPIR-V); {0, 0, 0} for a graphics pipeline.
   virtual std::array<uint32_t, 3> local_size() const = 0;
+  // What the driver reported of its compiled code (DeviceInfo::pipeline_statistics); empty
+  // where it was not captured.
+  virtual const std::vector<PipelineStatistic>& statistics() const = 0;
 };
 
 // The LocalSize execution mode of a SPIR-V module's first compute entry point ({0, 0, 0}

@@ -53,7 +53,9 @@ class VkPipelineObj final : public Pipeline {
   ~VkPipelineObj() override;
   const std::string& name() const override { return name_; }
   std::array<uint32_t, 3> local_size() const override { return local_size_; }
+  const std::vector<PipelineStatistic>& statistics() const override { return statistics_; }
   std::string name_;
+  std::vector<PipelineStatistic> statistics_;
   std::array<uint32_t, 3> local_size_{0, 0, 0};
   VkDevice device = VK_NULL_HANDLE;
   VkPipeline pipeline = VK_NULL_HANDLE;
@@ -100,6 +102,8 @@ class VkGpu final : public Gpu {
   PFN_vkCmdBeginDebugUtilsLabelEXT begin_label_fn = nullptr;
   PFN_vkCmdEndDebugUtilsLabelEXT end_label_fn = nullptr;
   PFN_vkSetDebugUtilsObjectNameEXT set_name_fn = nullptr;
+  PFN_vkGetPipelineExecutablePropertiesKHR executable_properties_fn = nullptr;  // info_.pipeline_statistics
+  PFN_vkGetPipelineExecutableStatisticsKHR executable_statistics_fn = nullptr;
 
  private:
   DeviceInfo info_;

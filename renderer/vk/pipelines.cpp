@@ -69,6 +69,40 @@ void make_layout(VkGpu& gpu, VkPipelineObj& p, VkShaderStageFlags stages) {
   check(vkCreatePipelineLayout(gpu.device, &pl, nullptr, &p.layout), "vkCreatePipelineLayout");
 }
 
+// The driver's statistics of every executable of a pipeline created with
+// VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR.
+std::vector<PipelineStatistic> read_statistics(const VkGpu& gpu, VkPipeline pipeline) {
+  std::vector<PipelineStatistic> out;
+  VkPipelineInfoKHR pi{VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR};
+  pi.pipeline = pipeline;
+  uint32_t n = 0;
+  check(gpu.executable_properties_fn(gpu.device, &pi, &n, nullptr), "vkGetPipelineExecutablePropertiesKHR");
+  std::vector<VkPipelineExecutablePropertiesKHR> execs(n, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR});
+  check(gpu.executable_properties_fn(gpu.device, &pi, &n, execs.data()), "vkGetPipelineExecutablePropertiesKHR");
+  for (uint32_t e = 0; e < n; ++e) {
+    VkPipelineExecutableInfoKHR ei{VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR};
+    ei.pipeline = pipeline;
+    ei.executableIndex = e;
+    uint32_t m = 0;
+    check(gpu.executable_statistics_fn(gpu.device, &ei, &m, nullptr), "vkGetPipelineExecutableStatisticsKHR");
+    std::vector<VkPipelineExecutableStatisticKHR> stats(m, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR});
+    check(gpu.executable_statistics_fn(gpu.device, &ei, &m, stats.data()), "vkGetPipelineExecutableStatisticsKHR");
+    for (uint32_t k = 0; k < m; ++k) {
+      const VkPipelineExecutableStatisticKHR& s = stats[k];
+      double v = 0;
+      switch (s.format) {
+        case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR: v = s.value.b32 ? 1 : 0; break;
+        case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR: v = double(s.value.i64); break;
+        case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR: v = double(s.value.u64); break;
+        case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_FLOAT64_KHR: v = s.value.f64; break;
+        default: continue;
+      }
+      out.push_back({execs[e].name, s.name, s.description, v});
+    }
+  }
+  return out;
+}
+
 std::string binding_key(const std::vector<BindingDecl>& bs) {
   std::string k;
   for (auto& b : bs) k += fmt::format("{}:{},", b.binding, static_cast<uint32_t>(b.kind));
@@ -111,9 +145,11 @@ std::shared_ptr<Pipeline> VkGpu::compute_pipeline(const ComputePipelineDesc& des
   ci.stage.pName = "main";
   ci.stage.pSpecializationInfo = entries.empty() ? nullptr : &spec;
   ci.layout = p->layout;
+  if (info_.pipeline_statistics) ci.flags |= VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
   VkResult r = vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &ci, nullptr, &p->pipeline);
   vkDestroyShaderModule(device, module, nullptr);
   check(r, "vkCreateComputePipelines");
+  if (info_.pipeline_statistics) p->statistics_ = read_statistics(*this, p->pipeline);
   set_name(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<uint64_t>(p->pipeline), desc.shader);
   pipelines_[key] = p;
   return p;
