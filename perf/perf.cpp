@@ -201,6 +201,7 @@ struct PassRun {
   PassBytes bytes_run, bytes_full;
   double work_scale = 1;         // bytes_full / bytes_run: the per-pass scale to the workload
   bool raster = false;           // a graphics pass: scaled by fill rate (scale_raster_to_profile)
+  bool traces_rays = false;      // walks the BVH in its shaders (PassDecl::traces_rays)
   nlohmann::json counters;
   DispatchSamples dispatches;    // from the profiled frames (occupancy term); empty: not profiled
   std::vector<const Pipeline*> pipelines;  // the compute pipelines it ran (profiled frames), with their statistics
@@ -300,12 +301,15 @@ void add_seed_rows(const SeedTable& table, const TechniqueRun& r,
       if (mine == scaled_by_pass.end()) continue;
       std::map<std::string, double> ours, ours_flop;
       std::map<std::string, std::vector<std::string>> passes;
+      std::map<std::string, bool> walks;  // a pass of the row walks the BVH in software
       const auto& flop = flop_by_pass.at(p->name);
       for (auto& [pass, ms] : mine->second)
         if (auto k = table.pass_row.find(pass); k != table.pass_row.end()) {
           ours[k->second] += ms;
           ours_flop[k->second] += flop.at(pass);
           passes[k->second].push_back(pass);
+          for (const PassRun& pr : r.passes)
+            if (pr.name == pass && pr.traces_rays) walks[k->second] = true;
         }
       for (auto& [row, ms] : ours) {
         auto it = sp->ms.find(row);
@@ -316,7 +320,8 @@ void add_seed_rows(const SeedTable& table, const TechniqueRun& r,
                          {"ours_ms_flop_split", ours_flop[row]},
                          {"ratio_flop_split", it->second > 0 ? ours_flop[row] / it->second : 0.0},
                          {"resolution", {r.workload.width, r.workload.height}},
-                         {"seed_resolution", {sp->width, sp->height}}});
+                         {"seed_resolution", {sp->width, sp->height}},
+                         {"software_bvh_walk", walks[row]}});
       }
     }
 }
@@ -347,13 +352,16 @@ void print_seed_comparison(const std::vector<SeedTable>& seeds, const std::vecto
       double ours = 0, seed = 0, flop = 0;
     };
     std::map<std::tuple<std::string, std::string, std::string>, Sum> sums;
+    bool walk_rows = false;
     for (auto* e : rows) {
       const std::string column = (*e)["column"];
-      fmt::print("{:<22} {:<14} {:<12} {:<32} {:>10} {:>10} {:>7.2f}x {:>9.2f}x  {}\n", (*e)["technique"].get<std::string>(),
+      fmt::print("{:<22} {:<14} {:<12} {:<32} {:>10} {:>10} {:>7.2f}x {:>9.2f}x  {}{}\n", (*e)["technique"].get<std::string>(),
                  (*e)["profile"].get<std::string>(), column.empty() ? "-" : column,
                  (*e)["seed_key"].get<std::string>(), fmt_ms((*e)["ours_ms"]), fmt_ms((*e)["seed_ms"]),
                  (*e)["ratio"].get<double>(), (*e)["ratio_flop_split"].get<double>(),
-                 fmt::join((*e)["passes"].get<std::vector<std::string>>(), "+"));
+                 fmt::join((*e)["passes"].get<std::vector<std::string>>(), "+"),
+                 e->value("software_bvh_walk", false) ? " [software BVH walk]" : "");
+      walk_rows |= e->value("software_bvh_walk", false);
       auto& s = sums[{(*e)["technique"], (*e)["profile"], column}];
       s.ours += (*e)["ours_ms"].get<double>();
       s.seed += (*e)["seed_ms"].get<double>();
@@ -368,6 +376,10 @@ void print_seed_comparison(const std::vector<SeedTable>& seeds, const std::vecto
                  table.total_row.empty() ? "total" : table.total_row,
                  total ? fmt_ms(sp->ms.at(table.total_row)) : "-");
     }
+    if (walk_rows)
+      fmt::print("[software BVH walk]: the row's passes walk the BVH as shader code on this device (no ray queries); "
+                 "the seed's platforms walk it on RT hardware, which the FLOP split does not model: those ratios "
+                 "compare a software walk with fixed-function units\n");
     // A table with columns (VRCS off / on): where both were measured for one technique and
     // profile, our change per row next to the seed's: the shape of the gains.
     if (table.column_of_value.size() < 2) continue;
@@ -603,6 +615,7 @@ int cmd_bench(const BenchOptions& o) {
           PassRun pr;
           pr.name = pp->name;
           pr.raster = pp->kind == PassKind::graphics;
+          pr.traces_rays = pp->traces_rays;
           // Work at the profile's workload: from the plan compiled at that size. (Bytes, which
           // need the measured counters, are counted after the repeats.)
           const PlannedPass* full = pp;
@@ -709,6 +722,7 @@ int cmd_bench(const BenchOptions& o) {
   std::string worst_key;
   double worst = 0;
   bool raster_explained = false;  // the fill-rate scaling is explained at the first raster pass
+  bool walk_explained = false;    // and the software BVH walk at the first tracing pass
 
   for (auto& r : runs) {
     const Workload& w = r.workload;
@@ -822,6 +836,12 @@ int cmd_bench(const BenchOptions& o) {
         fmt::print("  occupancy:{} on the FLOP ratio ({} dispatches; {}{})\n", occ_line, shares.size(), parts,
                    top.size() > 3 ? ", ..." : "");
       }
+      if (pr.traces_rays && !walk_explained)
+        fmt::print("  {} walks the BVH in its shaders (no ray queries here): scaled as arithmetic by the FLOP split, "
+                   "where a console with RT hardware walks it in fixed-function units\n", pr.name);
+      else if (pr.traces_rays)
+        fmt::print("  {} walks the BVH in its shaders (as above)\n", pr.name);
+      walk_explained |= pr.traces_rays;
       if (const std::string stats = pipeline_statistics_line(pr.pipelines); !stats.empty())
         fmt::print("  pipelines: {}\n", stats);
       if (pr.raster) {
@@ -891,6 +911,7 @@ int cmd_bench(const BenchOptions& o) {
                               {"memory_ms", split.memory_ms},
                               {"compute_ms", split.compute_ms},
                               {"scaling", pr.raster ? "fill_rate" : "flop_bandwidth_split"},
+                              {"traces_rays", pr.traces_rays},
                               {"aov_only", aov_only},
                               {"scaled_ms", scaled},
                               {"scaled_ms_flop_split", scaled_flop},

@@ -357,6 +357,7 @@ class Compiler {
       pp.runs = runs;
       pp.reason = runs ? "" : reason_[p];
       pp.kind = decls_[p].kind;
+      pp.traces_rays = decls_[p].traces_rays;
       pp.slots = decls_[p].slots;
       pp.work = decls_[p].work;
       pp.measured = decls_[p].measured;

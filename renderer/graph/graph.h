@@ -146,6 +146,11 @@ struct PassDecl {
   bool side_effect = false;  // never culled for unused outputs (readbacks, stats)
   std::vector<WorkCounter> work;  // besides "pixels", which every pass reports
   std::vector<MeasuredCounter> measured;  // read back by bench after its timed frames
+  // Its shaders walk the BVH (bvh.glsl) for rays the pass exists to trace. Our devices have no
+  // ray queries, so the walk runs as shader code, where a console with RT hardware runs it in
+  // fixed-function units: bench says so beside its time and its seed rows, since the FLOP split
+  // scales the walk as arithmetic. (Not set for a pass that walks only on a rare fallback.)
+  bool traces_rays = false;
 };
 
 struct GraphError : std::runtime_error {
@@ -183,6 +188,7 @@ struct PlannedPass {
   Barrier barrier_before;   // empty resources: none needed
   uint64_t bytes_written = 0;  // sum of the sizes (one copy) of resources it writes
   PassKind kind = PassKind::compute;
+  bool traces_rays = false;    // as declared
   std::vector<Slot> slots;     // as declared
   std::vector<WorkCounter> work;  // as declared
   std::vector<MeasuredCounter> measured;  // as declared

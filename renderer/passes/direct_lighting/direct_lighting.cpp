@@ -12,6 +12,7 @@ class DirectLightingPass final : public Pass {
   PassDecl declare(const Scene& scene, const Settings& s) const override {
     PassDecl d;
     d.name = "direct_lighting";
+    d.traces_rays = true;  // BVH walk in the shader (PassDecl::traces_rays)
     d.slots = direct_light_slots(ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values()));
     const std::string_view vis = s.params<DirectLightingParams>().sun_visibility;
     if (!vis.empty() && scene.features().has(Feature::sun)) d.slots.push_back({std::string(vis), Access::read});

@@ -11,6 +11,7 @@ class DeferredLightingPass final : public Pass {
   PassDecl declare(const Scene&, const Settings& s) const override {
     PassDecl d;
     d.name = "deferred_lighting";
+    d.traces_rays = true;  // BVH walk in the shader (PassDecl::traces_rays)
     const DeferredSettings& ds = s.params<DeferredSettings>();
     d.slots = direct_light_slots(ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values()));
     const bool vrcs = ds.vrcs && ds.tile_classification;

@@ -17,6 +17,7 @@ class CubemapCapturePass final : public Pass {
     sum.values = non_negative_values();
     PassDecl d;
     d.name = "cubemap_capture";
+    d.traces_rays = true;  // BVH walk in the shader (PassDecl::traces_rays)
     d.needs = Feature::glossy;
     d.slots = {{"reflection_cubemap", Access::read_write, sum}};
     d.work = {{"paths", 6.0 * g.cubemap_size * g.cubemap_size}};

@@ -14,6 +14,7 @@ class ReflectionsRtCubemapPass final : public Pass {
     stats.bytes = 4 * glsl::kReflStatWords;
     PassDecl d;
     d.name = "reflections_rt_cubemap";
+    d.traces_rays = true;  // BVH walk in the shader (PassDecl::traces_rays)
     d.needs = Feature::glossy;
     d.slots = {{"vbuffer", Access::read},
                {"gbuffer_position", Access::read},

@@ -12,6 +12,7 @@ class HitLightingPass final : public Pass {
     const ProbeVolumeSettings& p = s.params<ProbeVolumeSettings>();
     PassDecl d;
     d.name = "hit_lighting";
+    d.traces_rays = true;  // BVH walk in the shader (PassDecl::traces_rays)
     const SizeRule size = pv_pixel_size(p);
     d.slots = {{"pixel_hits", Access::read},        {"gbuffer_position", Access::read},
                {"gbuffer_normal", Access::read},    {"gbuffer_emissive", Access::read},

@@ -13,6 +13,7 @@ class ProbeGbufferPass final : public Pass {
     const uint64_t texels = uint64_t(pv_probe_count(p)) * glsl::kPvGbufferTexels;
     PassDecl d;
     d.name = "probe_gbuffer";
+    d.traces_rays = true;  // BVH walk in the shader (PassDecl::traces_rays)
     auto buffer = [](uint64_t bytes) { return pv_buffer(bytes, true); };
     d.slots = {{"probe_selection", Access::read},
                {"probe_state", Access::read_write},

@@ -13,6 +13,7 @@ class ProbeRelightPass final : public Pass {
     const uint64_t texels = uint64_t(p.probe_budget) * glsl::kPvGbufferTexels;
     PassDecl d;
     d.name = "probe_relight";
+    d.traces_rays = true;  // BVH walk in the shader (PassDecl::traces_rays)
     auto buffer = [](uint64_t bytes) { return pv_buffer(bytes, false); };
     ResourceDesc radiance = buffer(texels * 16);
     radiance.values = non_negative_values().layout(4, 0, 4);

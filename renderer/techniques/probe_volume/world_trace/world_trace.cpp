@@ -11,6 +11,7 @@ class WorldTracePass final : public Pass {
   PassDecl declare(const Scene&, const Settings& s) const override {
     PassDecl d;
     d.name = "world_trace";
+    d.traces_rays = true;  // BVH walk in the shader (PassDecl::traces_rays)
     d.slots = {{"gbuffer_position", Access::read},
                {"gbuffer_normal", Access::read},
                {"gbuffer_emissive", Access::read},

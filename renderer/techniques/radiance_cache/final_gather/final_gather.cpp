@@ -19,6 +19,7 @@ class FinalGatherPass final : public Pass {
     stats.bytes = glsl::kGatherStatCount * sizeof(uint32_t);
     PassDecl d;
     d.name = "final_gather";
+    d.traces_rays = true;  // BVH walk in the shader (PassDecl::traces_rays)
     d.slots = {{"vbuffer", Access::read},
                {"gbuffer_normal", Access::read},
                {"gbuffer_position", Access::read},

@@ -22,6 +22,7 @@ class ProbeTracePass final : public Pass {
       throw GraphError(fmt::format("probe_trace: cascades must be 1..{}, got {}", glsl::kMaxCascades, r.cascades));
     PassDecl d;
     d.name = "probe_trace";
+    d.traces_rays = true;  // BVH walk in the shader (PassDecl::traces_rays)
     ResourceDesc hits{Format::buffer, SizeRule::buffer};
     hits.bytes = uint64_t(kProbesPerCascade) * rays * sizeof(glsl::ProbeHit);
     hits.values = non_negative_values().layout(sizeof(glsl::ProbeHit) / 4, offsetof(glsl::ProbeHit, distance) / 4, 1);

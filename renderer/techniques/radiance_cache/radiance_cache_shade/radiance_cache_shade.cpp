@@ -13,6 +13,7 @@ class RadianceCacheShadePass final : public Pass {
   PassDecl declare(const Scene& scene, const Settings&) const override {
     PassDecl d;
     d.name = "radiance_cache_shade";
+    d.traces_rays = true;  // BVH walk in the shader (PassDecl::traces_rays)
     // Sparse accesses (bench's memory time counts what they move): each shaded cell reads its
     // rc_active entry and its hit record, and reads and writes its cell.
     d.slots = {{"probe_hits", Access::read, {}, Touched{0, {{"cells_shaded", 1}}, sizeof(glsl::ProbeHit), false}},

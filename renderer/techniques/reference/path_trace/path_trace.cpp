@@ -11,6 +11,7 @@ class PathTracePass final : public Pass {
   PassDecl declare(const Scene&, const Settings& s) const override {
     PassDecl d;
     d.name = "path_trace";
+    d.traces_rays = true;  // BVH walk in the shader (PassDecl::traces_rays)
     ResourceDesc sum{Format::rgba32_float, SizeRule::render};
     sum.persistent = true;
     sum.values = non_negative_values();  // rgb radiance sums, a sample count
