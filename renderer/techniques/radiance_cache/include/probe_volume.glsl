@@ -196,6 +196,9 @@ vec3 rc_sample_irradiance_weight(vec3 p, vec3 n, vec3 to_viewer, out float weigh
     float r = length(to_probe);
     vec3 dir = r > 1e-6 ? to_probe / r : n;
     vec2 m = rc_tile_moments(origin, -dir);
+    // Loaded with the moments, before the tests that may skip the probe: its loads no longer
+    // wait for the moments' and the visibility's (the same values either way).
+    vec3 irradiance = rc_tile_irradiance(origin, n);
     // Moments 0: never updated, or inside geometry (irradiance_volume_update's iv_finish_texel).
     if (m.x <= 0.0) continue;
     float wrap = (dot(dir, n) + 1.0) * 0.5;
@@ -212,7 +215,7 @@ vec3 rc_sample_irradiance_weight(vec3 p, vec3 n, vec3 to_viewer, out float weigh
 #ifdef RC_PROBE_RAYS
     if (rc.flags.w != 0u && w > 0.0 && rc_probe_hidden(p, n, probe)) continue;
 #endif
-    sum += w * rc_tile_irradiance(origin, n);
+    sum += w * irradiance;
     weight += w;
   }
   return weight > 0.0 ? sum / weight : vec3(0.0);

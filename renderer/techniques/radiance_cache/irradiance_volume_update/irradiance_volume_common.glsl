@@ -55,17 +55,25 @@ uint iv_ray_radiance(ProbeHit h, vec3 o, vec3 d, uint c, out vec3 l) {
 }
 #endif
 
-// Blends a texel's new irradiance and moments with last frame's at atlas texel `at`
-// (hysteresis), then floors the mean distance: a written probe never has a zero mean distance,
-// which marks "never updated".
-void iv_blend_with_last_frame(ivec2 at, inout vec3 irradiance, inout vec2 moments) {
-  vec2 prev_moments = rc_probe_visibility_texel(at);
+// Last frame's texel of the atlas: its RGB9E5 irradiance and its moments. Loaded by
+// iv_load_last_frame before the texel's convolution, so the two loads' latency hides behind it
+// (loaded after it, one after the other as the blend needed them, they were waited for in turn).
+struct IvLastFrame {
+  uint irradiance;
+  vec2 moments;
+};
+IvLastFrame iv_load_last_frame(ivec2 at) { return IvLastFrame(rc_probe_irradiance_texel(at), rc_probe_visibility_texel(at)); }
+
+// Blends a texel's new irradiance and moments with last frame's (hysteresis), then floors the
+// mean distance: a written probe never has a zero mean distance, which marks "never updated".
+void iv_blend_with_last_frame(IvLastFrame last, inout vec3 irradiance, inout vec2 moments) {
+  vec2 prev_moments = last.moments;
   // Guard: a non-finite previous texel is not blended (the probe restarts as on its first
   // update). The irradiance texel is RGB9E5, which cannot hold a NaN; the moments are RG16F.
   bool prev_ok = rc.flags.y == 0u || gib_finite(prev_moments);
   if (prev_ok && prev_moments.x > 0.0) {
     float hysteresis = clamp(rc.bias.w, 0.0, 1.0);
-    irradiance = mix(irradiance, gib_unpack_rgb9e5(rc_probe_irradiance_texel(at)), hysteresis);
+    irradiance = mix(irradiance, gib_unpack_rgb9e5(last.irradiance), hysteresis);
     moments = mix(moments, prev_moments, hysteresis);
   }
   moments.x = max(moments.x, 1e-3);
@@ -76,13 +84,13 @@ void iv_blend_with_last_frame(ivec2 at, inout vec3 irradiance, inout vec2 moment
 // updated, which every sampler skips (rc_sample_irradiance_weight: m.x <= 0) and which restarts
 // without history once an update finds it outside. (Not a negative marker: the stability scan
 // holds the moments to [0, max distance].) Else the texel is blended with last frame's.
-void iv_finish_texel(ivec2 at, uint inside_rays, uint rays, inout vec3 irradiance, inout vec2 moments) {
+void iv_finish_texel(IvLastFrame last, uint inside_rays, uint rays, inout vec3 irradiance, inout vec2 moments) {
   if (float(inside_rays) > kRcInsideFraction * float(rays)) {
     irradiance = vec3(0.0);
     moments = vec2(0.0);
     return;
   }
-  iv_blend_with_last_frame(at, irradiance, moments);
+  iv_blend_with_last_frame(last, irradiance, moments);
 }
 
 #endif

@@ -113,6 +113,9 @@ void main() {
   carry_store(carried);
 
   ivec2 texel = ivec2(gl_LocalInvocationID.xy);
+  uvec2 origin = rc_tile_origin(c, rc_probe_slot(c, ijk));
+  ivec2 at = ivec2(origin) + texel + 1;
+  IvLastFrame last = iv_load_last_frame(at);  // waited for only after the ray loop
   vec3 n = gib_oct_texel_direction(texel + 1, int(kProbeTileInterior));
   vec3 sum = vec3(0.0);
   float weight = 0.0;
@@ -133,9 +136,7 @@ void main() {
   vec3 irradiance = weight > 0.0 ? sum / weight : vec3(0.0);
   moments = moment_weight > 0.0 ? moments / moment_weight : vec2(max_distance, max_distance * max_distance);
 
-  uvec2 origin = rc_tile_origin(c, rc_probe_slot(c, ijk));
-  ivec2 at = ivec2(origin) + texel + 1;
-  iv_finish_texel(at, inside, rays, irradiance, moments);
+  iv_finish_texel(last, inside, rays, irradiance, moments);
   s_irradiance[tid] = iv_pack_irradiance(at, irradiance);
   s_moments[tid] = moments;
   barrier();

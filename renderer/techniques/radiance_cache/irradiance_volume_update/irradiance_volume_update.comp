@@ -37,6 +37,9 @@ void main() {
   ivec2 local = ivec2(t % kProbeTileSize, t / kProbeTileSize);
   ivec2 texel = gib_oct_border_source(local, int(kProbeTileInterior)) - 1;  // interior texel it shows
 
+  uvec2 origin = rc_tile_origin(c, rc_probe_slot(c, ijk));
+  ivec2 at = ivec2(origin) + texel + 1;
+  IvLastFrame last = iv_load_last_frame(at);
   vec3 n = gib_oct_texel_direction(texel + 1, int(kProbeTileInterior));
   vec3 sum = vec3(0.0);
   float weight = 0.0;
@@ -61,9 +64,7 @@ void main() {
   vec3 irradiance = weight > 0.0 ? sum / weight : vec3(0.0);
   moments = moment_weight > 0.0 ? moments / moment_weight : vec2(max_distance, max_distance * max_distance);
 
-  uvec2 origin = rc_tile_origin(c, rc_probe_slot(c, ijk));
-  ivec2 at = ivec2(origin) + texel + 1;
-  iv_finish_texel(at, inside, rays, irradiance, moments);
+  iv_finish_texel(last, inside, rays, irradiance, moments);
   imageStore(out_irradiance, ivec2(origin) + local, uvec4(iv_pack_irradiance(at, irradiance)));
   imageStore(out_visibility, ivec2(origin) + local, vec4(moments, 0.0, 0.0));
 }
