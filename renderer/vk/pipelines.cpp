@@ -69,26 +69,37 @@ void make_layout(VkGpu& gpu, VkPipelineObj& p, VkShaderStageFlags stages) {
   check(vkCreatePipelineLayout(gpu.device, &pl, nullptr, &p.layout), "vkCreatePipelineLayout");
 }
 
+// Vulkan's two-call enumeration: the count, then the items (each starting as `init`, which
+// carries its sType).
+template <typename T, typename Call>
+std::vector<T> vk_enumerate(const T& init, Call call, const char* what) {
+  uint32_t n = 0;
+  check(call(&n, nullptr), what);
+  std::vector<T> items(n, init);
+  check(call(&n, items.data()), what);
+  items.resize(n);
+  return items;
+}
+
 // The driver's statistics of every executable of a pipeline created with
 // VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR.
 std::vector<PipelineStatistic> read_statistics(const VkGpu& gpu, VkPipeline pipeline) {
   std::vector<PipelineStatistic> out;
   VkPipelineInfoKHR pi{VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR};
   pi.pipeline = pipeline;
-  uint32_t n = 0;
-  check(gpu.executable_properties_fn(gpu.device, &pi, &n, nullptr), "vkGetPipelineExecutablePropertiesKHR");
-  std::vector<VkPipelineExecutablePropertiesKHR> execs(n, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR});
-  check(gpu.executable_properties_fn(gpu.device, &pi, &n, execs.data()), "vkGetPipelineExecutablePropertiesKHR");
-  for (uint32_t e = 0; e < n; ++e) {
+  const auto execs = vk_enumerate<VkPipelineExecutablePropertiesKHR>(
+      {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR},
+      [&](uint32_t* n, VkPipelineExecutablePropertiesKHR* p) { return gpu.executable_properties_fn(gpu.device, &pi, n, p); },
+      "vkGetPipelineExecutablePropertiesKHR");
+  for (uint32_t e = 0; e < execs.size(); ++e) {
     VkPipelineExecutableInfoKHR ei{VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR};
     ei.pipeline = pipeline;
     ei.executableIndex = e;
-    uint32_t m = 0;
-    check(gpu.executable_statistics_fn(gpu.device, &ei, &m, nullptr), "vkGetPipelineExecutableStatisticsKHR");
-    std::vector<VkPipelineExecutableStatisticKHR> stats(m, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR});
-    check(gpu.executable_statistics_fn(gpu.device, &ei, &m, stats.data()), "vkGetPipelineExecutableStatisticsKHR");
-    for (uint32_t k = 0; k < m; ++k) {
-      const VkPipelineExecutableStatisticKHR& s = stats[k];
+    const auto stats = vk_enumerate<VkPipelineExecutableStatisticKHR>(
+        {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR},
+        [&](uint32_t* n, VkPipelineExecutableStatisticKHR* p) { return gpu.executable_statistics_fn(gpu.device, &ei, n, p); },
+        "vkGetPipelineExecutableStatisticsKHR");
+    for (const VkPipelineExecutableStatisticKHR& s : stats) {
       double v = 0;
       switch (s.format) {
         case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR: v = s.value.b32 ? 1 : 0; break;
