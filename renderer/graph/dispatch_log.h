@@ -3,7 +3,8 @@
 // read back after the submission) and, where asked, a timestamp written right after it. The
 // executor wraps a pass's commands in one when its dispatch profile is on (Executor::
 // enable_dispatch_profile), so bench can tell how a pass's time splits over its dispatches and
-// how many threads each ran (perf/occupancy.h), and with which pipeline (its statistics). Knows no pass and no technique.
+// how many threads each ran (perf/occupancy.h), and with which pipeline (its statistics). Knows
+// no pass and no technique.
 #pragma once
 #include <array>
 #include <cstdint>

@@ -194,8 +194,8 @@ void rc_insert_step(uint round, uint id, uint key) {
 bool rc_is_hit_record(uint id) { return id < kProbeGridDim * kProbeGridDim * kProbeGridDim * rc_rays_per_probe(); }
 
 // Round 0, the find, for thread `id` and its hit record's committed key (0 past the records).
-// Thread 0 also writes the y, z of every indirect dispatch of the insertion (the reset filled
-// them with 0).
+// Thread 0 also writes the y, z of every indirect dispatch of the insertion (the counters arrive
+// zeroed: last frame's probe_trace zeroed this frame's copy).
 void rc_insert_find(uint id, uint key) {
   if (id == 0u) {
     counters.dispatch_y = 1u;

@@ -10,13 +10,14 @@
 // radiance cache; a key found is placed and its cell queued for shading (rc_active, the shade's
 // indirect args), a new key bids for its first slot and joins round 1's pending list, a key whose
 // slots are all taken is dropped. rc_counters has two copies (ping-pong): a frame counts into
-// one while its first workgroup zeroes the other for the next frame (no fill, no barrier). Option insertion_find 1 moves the find to a dispatch of radiance_cache_update over
-// every hit record (the former layout): the same table and counters.
+// one while its first workgroup zeroes the other for the next frame (no fill, no barrier).
+// Option insertion_find 1 moves the find to a dispatch of radiance_cache_update over every hit
+// record (the former layout): the same table and counters.
 // Slots: reads the scene and BVH; writes `probe_hits` (buffer, 16^3 x rays_per_probe ProbeHit,
 // probe-major: record probe * rays + ray; radiance_cache_shared.h), and creates the insertion's
 // buffers: rc_cells (persistent, read_write, 2^cache_log2_cells x 16 bytes), rc_active (16^3 x
-// max(64, rays_per_probe) uint), rc_counters (persistent ping-pong, 32 bytes + 16 per round), rc_pending (two lists
-// of 16^3 x rays_per_probe (hit id, key)).
+// max(64, rays_per_probe) uint), rc_counters (persistent ping-pong, 32 bytes + 16 per round),
+// rc_pending (two lists of 16^3 x rays_per_probe (hit id, key)).
 // Needs compute subgroup ballot and arithmetic operations (a clear error without them).
 // Limits: no probe relocation (DDGI's); a probe inside geometry is found by its rays
 // (rc_probe_ray_inside) and left unused (irradiance_volume_update). rays_per_probe must be

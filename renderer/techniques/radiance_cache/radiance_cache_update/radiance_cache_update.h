@@ -33,7 +33,8 @@
 // cells_inserted, hits_reused, hits_dropped and hits_pending_round1 (the hits of new keys) after
 // its timed frames.
 // Slots: reads probe_hits (the find kernel's); reads and writes rc_cells, rc_active,
-// rc_counters and rc_pending, which probe_trace creates (rc_counters: ping-pong, zeroed a frame ahead; probe_trace.h).
+// rc_counters and rc_pending, which probe_trace creates (rc_counters: ping-pong, zeroed a frame
+// ahead; probe_trace.h).
 // Limits: cells are never evicted (a long camera path fills the table, then insertions are
 // dropped and counted); between this pass and radiance_cache_shade a queued cell reads as shaded
 // this frame (readers run after the shade); the key ignores the normal, so both faces of a wall
