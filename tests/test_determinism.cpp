@@ -1,4 +1,4 @@
-// Every technique is deterministic on a given device (issue 12 section 4): the same settings,
+// Every technique is deterministic on a given device: the same settings,
 // scene and frame count give bit-identical images, run after run, in fresh executors. On
 // lavapipe several threads run each dispatch, so any result that depends on which invocation
 // wins a race (a hash slot, an atomic accumulation order) shows up here as a differing bit.

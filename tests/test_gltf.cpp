@@ -1,4 +1,4 @@
-// glTF import (issue 18 phase 1): known answers for the node tree, materials, lights and camera;
+// glTF import: known answers for the node tree, materials, lights and camera;
 // one test per class of bad input; the scene file's "gltf" objects.
 #include <gtest/gtest.h>
 

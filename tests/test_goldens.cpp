@@ -1,4 +1,4 @@
-// Goldens and references (issue 12 section 2): the 3x noise-floor rule on flip bounds against the
+// Goldens and references: the 3x noise-floor rule on flip bounds against the
 // reference, what update-goldens --reference records in golden.json (spp, seed, device, driver,
 // noise floor per file), the --spp override and the spp split, atomic golden writes.
 #include <gtest/gtest.h>
@@ -282,7 +282,7 @@ TEST(KnownFailure, FailingRunIsKnownPassingRunGoesStaleOtherClassIgnored) {
   EXPECT_EQ(row["status"], "known_failure");
 }
 
-// Goldens per device class (issue 15): a row compares with its golden class's approved file;
+// Goldens per device class: a row compares with its golden class's approved file;
 // where that class has none, the plain (lavapipe) file stands in and the row says so, by name,
 // in results.json ("golden_class") and its messages, never silently.
 TEST(GoldenClass, RowNamesTheClassItWasComparedWithAndSaysSoWhenAnotherStoodIn) {

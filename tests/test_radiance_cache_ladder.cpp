@@ -1,4 +1,4 @@
-// radiance-cache's presets form a quality ladder (issue 19): on one small case, the CI tier of
+// radiance-cache's presets form a quality ladder: on one small case, the CI tier of
 // thin-wall-leak-005 (128x72, 256 frames, the committed 262144-spp reference), each higher preset
 // errs less than, or as much as, the one below it, and every preset keeps the room's bounce light
 // in the case's band. `gibench sweep` shows the same ladder with GPU times on a GPU.

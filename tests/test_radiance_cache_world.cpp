@@ -592,7 +592,7 @@ TEST_F(RadianceCacheWorld, LocalLightReachesCellsThroughLightGrid) {
   EXPECT_LT(c.max_radiance, 0.5);
 }
 
-// Which cascade a frame updates (issue 19's ladder): schedule 0 each in turn; schedule 1 the
+// Which cascade a frame updates (the presets' probe_schedule): schedule 0 each in turn; schedule 1 the
 // finest on every even frame and the others in turn on odd frames.
 TEST(RadianceCacheSchedule, UpdatedCascadeByScheduleKnownAnswers) {
   std::vector<uint32_t> in_turn, finest_first, two;

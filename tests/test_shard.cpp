@@ -1,4 +1,4 @@
-// Sharding the suite (issue 15 section 3): --shard K/N and the GTEST sharding variables pick a
+// Sharding the suite: --shard K/N and the GTEST sharding variables pick a
 // deterministic 1/N of the rows; `merge` joins the shards into the verdicts of one whole run and
 // refuses a missing, duplicated or foreign shard.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Image textures (issue 18, phase 2), on the CPU: decode and mip-chain known answers, sRGB vs
+// Image textures, on the CPU: decode and mip-chain known answers, sRGB vs
 // linear decoding and filtering, bilinear and level-selection known answers, the glTF import
 // of a textured MASK material (features, alpha kinds, bytes), its alpha mask in the BVH (a ray
 // through a transparent texel misses) and baked average opacity, an export round trip that keeps

@@ -1,4 +1,4 @@
-// The GPU tier (issue 15 section 2): case sizes per tier, the reference cache's key and its
+// The GPU tier: case sizes per tier, the reference cache's key and its
 // render-on-demand, half-float goldens that round exactly as their CPU mirror, approval from a
 // finished run.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// GPU times are taken on scan-free frames (perf/frame_timing.h, issue 12 section 5): `gibench
+// GPU times are taken on scan-free frames (perf/frame_timing.h): `gibench
 // run`, `sweep` and `bench` time the same work the same way. No assertion here is on a time
 // (project rule: speed is checked by benchmarks that print figures); the tests check structure:
 // the timed frames had no scan dispatch, the timed work is the same in all three paths, and

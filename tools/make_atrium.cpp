@@ -1,4 +1,4 @@
-// Writes cases/scenes/atrium.glb (issue 18): a courtyard built from procedural geometry and
+// Writes cases/scenes/atrium.glb: a courtyard built from procedural geometry and
 // procedural images, exported through gib::export_gltf. A 12 m x 12 m court open to the sky
 // inside 7 m brick walls; along its north side a colonnade (six plaster columns, a roof slab,
 // alpha-masked arch cards between the columns) that the roof keeps in shade; two clumps of

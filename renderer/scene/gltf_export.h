@@ -1,4 +1,4 @@
-// glTF 2.0 export (issue 18): writes a Scene's geometry, materials, lights and camera, so
+// glTF 2.0 export: writes a Scene's geometry, materials, lights and camera, so
 // procedural scenes can be turned into glTF content and a round trip (export -> import_gltf)
 // can be checked: the flattened triangles (flatten(): positions, normals, UVs, indices,
 // instances) come back bit for bit.

@@ -1,4 +1,4 @@
-// glTF 2.0 import (issue 18, phase 1): appends a .gltf/.glb file's default scene to a Scene.
+// glTF 2.0 import: appends a .gltf/.glb file's default scene to a Scene.
 // The scene key that uses it ({"type": "gltf", "file": ...}) and its rules are documented in
 // cases/scenes/README.md, section "glTF objects".
 //

@@ -1,4 +1,4 @@
-// Image textures (issue 18, phase 2): RGBA8 images with a full mip chain built on the CPU, packed
+// Image textures: RGBA8 images with a full mip chain built on the CPU, packed
 // into one storage buffer that every pass binds with the scene (scene.glsl, gib_textures), and
 // the CPU mirror of the shaders' fetch and filter (renderer/shaders/include/textures.glsl: same
 // layout, same operation order, arithmetic that rounds the same, so tests compare bit for bit).

@@ -22,31 +22,28 @@ namespace {
 // The seed's platform tiers: 16/32/64 rays per probe, 1/4 or 1/2 gather, more cascades with
 // quality (6 ship). ultra goes past the seed: it gathers at full resolution (4x high's gather
 // rays), the one step up that lowers the error of a small interior, where cascades beyond the
-// fourth reach nothing (issue 19: with 6 cascades and a 1/2 gather ultra erred as much as high).
+// fourth reach nothing (with 6 cascades and a 1/2 gather ultra errs as much as high).
 //
-// Cache size: every preset has the seed's 14 MB (2^20 cells of 16 B). Until issue 19's fifth
-// session low had 2^13 cells, medium 2^15, high 2^16, ultra 2^18. Cells are never evicted, so a
-// small table fills, its insertions are dropped, and their gather rays and bounces fall back to
-// the volumes, which hold no direct light: the thin-wall room read 0.83-0.85 of the reference at
-// low (H100, CI tier) and 0.81 at the GPU tier (1.00 with 2^20 cells), and at the GPU tier
-// medium's 2^15 cells read 0.974 (1.011 with 2^20) and erred more than low. The larger table
-// uncovered a leak the dropped cells had hidden: extreme-range's interior reads 8.1x its
-// reference on an H100 (1.03 with 2^15 cells), a known failure (radiance_cache.md, "Cache size").
+// Cache size: every preset has the seed's 14 MB (2^20 cells of 16 B). Cells are never evicted, so
+// a small table fills, its insertions are dropped, and their gather rays and bounces fall back to
+// the volumes, which hold no direct light: with 2^13 cells the thin-wall room reads 0.83-0.85 of
+// the reference at low (H100, CI tier) and 0.81 at the GPU tier (1.00 with 2^20 cells), and with
+// 2^15 cells medium reads 0.974 at the GPU tier (1.011 with 2^20) (radiance_cache.md, "Cache
+// size").
 //
-// high and ultra (issue 19, "presets form a ladder"): with one cascade updated per frame in
-// turn and the same hysteresis, more cascades meant each probe was updated less often, so the
-// bounce light that builds up from frame to frame (the volumes feed the next frame's cells)
-// converged slower at the higher presets: a closed 0.99 box read 0.495 / 0.474 / 0.275 / 0.208
-// of its analytic value after 400 frames at low / medium / high / ultra (lavapipe, 64x36). So
-// at high and ultra the finest cascade is updated every other frame (schedule 1, below), and
-// their hysteresis keeps medium's noise instead of its speed: a probe's blended irradiance
-// averages about rays x (1 + h) / (1 - h) ray samples (an exponential moving average with
-// weight 1 - h), 32 x 1.85 / 0.15 = 395 at medium; 64 rays reach that at h = 0.721. They also
-// store the probe atlas and the GI history with stochastic rounding (dither_stores): rounded to
-// nearest, a slowly converging blend stops short of its limit (radiance_cache.md, "Quantised
-// stores"). low and medium store dithered too (they keep schedule 0 and their hysteresis): on an
-// H100 after 3000 frames the closed box read low 0.907 / medium 0.888 rounded to nearest, 0.971 /
-// 0.950 dithered (the cells' own RGB9E5 store was still rounded to nearest then).
+// high and ultra: with one cascade updated per frame in turn and the same hysteresis, more
+// cascades update each probe less often, so the bounce light that builds up from frame to frame
+// (the volumes feed the next frame's cells) converges slower at the higher presets: a closed
+// 0.99 box reads 0.495 / 0.474 / 0.275 / 0.208 of its analytic value after 400 frames at low /
+// medium / high / ultra that way (lavapipe, 64x36). So at high and ultra the finest cascade is
+// updated every other frame (schedule 1, below), and their hysteresis keeps medium's noise
+// instead of its speed: a probe's blended irradiance averages about rays x (1 + h) / (1 - h) ray
+// samples (an exponential moving average with weight 1 - h), 32 x 1.85 / 0.15 = 395 at medium;
+// 64 rays reach that at h = 0.721. Every preset stores the probe atlas, the GI history and the
+// cache cells with stochastic rounding (dither_stores): rounded to nearest, a slowly converging
+// blend stops short of its limit (radiance_cache.md, "Quantised stores"). low and medium keep
+// schedule 0 and their hysteresis: on an H100 after 3000 frames the closed box reads low 0.907 /
+// medium 0.888 rounded to nearest, 0.994 / 0.990 with every store dithered.
 struct Preset {
   const char* name;
   uint32_t rays_per_probe, gather_divisor, cascades, cache_log2_cells, probe_schedule;
