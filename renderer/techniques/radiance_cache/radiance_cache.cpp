@@ -28,8 +28,8 @@ namespace {
 // a small table fills, its insertions are dropped, and their gather rays and bounces fall back to
 // the volumes, which hold no direct light: with 2^13 cells the thin-wall room reads 0.83-0.85 of
 // the reference at low (H100, CI tier) and 0.81 at the GPU tier (1.00 with 2^20 cells), and with
-// 2^15 cells medium reads 0.974 at the GPU tier (1.011 with 2^20) (radiance_cache.md, "Cache
-// size").
+// 2^15 cells medium reads 0.974 at the GPU tier (1.011 with 2^20); radiance_cache.md,
+// "Cache size".
 //
 // high and ultra: with one cascade updated per frame in turn and the same hysteresis, more
 // cascades update each probe less often, so the bounce light that builds up from frame to frame
