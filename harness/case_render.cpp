@@ -156,8 +156,8 @@ CaseRender render(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::s
 }  // namespace
 
 CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::string& preset,
-                       uint32_t seed_offset, uint32_t at_frame, bool scan) {
-  return render(gpu, c, run, preset, seed_offset, at_frame, scan, run.technique == "reference" ? run.spp : 0);
+                       uint32_t seed_offset, uint32_t at_frame, bool scan, const FrameProgress& progress) {
+  return render(gpu, c, run, preset, seed_offset, at_frame, scan, run.technique == "reference" ? run.spp : 0, progress);
 }
 
 CaseRender render_reference(Gpu& gpu, const Case& c, uint32_t seed_offset, uint32_t at_frame,

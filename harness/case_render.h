@@ -39,19 +39,21 @@ struct CaseRender {
   std::map<std::string, std::string> printouts; // Technique::printouts at the last frame (those in the plan)
 };
 
+// `progress` (may be empty) is called after each frame with (frames done, frames in all).
+using FrameProgress = std::function<void(uint32_t done, uint32_t total)>;
+
 // A technique run of the case (`gibench run`, sweep, update-goldens of a technique golden):
 // the case's frames at the preset; a reference (path tracer) row with TechniqueRun::spp renders
 // that many samples per pixel instead (split over frames), seeded with the case's seed
 // (seed_offset shifts it). `scan`: the stability scan during the case's frames.
 CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::string& preset,
-                       uint32_t seed_offset = 0, uint32_t at_frame = 0, bool scan = false);
+                       uint32_t seed_offset = 0, uint32_t at_frame = 0, bool scan = false,
+                       const FrameProgress& progress = {});
 // The committed path-traced reference: technique "reference", preset ultra, the case's
 // reference_spp and reference_seed (seed_offset shifts it: the noise floor renders twice);
 // at_frame (1-based) renders the scene as it is at that frame of a technique run (a per-frame
 // reference of an animated scene; 0 = the scene's first frame, time 0). Every contract AOV is
 // in CaseRender::aovs.
-// `progress` (may be empty) is called after each frame with (frames done, frames in all).
-using FrameProgress = std::function<void(uint32_t done, uint32_t total)>;
 CaseRender render_reference(Gpu& gpu, const Case& c, uint32_t seed_offset = 0, uint32_t at_frame = 0,
                             const FrameProgress& progress = {});
 

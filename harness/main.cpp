@@ -7,7 +7,7 @@
 #include "harness/compare.h"
 #include "perf/cli.h"
 #include "harness/render.h"
-#include "harness/runner.h"
+#include "harness/suite.h"
 #include "harness/shard.h"
 #include "harness/sweep.h"
 #include "harness/report_check.h"
@@ -65,6 +65,16 @@ int main(int argc, char** argv) {
                 "skip the GPU scan of every resource each pass writes for NaN, Inf, negative and out-of-bound values");
   run->add_option("--shard", run_opts.shard,
                   "K/N: run the rows i with i % N == K (0-based; default: GTEST_SHARD_INDEX/GTEST_TOTAL_SHARDS if set)");
+  run_opts.profile = "";
+  run_opts.jobs = 0;
+  run->add_option("--profile", run_opts.profile,
+                  "quick | full: quick runs a subset touching every case and technique, lists the rest as not run "
+                  "(default: quick on lavapipe at the CI tier, full elsewhere)");
+  run->add_option("-j,--jobs", run_opts.jobs,
+                  "rows rendered at once, one worker process each (default 0: one per core on a CPU device, "
+                  "4 per GPU; --device 0,1 spreads them over GPUs)");
+  run->add_flag("--worker", run_opts.worker, "internal: a worker of a parallel run (rows on stdin, events on stdout)")
+      ->group("");
   run->add_option("--technique", run_opts.techniques,
                   "run only the rows and negative controls of this technique (repeatable; default: all)");
   run->add_option("--golden-class", run_opts.golden_class,

@@ -79,6 +79,85 @@ void write_report_error_map(const std::string& stem, const FloatImage& error_map
   write_png_preview(stem + ".png", magma_error_map(error_map, true));
 }
 
+nlohmann::json row_to_json(const ResultRow& r) {
+  nlohmann::json m = nlohmann::json::object();
+  for (auto& [k, v] : r.metrics) m[k] = finite_or_null(v);
+  nlohmann::json passes = nlohmann::json::array();
+  for (auto& p : r.plan.passes) {
+    nlohmann::json pj{{"name", p.name}, {"status", p.runs ? "ran" : "culled"}, {"reason", p.reason}};
+    for (auto& s : r.passes)
+      if (s.name == p.name) pj.update({{"ms", s.median_ms}, {"min_ms", s.min_ms}, {"max_ms", s.max_ms}});
+    passes.push_back(pj);
+  }
+  nlohmann::json checks = nlohmann::json::array();
+  for (auto& c : r.checks) {
+    nlohmann::json cj{{"metric", c.metric}, {"against", c.against}, {"roi", c.roi}, {"value", finite_or_null(c.value)},
+                      {"pass", c.pass}, {"skipped", c.skipped}, {"message", c.message}};
+    if (c.max) cj["max"] = *c.max;
+    if (c.min) cj["min"] = *c.min;
+    checks.push_back(cj);
+  }
+  nlohmann::json row{{"case", r.case_name}, {"technique", r.technique}, {"preset", r.preset}, {"kind", r.kind},
+                     {"negative_control", r.control_name}, {"why", r.control_why}, {"options", r.options},
+                     {"status", r.status}, {"messages", r.messages}, {"metrics", m}, {"checks", checks},
+                     {"gpu_ms", r.gpu_ms}, {"passes", passes}, {"device", r.device}, {"image", r.image_id},
+                     {"reference_image", r.reference_id}, {"golden_class", r.golden_class},
+                     {"resource_bytes", r.plan.total_bytes()}, {"texture_bytes", r.texture_bytes},
+                     {"wall_s", r.wall_s}};
+  if (!r.views.empty()) {
+    row["views"] = nlohmann::json::array();
+    for (auto& [name, id] : r.views) row["views"].push_back({{"name", name}, {"image", id}});
+  }
+  if (!r.printouts.empty()) {
+    row["printouts"] = nlohmann::json::array();
+    for (auto& [name, text] : r.printouts) row["printouts"].push_back({{"name", name}, {"text", text}});
+  }
+  if (!r.timing.frames.empty()) {  // where gpu_ms and the pass times come from
+    const perf::Summary f = r.timing.frame();
+    row["timing"] = {{"frames", r.timing.frames.size()}, {"warmup", r.timing.warmup}, {"source", r.timing.source},
+                     {"scan_free", r.timing.scan_free()}, {"scan_dispatches", r.timing.scan_dispatches},
+                     {"frame_ms", {{"median", f.median}, {"q1", f.q1}, {"q3", f.q3}, {"min", f.min}, {"max", f.max}}},
+                     {"frame_samples_ms", r.timing.frame_ms()}};
+    if (r.timing.clock.measured())
+      row["timing"]["clock"] = r.timing.clock.to_json();
+  }
+  if (!r.curve.empty()) {
+    nlohmann::json curve = nlohmann::json::array();
+    for (double v : r.curve) curve.push_back(finite_or_null(v));
+    row["curve"] = curve;
+    row["curve_target"] = r.curve_target;
+  }
+  if (r.eval_frames.size() > 1) row["eval_frames"] = r.eval_frames;
+  if (r.scanned) {
+    // Per (pass, resource) with any offender: counts over all frames and where it first was.
+    nlohmann::json res = nlohmann::json::array();
+    for (auto& t : r.stability.targets) {
+      uint64_t nan = t.count[size_t(StabilityCategory::nan)];
+      uint64_t inf = t.count[size_t(StabilityCategory::pos_inf)] + t.count[size_t(StabilityCategory::neg_inf)];
+      uint64_t neg = t.count[size_t(StabilityCategory::negative)];
+      uint64_t above = t.count[size_t(StabilityCategory::above_max)];
+      uint64_t saturated = t.count[size_t(StabilityCategory::saturated)];
+      if (!(nan || inf || neg || above || saturated)) continue;
+      nlohmann::json e{{"pass", t.pass},         {"resource", t.resource}, {"nan", nan},
+                       {"inf", inf},             {"negative", neg},        {"above_max", above},
+                       {"saturated", saturated}, {"max_seen", finite_or_null(t.max_seen)}};
+      const StabilityRecord* first = nullptr;
+      for (auto& rec : r.stability.records)
+        if (rec.pass == t.pass && rec.resource == t.resource) { first = &rec; break; }
+      if (first) {
+        e["first_frame"] = first->first_frame;
+        e["first_at"] = first->buffer ? fmt::format("element {}", first->first_x)
+                                      : fmt::format("({}, {})", first->first_x, first->first_y);
+      }
+      res.push_back(e);
+    }
+    row["stability"] = {{"scanned", true}, {"frames", r.stability.frames},
+                        {"targets", r.stability.targets.size()}, {"resources", res},
+                        {"first_offenders", r.stability.first_offender_lines()}};
+  }
+  return row;
+}
+
 nlohmann::json suite_to_json(const SuiteResult& suite) {
   nlohmann::json j;
   j["device"] = {{"name", suite.device.name}, {"type", suite.device.type}, {"driver", suite.device.driver_name},
@@ -89,88 +168,11 @@ nlohmann::json suite_to_json(const SuiteResult& suite) {
   if (!suite.shard.is_null()) j["shard"] = suite.shard;
   j["case_errors"] = suite.case_errors;
   auto& rows = j["results"] = nlohmann::json::array();
-  for (auto& r : suite.rows) {
-    nlohmann::json m = nlohmann::json::object();
-    for (auto& [k, v] : r.metrics) m[k] = finite_or_null(v);
-    nlohmann::json passes = nlohmann::json::array();
-    for (auto& p : r.plan.passes) {
-      nlohmann::json pj{{"name", p.name}, {"status", p.runs ? "ran" : "culled"}, {"reason", p.reason}};
-      for (auto& s : r.passes)
-        if (s.name == p.name) pj.update({{"ms", s.median_ms}, {"min_ms", s.min_ms}, {"max_ms", s.max_ms}});
-      passes.push_back(pj);
-    }
-    nlohmann::json checks = nlohmann::json::array();
-    for (auto& c : r.checks) {
-      nlohmann::json cj{{"metric", c.metric}, {"against", c.against}, {"roi", c.roi}, {"value", finite_or_null(c.value)},
-                        {"pass", c.pass}, {"skipped", c.skipped}, {"message", c.message}};
-      if (c.max) cj["max"] = *c.max;
-      if (c.min) cj["min"] = *c.min;
-      checks.push_back(cj);
-    }
-    rows.push_back({{"case", r.case_name}, {"technique", r.technique}, {"preset", r.preset}, {"kind", r.kind},
-                    {"negative_control", r.control_name}, {"why", r.control_why}, {"options", r.options},
-                    {"status", r.status}, {"messages", r.messages}, {"metrics", m}, {"checks", checks},
-                    {"gpu_ms", r.gpu_ms}, {"passes", passes}, {"device", r.device}, {"image", r.image_id}, {"reference_image", r.reference_id},
-                    {"golden_class", r.golden_class},
-                    {"resource_bytes", r.plan.total_bytes()}, {"texture_bytes", r.texture_bytes}});
-    auto& row = rows.back();
-    if (!r.views.empty()) {
-      row["views"] = nlohmann::json::array();
-      for (auto& [name, id] : r.views) row["views"].push_back({{"name", name}, {"image", id}});
-    }
-    if (!r.printouts.empty()) {
-      row["printouts"] = nlohmann::json::array();
-      for (auto& [name, text] : r.printouts) row["printouts"].push_back({{"name", name}, {"text", text}});
-    }
-    if (!r.timing.frames.empty()) {  // where gpu_ms and the pass times come from
-      const perf::Summary f = r.timing.frame();
-      row["timing"] = {{"frames", r.timing.frames.size()}, {"warmup", r.timing.warmup}, {"source", r.timing.source},
-                       {"scan_free", r.timing.scan_free()}, {"scan_dispatches", r.timing.scan_dispatches},
-                       {"frame_ms", {{"median", f.median}, {"q1", f.q1}, {"q3", f.q3}, {"min", f.min}, {"max", f.max}}},
-                       {"frame_samples_ms", r.timing.frame_ms()}};
-      if (r.timing.clock.measured())
-        row["timing"]["clock"] = r.timing.clock.to_json();
-    }
-    if (!r.curve.empty()) {
-      nlohmann::json curve = nlohmann::json::array();
-      for (double v : r.curve) curve.push_back(finite_or_null(v));
-      row["curve"] = curve;
-      row["curve_target"] = r.curve_target;
-    }
-    if (r.eval_frames.size() > 1) row["eval_frames"] = r.eval_frames;
-    if (r.scanned) {
-      // Per (pass, resource) with any offender: counts over all frames and where it first was.
-      nlohmann::json res = nlohmann::json::array();
-      for (auto& t : r.stability.targets) {
-        uint64_t nan = t.count[size_t(StabilityCategory::nan)];
-        uint64_t inf = t.count[size_t(StabilityCategory::pos_inf)] + t.count[size_t(StabilityCategory::neg_inf)];
-        uint64_t neg = t.count[size_t(StabilityCategory::negative)];
-        uint64_t above = t.count[size_t(StabilityCategory::above_max)];
-        uint64_t saturated = t.count[size_t(StabilityCategory::saturated)];
-        if (!(nan || inf || neg || above || saturated)) continue;
-        nlohmann::json e{{"pass", t.pass},         {"resource", t.resource}, {"nan", nan},
-                         {"inf", inf},             {"negative", neg},        {"above_max", above},
-                         {"saturated", saturated}, {"max_seen", finite_or_null(t.max_seen)}};
-        const StabilityRecord* first = nullptr;
-        for (auto& rec : r.stability.records)
-          if (rec.pass == t.pass && rec.resource == t.resource) { first = &rec; break; }
-        if (first) {
-          e["first_frame"] = first->first_frame;
-          e["first_at"] = first->buffer ? fmt::format("element {}", first->first_x)
-                                        : fmt::format("({}, {})", first->first_x, first->first_y);
-        }
-        res.push_back(e);
-      }
-      row["stability"] = {{"scanned", true}, {"frames", r.stability.frames},
-                          {"targets", r.stability.targets.size()}, {"resources", res},
-                          {"first_offenders", r.stability.first_offender_lines()}};
-    }
-  }
+  for (auto& r : suite.rows) rows.push_back(row_to_json(r));
   return j;
 }
 
-void write_suite_outputs(const std::string& out_dir, const SuiteResult& suite, const std::vector<Case>& cases) {
-  nlohmann::json j = suite_to_json(suite);
+nlohmann::json cases_to_json(const std::vector<Case>& cases) {
   nlohmann::json case_info = nlohmann::json::array();
   for (auto& c : cases) {
     nlohmann::json rois = nlohmann::json::array();
@@ -178,7 +180,12 @@ void write_suite_outputs(const std::string& out_dir, const SuiteResult& suite, c
     case_info.push_back({{"name", c.name}, {"description", c.description}, {"width", c.width}, {"height", c.height},
                          {"output", c.output}, {"rois", rois}});
   }
-  j["cases"] = case_info;
+  return case_info;
+}
+
+void write_suite_outputs(const std::string& out_dir, const SuiteResult& suite, const std::vector<Case>& cases) {
+  nlohmann::json j = suite_to_json(suite);
+  j["cases"] = cases_to_json(cases);
   write_report_files(out_dir, j);
 }
 
@@ -200,8 +207,8 @@ void write_report_files(const std::string& out_dir, const nlohmann::json& j) {
       std::string test = r.value("kind", "") == "negative_control" ? "negative:" + r.value("negative_control", "")
                                                                     : r.value("technique", "") + "." + r.value("preset", "");
       body += fmt::format("    <testcase classname=\"{}\" name=\"{}\" time=\"{:.3f}\">", xml_escape(name),
-                          xml_escape(test), r.value("gpu_ms", 0.0) / 1000.0);
-      if (status == "known_failure" || status == "skipped") {
+                          xml_escape(test), r.value("wall_s", 0.0));
+      if (status == "known_failure" || status == "skipped" || status == "not_run") {
         body += fmt::format("<skipped message=\"{}\"/>", xml_escape(messages.empty() ? status : messages[0]));
       } else if (status != "pass") {
         ++fails;
@@ -246,26 +253,30 @@ void write_report_files(const std::string& out_dir, const nlohmann::json& j) {
   write_text(out / "report.css", kReportCss);
 }
 
-void print_suite_table(const SuiteResult& suite) {
-  auto num = [](const std::map<std::string, double>& m, const char* k, const char* f) {
-    auto it = m.find(k);
-    if (it == m.end()) return std::string("-");
-    if (std::isinf(it->second)) return std::string("inf");
-    return fmt::format(fmt::runtime(f), it->second);
+void print_suite_table(const nlohmann::json& j) {
+  auto num = [](const nlohmann::json& m, const char* k, const char* f) {
+    if (!m.contains(k)) return std::string("-");
+    if (m[k].is_null()) return std::string("inf");
+    return fmt::format(fmt::runtime(f), m[k].get<double>());
   };
-  fmt::print("{:<20} {:<22} {:<8} {:>9} {:>9} {:>9} {:>10}  {}\n", "case", "technique", "preset", "FLIP ref", "PSNR ref",
-             "FLIP gold", "GPU ms", "status");
-  for (auto& r : suite.rows) {
-    std::string tech = r.kind == "negative_control" ? "!" + r.technique + " (" + r.control_name + ")" : r.technique;
-    fmt::print("{:<20} {:<22} {:<8} {:>9} {:>9} {:>9} {:>10.2f}  {}\n", r.case_name, tech, r.preset,
-               num(r.metrics, "flip_vs_reference", "{:.4f}"), num(r.metrics, "psnr_vs_reference", "{:.2f}"),
-               num(r.metrics, "flip_vs_golden", "{:.4f}"), r.gpu_ms, r.status);
-    if (r.status != "pass")
-      for (auto& m : r.messages) fmt::print("    {}\n", m);
-    else if (r.kind == "negative_control")
-      for (auto& m : r.messages) fmt::print("    {}\n", m);
+  fmt::print("{:<20} {:<22} {:<8} {:>9} {:>9} {:>9} {:>10} {:>8}  {}\n", "case", "technique", "preset", "FLIP ref",
+             "PSNR ref", "FLIP gold", "GPU ms", "wall s", "status");
+  for (auto& r : j["results"]) {
+    const std::string status = r.value("status", "error"), kind = r.value("kind", "");
+    std::string tech = kind == "negative_control"
+                           ? "!" + r.value("technique", "") + " (" + r.value("negative_control", "") + ")"
+                           : r.value("technique", "");
+    const nlohmann::json m = r.value("metrics", nlohmann::json::object());
+    fmt::print("{:<20} {:<22} {:<8} {:>9} {:>9} {:>9} {:>10} {:>8}  {}\n", r.value("case", ""), tech,
+               r.value("preset", ""), num(m, "flip_vs_reference", "{:.4f}"), num(m, "psnr_vs_reference", "{:.2f}"),
+               num(m, "flip_vs_golden", "{:.4f}"),
+               status == "not_run" ? "-" : fmt::format("{:.2f}", r.value("gpu_ms", 0.0)),
+               status == "not_run" ? "-" : fmt::format("{:.1f}", r.value("wall_s", 0.0)), status);
+    if (status == "not_run") continue;  // the summary says why
+    if (status != "pass" || kind == "negative_control")
+      for (auto& msg : r.value("messages", std::vector<std::string>{})) fmt::print("    {}\n", msg);
   }
-  for (auto& e : suite.case_errors) fmt::print("error: {}\n", e);
+  for (auto& e : j["case_errors"]) fmt::print("error: {}\n", e.get<std::string>());
 }
 
 }  // namespace gib

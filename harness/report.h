@@ -4,16 +4,19 @@
 #include <string>
 #include <vector>
 
-#include "harness/runner.h"
+#include "harness/suite.h"
 
 namespace gib {
 
+nlohmann::json row_to_json(const ResultRow& row);
 nlohmann::json suite_to_json(const SuiteResult& suite);
+nlohmann::json cases_to_json(const std::vector<Case>& cases);  // the report's "cases"
 void write_suite_outputs(const std::string& out_dir, const SuiteResult& suite, const std::vector<Case>& cases);
 // results.json, results.js, junit.xml and the HTML report from a suite's JSON (suite_to_json
 // plus "cases"): one writer for `run` and for `merge`.
 void write_report_files(const std::string& out_dir, const nlohmann::json& j);
-void print_suite_table(const SuiteResult& suite);
+// The results table on stdout, from a suite's JSON (rows not run: one line each, no messages).
+void print_suite_table(const nlohmann::json& j);
 // <stem>.png (sRGB preview, exposure 0) and <stem>.js (float data for the report's exposure
 // control: window.GIB_IMG[id] = {w, h, data: base64 float32 RGB}).
 void write_report_image(const std::string& stem, const FloatImage& img);

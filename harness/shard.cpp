@@ -44,21 +44,6 @@ Shard shard_from(const std::string& flag) {
   return s;
 }
 
-std::string row_key(const std::string& case_name, const std::string& kind, const std::string& technique,
-                    const std::string& preset, const std::string& control) {
-  return kind == "negative_control" ? case_name + "/negative:" + control : case_name + "/" + technique + "." + preset;
-}
-
-std::vector<std::string> plan_rows(const std::vector<Case>& cases) {
-  std::vector<std::string> keys;
-  for (const Case& c : cases) {
-    for (auto& run : c.techniques)
-      for (auto& preset : run.presets) keys.push_back(row_key(c.name, "technique", run.name(), preset, ""));
-    for (auto& nc : c.negative_controls) keys.push_back(row_key(c.name, "negative_control", nc.run.technique, "", nc.name));
-  }
-  return keys;
-}
-
 namespace {
 
 nlohmann::json read_results(const fs::path& dir) {

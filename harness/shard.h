@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "harness/case.h"
+#include "harness/plan.h"
 
 namespace gib {
 
@@ -22,12 +23,8 @@ Shard parse_shard(const std::string& text);
 // touches GTEST_SHARD_STATUS_FILE, as a sharding-aware test runner does), else 0/1.
 Shard shard_from(const std::string& flag);
 
-// One row of the suite: "case/technique.preset" or "case/negative:name". The plan is every row
-// of `cases` in suite order; row i belongs to shard i % N (round robin keeps the expensive rows
-// of one case on different shards).
-std::string row_key(const std::string& case_name, const std::string& kind, const std::string& technique,
-                    const std::string& preset, const std::string& control);
-std::vector<std::string> plan_rows(const std::vector<Case>& cases);
+// Row i of the plan (plan.h plan_rows) belongs to shard i % N: round robin keeps the expensive rows
+// of one case on different shards.
 
 struct MergeOptions {
   std::string out = "out";

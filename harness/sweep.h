@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "harness/goldens.h"
-#include "harness/runner.h"
+#include "harness/suite.h"
 
 namespace gib {
 

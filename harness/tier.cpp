@@ -13,7 +13,7 @@
 #include <unistd.h>
 
 #include "harness/case_render.h"
-#include "harness/runner.h"
+#include "harness/suite.h"
 #include "renderer/techniques/reference/reference.h"
 #include "renderer/techniques/technique.h"
 #include "renderer/vk/gpu.h"

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "harness/case.h"
-#include "harness/runner.h"
+#include "harness/suite.h"
 #include "perf/frame_timing.h"
 #include "renderer/vk/gpu.h"
 

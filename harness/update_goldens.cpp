@@ -13,7 +13,7 @@
 #include "harness/goldens.h"
 #include "harness/image_io.h"
 #include "metrics/flip.h"
-#include "harness/runner.h"
+#include "harness/suite.h"
 #include "harness/tier.h"
 
 namespace gib {

@@ -6,7 +6,7 @@
 
 #include <filesystem>
 
-#include "harness/runner.h"
+#include "harness/suite.h"
 
 namespace gib::test {
 

@@ -195,33 +195,40 @@ TEST_F(AovContract, DirectPlusIndirectIsRadiancePerPixel) {
 }
 
 // Each one-source scene: every technique's `direct` image mean agrees with the reference's
-// `direct` within 4 standard errors of the two (each estimated from two seeds).
-TEST_F(AovContract, OneSourceDirectAgreesWithReference) {
-  for (const OneSource& src : one_source_scenes()) {
-    Scene scene = floor_scene(src.extra);
-    const Technique& reft = find_technique("reference");
-    std::string ref_res = contract_resource(reft, "direct");
-    FloatImage ra = render_mean(gpu(), scene, "reference", {ref_res}, 4, 1)[ref_res];
-    FloatImage rb = render_mean(gpu(), scene, "reference", {ref_res}, 4, 1001)[ref_res];
-    double ref_mean = image_mean(ra), ref_var = mean_variance(ra, rb);
-    EXPECT_GT(ref_mean, 0.01) << src.name << ": the source must light the floor";
-    for (const Technique& t : techniques()) {
-      if (t.name == "reference") continue;
-      std::string res = contract_resource(t, "direct");
-      if (res.empty()) continue;
-      // Only `direct` is requested: the graph culls every pass it does not need.
-      FloatImage a = render_mean(gpu(), scene, t.name, {res}, 8, 1, "medium", 4)[res];
-      FloatImage b = render_mean(gpu(), scene, t.name, {res}, 8, 1001, "medium", 4)[res];
-      double mean = image_mean(a), var = mean_variance(a, b);
-      // 4 sigma, plus 1e-4 of the mean for float arithmetic (sums in another order, the GPU's
-      // approximate transcendentals: an H100 reads 5e-5 apart on the noiseless sun floor).
-      double tol = 4.0 * std::sqrt(var + ref_var) + 1e-4 * ref_mean;
-      std::printf("%-13s %-14s direct mean %.5f, reference %.5f (diff %+.5f, tolerance %.5f = 4 sigma)\n", src.name,
-                  t.name.c_str(), mean, ref_mean, mean - ref_mean, tol);
-      EXPECT_NEAR(mean, ref_mean, tol) << src.name << " " << t.name;
-    }
+// `direct` within 4 standard errors of the two (each estimated from two seeds). One test per
+// scene, so each stays well under a minute on two cores.
+class AovContractOneSource : public GpuTest, public ::testing::WithParamInterface<size_t> {};
+
+TEST_P(AovContractOneSource, DirectAgreesWithReference) {
+  const OneSource src = one_source_scenes().at(GetParam());
+  Scene scene = floor_scene(src.extra);
+  const Technique& reft = find_technique("reference");
+  std::string ref_res = contract_resource(reft, "direct");
+  FloatImage ra = render_mean(gpu(), scene, "reference", {ref_res}, 4, 1)[ref_res];
+  FloatImage rb = render_mean(gpu(), scene, "reference", {ref_res}, 4, 1001)[ref_res];
+  double ref_mean = image_mean(ra), ref_var = mean_variance(ra, rb);
+  EXPECT_GT(ref_mean, 0.01) << src.name << ": the source must light the floor";
+  for (const Technique& t : techniques()) {
+    if (t.name == "reference") continue;
+    std::string res = contract_resource(t, "direct");
+    if (res.empty()) continue;
+    // Only `direct` is requested: the graph culls every pass it does not need.
+    FloatImage a = render_mean(gpu(), scene, t.name, {res}, 8, 1, "medium", 4)[res];
+    FloatImage b = render_mean(gpu(), scene, t.name, {res}, 8, 1001, "medium", 4)[res];
+    double mean = image_mean(a), var = mean_variance(a, b);
+    // 4 sigma, plus 1e-4 of the mean for float arithmetic (sums in another order, the GPU's
+    // approximate transcendentals: an H100 reads 5e-5 apart on the noiseless sun floor).
+    double tol = 4.0 * std::sqrt(var + ref_var) + 1e-4 * ref_mean;
+    std::printf("%-13s %-14s direct mean %.5f, reference %.5f (diff %+.5f, tolerance %.5f = 4 sigma)\n", src.name,
+                t.name.c_str(), mean, ref_mean, mean - ref_mean, tol);
+    EXPECT_NEAR(mean, ref_mean, tol) << src.name << " " << t.name;
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Scenes, AovContractOneSource, ::testing::Range<size_t>(0, one_source_scenes().size()),
+                         [](const ::testing::TestParamInfo<size_t>& info) {
+                           return std::string(one_source_scenes().at(info.param).name);
+                         });
 
 // A grey plane (albedo 0.5) under a constant sky (radiance 2): every pixel's direct is
 // albedo x sky = 1 and indirect_diffuse and reflection are 0 (nothing else to bounce from, no

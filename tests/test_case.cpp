@@ -15,7 +15,7 @@
 
 #include "harness/case.h"
 #include "tests/temp_dir.h"
-#include "harness/runner.h"
+#include "harness/suite.h"
 #include "renderer/techniques/technique.h"
 #include "tests/technique_settings.h"
 

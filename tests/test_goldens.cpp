@@ -13,7 +13,7 @@
 #include "tests/temp_dir.h"
 #include "harness/case_render.h"
 #include "harness/goldens.h"
-#include "harness/runner.h"
+#include "harness/suite.h"
 #include "tests/gpu_fixture.h"
 #include "tests/suite_fixture.h"
 

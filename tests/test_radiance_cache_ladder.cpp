@@ -29,9 +29,9 @@ using test::GpuTest;
 constexpr double kSameError = 0.005;  // FLIP: "not worse" within the seed-to-seed spread (above)
 constexpr double kRoomMin = 0.85, kRoomMax = 1.15;  // the case's band (thin-wall-leak-005.json)
 
-class RadianceCacheLadder : public GpuTest {};
+class SlowRadianceCacheLadder : public GpuTest {};
 
-TEST_F(RadianceCacheLadder, ErrorFallsWithThePresetOnThinWall005) {
+TEST_F(SlowRadianceCacheLadder, ErrorFallsWithThePresetOnThinWall005) {
   const std::string root = GIB_SOURCE_DIR;
   Case c = at_tier(load_case(root + "/cases/thin-wall-leak-005.json"), Tier::ci);
   // One plain radiance-cache row: the sweep renders it at every preset.

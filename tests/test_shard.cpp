@@ -10,7 +10,7 @@
 #include <set>
 
 #include "harness/case.h"
-#include "harness/runner.h"
+#include "harness/suite.h"
 #include "harness/shard.h"
 #include "tests/suite_fixture.h"
 #include "tests/temp_dir.h"

@@ -10,7 +10,7 @@
 
 #include "harness/case.h"
 #include "harness/image_io.h"
-#include "harness/runner.h"
+#include "harness/suite.h"
 #include "harness/tier.h"
 #include "renderer/codecs/half.h"
 #include "tests/temp_dir.h"

@@ -1,13 +1,15 @@
-// `gibench run`: every case x technique x preset against the reference and the approved
-// goldens, expectations and negative controls; writes results.json, junit.xml and the HTML
-// report; exit code non-zero when anything fails.
-// `gibench update-goldens`: renders and replaces goldens on request, atomically, with history.
+// The scenario suite's options, rows and results, shared by its stages:
+//   plan (plan.h) -> render + evaluate (evaluate.h, measure.h) -> verdict (verdict.h)
+//   -> report (report.h), run in one process or in worker processes (jobs.h) by cmd_run (run.cpp).
+// `gibench update-goldens` (update_goldens.cpp) renders and replaces goldens on request,
+// atomically, with history.
 #pragma once
 #include <map>
 #include <string>
 #include <vector>
 
 #include "harness/case.h"
+#include "harness/measure.h"
 #include "renderer/image/float_image.h"
 #include "harness/render.h"
 #include "perf/frame_timing.h"
@@ -40,17 +42,17 @@ struct SuiteOptions {
   std::string tier;
   // The GPU tier's reference cache (harness/tier.h reference_cache_root; "" = the default).
   std::string reference_cache;
-};
-
-struct CheckResult {
-  std::string metric, against, roi;
-  double value = 0;
-  std::optional<double> max, min;
-  bool pass = true;
-  // Not evaluated: the metric needs what this run did not produce (scan_* under
-  // --no-stability-scan). Neither passes nor fails the row; listed in its messages.
-  bool skipped = false;
-  std::string message;  // "flip vs reference 0.21 > max 0.15 (by 0.06)"
+  // run: "quick" | "full" | "" (by device: quick on a CPU device at the CI tier, full elsewhere;
+  // plan.h). The library's default is full; the CLI's is "".
+  std::string profile = "full";
+  // run: rows rendered at once, each worker a process of its own (jobs.h); 0: by device (one
+  // per core on a CPU device, kGpuJobs per GPU otherwise).
+  unsigned jobs = 1;
+  // run: a worker of a parallel run (jobs.h): row keys arrive on stdin, events leave on stdout.
+  bool worker = false;
+  // run: the gibench binary the workers run ("": this process's own, /proc/self/exe; a test
+  // binary names the gibench it was built beside).
+  std::string worker_exe;
 };
 
 struct ResultRow {
@@ -58,7 +60,8 @@ struct ResultRow {
   std::string control_name, control_why;
   std::map<std::string, double> options;
   // pass | fail | error | known_failure (TechniqueRun::known_failure, failing as known) | skipped (a
-  // negative control whose every threshold was skipped: nothing could catch it)
+  // negative control whose every threshold was skipped: nothing could catch it) | not_run (the
+  // profile left it out; its message says why and which profile runs it)
   std::string status;
   std::vector<std::string> messages;
   // The device class of the approved golden this row was compared with ("" when none). Differs
@@ -68,6 +71,7 @@ struct ResultRow {
   std::map<std::string, double> metrics;
   std::vector<CheckResult> checks;
   double gpu_ms = 0;  // median per frame, over timing.frames
+  double wall_s = 0;  // wall-clock seconds the row took: render, evaluation, images
   perf::FrameTiming timing;  // the frames GPU times come from (scan-free, after all reads)
   std::vector<double> curve;  // Case::convergence: ROI mean per frame
   double curve_target = 0;
@@ -124,24 +128,5 @@ bool glob_match(const std::string& pattern, const std::string& text);
 std::vector<Case> select_cases(const SuiteOptions& o);
 // Whether rows of `technique` are in a --technique list (empty: every technique).
 bool technique_selected(const std::vector<std::string>& techniques, const std::string& technique);
-
-// What the per-run metrics read beyond one image: the convergence curve (ROI mean luminance
-// per frame, conv_*) and the last frames (flicker).
-struct MetricSeries {
-  const std::vector<double>* curve = nullptr;
-  const std::vector<FloatImage>* frames = nullptr;
-  const StabilityReport* stability = nullptr;  // scan_* metrics
-  const std::vector<double>* nan_pixels = nullptr;  // nan_frames / nan_last_frame / nan_max_pixels
-};
-
-// The metric named by a threshold, of `output` against `against` (may be empty for metrics
-// that need none), inside roi (normalised; whole image when absent).
-double compute_metric(const Case& c, const std::string& metric, const FloatImage& output, const FloatImage* against,
-                      const Roi* roi, const MetricSeries& series = {});
-
-// The convergence metrics of a curve m (one value per frame) towards target t, from the 1-based
-// settle_frame on; see case.h for their definitions.
-double convergence_metric(const std::string& metric, const std::vector<double>& m, double target,
-                          uint32_t settle_frame);
 
 }  // namespace gib
