@@ -73,6 +73,10 @@ int main(int argc, char** argv) {
   run->add_option("-j,--jobs", run_opts.jobs,
                   "rows rendered at once, one worker process each (default 0: one per core on a CPU device, "
                   "4 per GPU; --device 0,1 spreads them over GPUs)");
+  run->add_flag("--record-timings", run_opts.record_timings,
+                "write each row's wall seconds into cases/timings/lavapipe.json (the quick profile's costs; CPU device)");
+  run->add_flag("--dry-run", run_opts.dry_run,
+                "print the plan: each row, run or not and why, its expected seconds; render nothing");
   run->add_flag("--worker", run_opts.worker, "internal: a worker of a parallel run (rows on stdin, events on stdout)")
       ->group("");
   run->add_option("--technique", run_opts.techniques,

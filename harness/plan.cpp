@@ -3,6 +3,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <stdexcept>
 
@@ -13,7 +17,44 @@ std::string row_key(const std::string& case_name, const std::string& kind, const
   return kind == "negative_control" ? case_name + "/negative:" + control : case_name + "/" + technique + "." + preset;
 }
 
-std::vector<PlannedRow> plan_suite(const std::vector<Case>& cases) {
+std::string row_seconds_path(const std::string& cases_dir) {
+  return (std::filesystem::path(cases_dir) / "timings" / "lavapipe.json").string();
+}
+
+RowSeconds load_row_seconds(const std::string& cases_dir) {
+  const std::string path = row_seconds_path(cases_dir);
+  std::ifstream in(path);
+  if (!in) return {};
+  RowSeconds out;
+  try {
+    nlohmann::json j = nlohmann::json::parse(in);
+    for (auto& [key, v] : j.at("rows").items()) {
+      if (!v.is_number() || v.get<double>() < 0)
+        throw std::runtime_error(fmt::format("/rows/{}: expected seconds >= 0, got {}", key, v.dump()));
+      out[key] = v.get<double>();
+    }
+  } catch (const std::exception& e) {
+    throw CaseError(fmt::format("{}: expected {{\"rows\": {{row key: seconds}}}}, got: {}", path, e.what()));
+  }
+  return out;
+}
+
+void record_row_seconds(const std::string& cases_dir, const RowSeconds& rows, const std::string& how) {
+  RowSeconds all = load_row_seconds(cases_dir);
+  for (auto& [k, v] : rows) all[k] = std::round(v * 10.0) / 10.0;
+  nlohmann::json j{{"measured", how}, {"rows", all}};
+  const std::filesystem::path path = row_seconds_path(cases_dir);
+  std::filesystem::create_directories(path.parent_path());
+  const std::filesystem::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << j.dump(2) << "\n";
+    if (!out) throw std::runtime_error(fmt::format("{}: write failed", tmp.string()));
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+std::vector<PlannedRow> plan_suite(const std::vector<Case>& cases, const RowSeconds& recorded) {
   std::vector<PlannedRow> rows;
   for (size_t ci = 0; ci < cases.size(); ++ci) {
     const Case& c = cases[ci];
@@ -30,6 +71,8 @@ std::vector<PlannedRow> plan_suite(const std::vector<Case>& cases) {
                       estimated_row_seconds(c, nc.run, "negative_control")});
     }
   }
+  for (PlannedRow& r : rows)
+    if (auto it = recorded.find(r.key); it != recorded.end()) r.cost = it->second;
   return rows;
 }
 
@@ -46,18 +89,22 @@ const TechniqueRun& planned_run(const std::vector<Case>& cases, const PlannedRow
 
 namespace {
 
-// Seconds per million pixel-frames on lavapipe (two cores, one worker), by technique; fitted to
-// a full CI-tier run (see estimated_row_seconds). The reference row's cost is per sample.
+// Seconds per million pixel-frames of one lavapipe worker on one core (LP_NUM_THREADS=0, what
+// -j gives each worker on a CPU device), by technique; the reference's cost is per million
+// samples x pixels. Fitted to a full CI-tier run on a 2-core machine (per-row CPU seconds): the
+// radiance-cache rows of extreme-range and gltf-atrium read 59-82 s per million pixel-frames,
+// probe-volume 25-41, voxel-clipmap 30-41, the path tracer 9-33 per million samples x pixels
+// (cornell, extreme-range, alpha-foliage's alpha-tested leaves).
 double seconds_per_mpixel_frame(const std::string& technique) {
-  if (technique == "radiance-cache") return 2.6;
-  if (technique == "probe-volume") return 2.4;
-  if (technique == "voxel-clipmap") return 3.0;
-  if (technique == "gow-ragnarok") return 1.2;
-  if (technique == "deferred") return 0.9;
-  if (technique == "reference") return 1.0;  // per sample per pixel
-  return 0.5;                               // direct
+  if (technique == "radiance-cache") return 65.0;
+  if (technique == "voxel-clipmap") return 38.0;
+  if (technique == "probe-volume") return 30.0;
+  if (technique == "gow-ragnarok") return 30.0;
+  if (technique == "reference") return 20.0;
+  if (technique == "deferred") return 6.0;
+  return 7.0;  // direct
 }
-constexpr double kRenderOverheadSeconds = 1.5;  // executor, pipelines, readbacks, images and FLIP
+constexpr double kRenderOverheadSeconds = 2.0;  // executor, pipelines (compiled by lavapipe), images, FLIP
 
 }  // namespace
 
@@ -65,6 +112,8 @@ double estimated_row_seconds(const Case& c, const TechniqueRun& run, const std::
   (void)kind;
   const double mpixels = double(c.width) * double(c.height) * 1e-6;
   double frames = double(run.frames ? run.frames : c.frames) + double(c.timing_frames);
+  // A reference row with an spp budget: its samples (the frames split them), plus timing frames
+  // of one sample each.
   if (run.technique == "reference" && run.spp) frames = double(run.spp) + double(c.timing_frames);
   const double renders = 1.0 + double(run.variants.size());
   return renders * (kRenderOverheadSeconds + frames * mpixels * seconds_per_mpixel_frame(run.technique));
@@ -92,6 +141,7 @@ std::map<std::string, std::string> select_quick(const std::vector<Case>& cases, 
   for (size_t ci = 0; ci < cases.size(); ++ci)
     for (const char* kind : {"technique", "negative_control"})
       if (const PlannedRow* r = cheapest([&](const PlannedRow& p) { return p.case_index == ci && p.kind == kind; })) {
+        if (r->kind == "negative_control" && r->cost > kQuickSlowRowSeconds) continue;
         chosen.insert(r->key);
         techniques_touched.insert(r->technique);
       }

@@ -91,7 +91,7 @@ struct RunPlan {
 
 RunPlan make_run_plan(const SuiteOptions& o, const std::vector<Case>& cases, Profile profile) {
   RunPlan rp;
-  for (PlannedRow& p : plan_suite(cases))
+  for (PlannedRow& p : plan_suite(cases, load_row_seconds(o.cases_dir)))
     if (technique_selected(o.techniques, p.technique)) rp.all.push_back(std::move(p));
   const std::map<std::string, std::string> left_out =
       profile == Profile::quick ? select_quick(cases, rp.all) : std::map<std::string, std::string>{};
@@ -131,6 +131,27 @@ void run_serial(SuiteSetup& s, const SuiteOptions& o, const std::vector<PlannedR
 
 std::string plural(size_t n, const char* what) { return fmt::format("{} {}{}", n, what, n == 1 ? "" : "s"); }
 
+// --dry-run: the rows in plan order, each with its expected seconds (the last run's, else the
+// model's) or why it is not run, and the expected wall time.
+int print_plan(const RunPlan& rp, const std::vector<std::pair<std::string, double>>& expected, unsigned jobs) {
+  std::map<std::string, double> secs(expected.begin(), expected.end());
+  std::map<std::string, std::string> why;
+  for (auto& [p, reason] : rp.not_run) why[p.key] = reason;
+  double total = 0, longest = 0;
+  for (auto& p : rp.all) {
+    if (auto it = secs.find(p.key); it != secs.end()) {
+      fmt::print("  run      {:>7.1f} s  {}\n", it->second, p.key);
+      total += it->second;
+      longest = std::max(longest, it->second);
+    } else if (auto w = why.find(p.key); w != why.end()) {
+      fmt::print("  not run  {:>7.1f} s  {}: {}\n", p.cost, p.key, w->second);
+    }
+  }
+  fmt::print("expected: {} of row time, about {} wall on {} (the longest row: {})\n", format_duration(total),
+             format_duration(std::max(total / jobs, longest)), plural(jobs, "worker"), format_duration(longest));
+  return 0;
+}
+
 // Stage 4: outputs, the table and the summary from the suite's JSON. Returns the exit code.
 int report_run(const std::string& out, const nlohmann::json& j, const RunPlan& rp, Profile profile) {
   write_report_files(out, j);
@@ -166,6 +187,9 @@ int cmd_run(const SuiteOptions& o) {
   const std::vector<std::string> devices = split_devices(o.device);
   SuiteSetup s = setup_suite(o, devices.empty() ? "" : devices.front());
   const bool cpu = s.suite.device.type == "cpu";
+  if (o.record_timings && !cpu)
+    throw std::invalid_argument(fmt::format("--record-timings: expected a CPU device (the timings are lavapipe's), got {}",
+                                            s.suite.device.name));
   const Profile profile = resolve_profile(o.profile, cpu && s.tier == Tier::ci);
   RunPlan rp = make_run_plan(o, s.cases, profile);
   // --noise-floor writes each case's golden.json: one process.
@@ -181,6 +205,7 @@ int cmd_run(const SuiteOptions& o) {
   const std::map<std::string, double> recorded = recorded_row_seconds(o.out);
   std::vector<std::pair<std::string, double>> expected;
   for (auto& p : rp.run) expected.push_back({p.key, recorded.count(p.key) ? recorded.at(p.key) : p.cost});
+  if (o.dry_run) return print_plan(rp, expected, jobs);
   SuiteProgress progress(expected, jobs, isatty(STDERR_FILENO) != 0);
 
   nlohmann::json j;
@@ -214,6 +239,16 @@ int cmd_run(const SuiteOptions& o) {
               {"rows_not_run", rp.not_run.size()}, {"wall_s", progress.elapsed_s()}};
   j["cases"] = cases_to_json(s.cases);
   progress.print_slowest(10);
+  if (o.record_timings) {
+    RowSeconds measured;
+    for (auto& r : j["results"])
+      if (r.value("wall_s", 0.0) > 0)
+        measured[row_key(r.value("case", ""), r.value("kind", ""), r.value("technique", ""), r.value("preset", ""),
+                         r.value("negative_control", ""))] = r["wall_s"].get<double>();
+    record_row_seconds(o.cases_dir, measured,
+                       fmt::format("{} ({}), {}", s.suite.device.name, s.suite.device.driver_info, plural(jobs, "worker")));
+    fmt::print("recorded {} row times in {}\n", measured.size(), row_seconds_path(o.cases_dir));
+  }
   return report_run(o.out, j, rp, profile);
 }
 

@@ -48,6 +48,11 @@ struct SuiteOptions {
   // run: rows rendered at once, each worker a process of its own (jobs.h); 0: by device (one
   // per core on a CPU device, kGpuJobs per GPU otherwise).
   unsigned jobs = 1;
+  // run: write each finished row's wall seconds into cases/timings/lavapipe.json (plan.h
+  // RowSeconds; rows of other cases keep theirs). Only on a CPU device.
+  bool record_timings = false;
+  // run: print the plan (each row, run or not and why, its expected seconds) and render nothing.
+  bool dry_run = false;
   // run: a worker of a parallel run (jobs.h): row keys arrive on stdin, events leave on stdout.
   bool worker = false;
   // run: the gibench binary the workers run ("": this process's own, /proc/self/exe; a test

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -41,7 +42,7 @@ TEST(Plan, EveryRowOnceInSuiteOrderWithAPositiveCost) {
   EXPECT_EQ(plan_rows(cases).size(), plan.size());
 }
 
-TEST(Plan, TheQuickProfileTouchesEveryCaseAndTechniqueAndKeepsAControlPerCase) {
+TEST(Plan, TheQuickProfileTouchesEveryCaseAndTechniqueAndKeepsEachCasesCheapControl) {
   std::vector<Case> cases = committed_cases();
   std::vector<PlannedRow> plan = plan_suite(cases);
   std::map<std::string, std::string> left_out = select_quick(cases, plan);
@@ -63,13 +64,39 @@ TEST(Plan, TheQuickProfileTouchesEveryCaseAndTechniqueAndKeepsAControlPerCase) {
   }
   for (auto& c : cases) {
     EXPECT_TRUE(case_touched.count(c.name)) << c.name;
-    if (!c.negative_controls.empty()) {
+    double cheapest_control = std::numeric_limits<double>::infinity();
+    for (auto& p : plan)
+      if (p.kind == "negative_control" && cases[p.case_index].name == c.name)
+        cheapest_control = std::min(cheapest_control, p.cost);
+    if (cheapest_control <= kQuickSlowRowSeconds) {
       EXPECT_TRUE(control_kept.count(c.name)) << c.name;
     }
   }
   EXPECT_EQ(techniques_run, techniques);
   EXPECT_LT(cost_run, 0.5 * cost_all) << "the quick profile is a fraction of the suite";
   EXPECT_FALSE(left_out.empty());
+}
+
+TEST(Plan, RecordedRowSecondsReplaceTheModelAndABadFileIsNamed) {
+  test::TempDir dir("gib_row_seconds_");
+  EXPECT_TRUE(load_row_seconds(dir.str()).empty()) << "no file: the model's costs";
+  record_row_seconds(dir.str(), {{"a/direct.medium", 12.34}}, "test");
+  record_row_seconds(dir.str(), {{"a/negative:off", 3.0}}, "test");  // merged with what is there
+  RowSeconds rec = load_row_seconds(dir.str());
+  EXPECT_EQ(rec.size(), 2u);
+  EXPECT_DOUBLE_EQ(rec["a/direct.medium"], 12.3);
+  std::vector<Case> cases = committed_cases();
+  std::vector<PlannedRow> plan = plan_suite(cases, {{plan_suite(cases).front().key, 777.0}});
+  EXPECT_DOUBLE_EQ(plan.front().cost, 777.0);
+  EXPECT_NE(plan[1].cost, 777.0);
+  std::ofstream(row_seconds_path(dir.str())) << R"({"rows": {"a/direct.medium": "slow"}})";
+  try {
+    load_row_seconds(dir.str());
+    ADD_FAILURE() << "accepted";
+  } catch (const CaseError& e) {
+    EXPECT_NE(std::string(e.what()).find(row_seconds_path(dir.str()) + ": expected"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("/rows/a/direct.medium"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Plan, ProfileByDeviceAndFlag) {
