@@ -5,8 +5,9 @@
 // a CPU device, see Executor::run_frame) through UseManualTime, after warm-up frames.
 // Environment: GIB_BENCH_SCALE (fraction of the workload's resolution actually rendered;
 // default 1 on a GPU, 1/8 on a CPU device), GIB_BENCH_FRAMES (iterations, default 10),
-// GIB_BENCH_WARMUP (default 1 on a CPU device, 5 on a GPU), GIB_BENCH_CASE (scene, default
-// cornell), GIB_DEVICE. Use --benchmark_repetitions for perf-diff.
+// GIB_BENCH_WARMUP (default 1 on a CPU device, 5 on a GPU), GIB_BENCH_CASE (scene under
+// cases/scenes/, the working folder's first, else the source tree's; default cornell),
+// GIB_DEVICE. Use --benchmark_repetitions for perf-diff.
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
@@ -15,6 +16,7 @@
 
 #include "perf/perf.h"
 #include "perf/profiles.h"
+#include "perf/project_files.h"
 #include "bench/bench_common.h"
 #include "renderer/graph/executor.h"
 #include "renderer/scene/scene_loader.h"
@@ -34,7 +36,8 @@ uint32_t env_u32(const char* name, uint32_t fallback) {
 
 std::string scene_path() {
   const char* c = std::getenv("GIB_BENCH_CASE");
-  return std::string(GIB_SOURCE_DIR) + "/cases/scenes/" + (c && *c ? c : "cornell") + ".json";
+  const std::string name = c && *c ? c : "cornell";
+  return perf::find_project_file("cases/scenes/" + name + ".json", "GIB_BENCH_CASE '" + name + "'");
 }
 
 double run_scale() {

@@ -13,6 +13,7 @@
 
 #include "bench/trace_rays_shared.h"
 #include "bench/bench_common.h"
+#include "perf/project_files.h"
 #include "renderer/graph/executor.h"
 #include "renderer/scene/bvh.h"
 #include "renderer/scene/scene_loader.h"
@@ -31,7 +32,9 @@ std::pair<uint32_t, uint32_t> bench_size() {
   return bench_gpu().info().is_software() ? std::pair{256u, 144u} : std::pair{1920u, 1080u};
 }
 
-std::string scene_file(const std::string& name) { return std::string(GIB_SOURCE_DIR) + "/cases/scenes/" + name + ".json"; }
+std::string scene_file(const std::string& name) {
+  return perf::find_project_file("cases/scenes/" + name + ".json", "scene '" + name + "'");
+}
 
 struct RaySet {
   std::vector<glsl::TraceRay> rays;

@@ -9,11 +9,13 @@
 #include <fstream>
 #include <optional>
 #include <unistd.h>
+#include <vector>
 
 #include "harness/case.h"
 #include "harness/case_render.h"
 #include "harness/image_io.h"
 #include "metrics/flip.h"
+#include "renderer/techniques/aov.h"
 #include "revision.h"
 
 namespace fs = std::filesystem;
@@ -37,7 +39,7 @@ GoldenStore::GoldenStore(std::string root, std::string case_name)
     : root_(std::move(root)), case_(std::move(case_name)), dir_((fs::path(root_) / case_).string()) {}
 
 GoldenStore::GoldenStore(std::string root, std::string case_name, const std::string& sub)
-    : root_(std::move(root)), case_(std::move(case_name)), dir_((fs::path(root_) / case_ / sub).string()) {}
+    : root_(std::move(root)), case_(std::move(case_name)), sub_(sub), dir_((fs::path(root_) / case_ / sub).string()) {}
 
 std::string GoldenStore::reference_stem(const std::string& aov, const std::string& default_aov, uint32_t frame) {
   std::string stem = aov.empty() || aov == default_aov ? "reference" : "reference." + aov;
@@ -61,12 +63,83 @@ std::string GoldenStore::find(const std::string& stem, const std::string& cls) c
   return "";
 }
 
-FloatImage GoldenStore::read(const std::string& path, bool* half) const {
+namespace {
+
+FloatImage read_golden_image(const std::string& path, bool* half) {
   try {
     return read_image(path, half);
   } catch (const std::exception& e) {
     throw GoldenError(fmt::format("{}: expected a readable EXR golden, got: {}", path, e.what()));
   }
+}
+
+}  // namespace
+
+FloatImage GoldenStore::read(const std::string& path, bool* half) const {
+  FloatImage image = read_golden_image(path, half);
+  record_of(fs::path(path).filename().string());
+  return image;
+}
+
+FloatImage GoldenStore::read_without_record(const std::string& path) const { return read_golden_image(path, nullptr); }
+
+bool GoldenStore::is_reference_file(const std::string& file) {
+  std::vector<std::string> parts;
+  for (size_t at = 0;;) {
+    const size_t dot = file.find('.', at);
+    parts.push_back(file.substr(at, dot == std::string::npos ? std::string::npos : dot - at));
+    if (dot == std::string::npos) break;
+    at = dot + 1;
+  }
+  if (parts.size() < 2 || parts.front() != "reference" || parts.back() != "exr") return false;
+  size_t i = 1;
+  const size_t last = parts.size() - 1;  // "exr"
+  if (i < last && std::find(kContractAovs.begin(), kContractAovs.end(), parts[i]) != kContractAovs.end()) ++i;
+  auto is_frame = [](const std::string& p) {
+    return p.size() > 1 && p[0] == 'f' && std::all_of(p.begin() + 1, p.end(), [](char c) { return c >= '0' && c <= '9'; });
+  };
+  if (i < last && is_frame(parts[i])) ++i;
+  return i == last;
+}
+
+nlohmann::json GoldenStore::record_of(const std::string& file) const {
+  const bool reference = is_reference_file(file);
+  const std::string where = (fs::path(dir_) / "golden.json").string();
+  // How to get the record back: golden.json is committed (restore it), or the file is approved
+  // again, which writes both; a reference cache entry is rendered again.
+  std::string fix;
+  if (!sub_.empty() && sub_ != "gpu") {
+    fix = fmt::format("render the entry again with: gibench references --case {} --refresh", case_);
+  } else if (reference) {
+    fix = fmt::format("restore it from git or re-approve with: gibench update-goldens --case {} --reference "
+                      "--only-reference --noise-floor --reason \"...\"",
+                      case_);
+  } else {
+    std::string technique = file.substr(0, file.find('.'));
+    technique = technique.substr(0, technique.find('+'));
+    fix = fmt::format("restore it from git or re-approve with: gibench update-goldens --case {} --technique {}{} "
+                      "--reason \"...\"",
+                      case_, technique, sub_ == "gpu" ? " --tier gpu" : "");
+  }
+  const char* fields = reference ? "aov, spp, device" : "technique, preset, device";
+  auto error = [&](const std::string& pointer, const std::string& got) {
+    return GoldenError(fmt::format("{}: {}expected the record of {} ({}), got {}; {}", where,
+                                   pointer.empty() ? "" : pointer + ": ", file, fields, got, fix));
+  };
+  if (!fs::exists(where)) throw error("", "no file");
+  const nlohmann::json meta = metadata();
+  const std::string pointer = "/files/" + file;
+  if (!meta.is_object() || !meta.contains("files") || !meta["files"].is_object() || !meta["files"].contains(file))
+    throw error(pointer, "no entry");
+  const nlohmann::json& rec = meta["files"][file];
+  if (!rec.is_object()) throw error(pointer, rec.dump());
+  for (const char* f : reference ? std::vector<const char*>{"aov", "spp", "device"}
+                                 : std::vector<const char*>{"technique", "preset", "device"}) {
+    const bool ok = std::string(f) == "spp" ? rec.contains(f) && rec[f].is_number_unsigned() && rec[f].get<uint64_t>() > 0
+                                            : rec.contains(f) && rec[f].is_string() && !rec[f].get<std::string>().empty();
+    if (!ok) throw error(pointer + "/" + f, rec.contains(f) ? rec[f].dump() : "none");
+  }
+  return rec;
 }
 
 std::string utc_now_iso() {

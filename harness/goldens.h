@@ -40,8 +40,23 @@ class GoldenStore {
   // The golden to compare with on `device_class`: "<stem>.<class>.exr" if present, else
   // "<stem>.exr". Empty when neither exists.
   std::string find(const std::string& stem, const std::string& device_class) const;
-  // GoldenError naming the file when corrupt; *half (if given): stored as half floats.
+  // A golden or reference of this store with its record: GoldenError naming the file when it
+  // is corrupt, and naming golden.json when the file's record is missing or incomplete
+  // (record_of). *half (if given): stored as half floats.
   FloatImage read(const std::string& path, bool* half = nullptr) const;
+  // The image alone, its record not asked for: what update-goldens reads of the file it
+  // replaces, which may be one whose record was lost.
+  FloatImage read_without_record(const std::string& path) const;
+  // The entry golden.json keeps for `file_name` under "files": what the runs read about the
+  // file besides its pixels. A path-traced reference (reference[.<aov>][.fNNN].exr) records its
+  // "aov", "spp" and "device" (and its noise floor once measured, which the 3x rule reads); an
+  // approved output (<technique>.<preset>[.<class>].exr) its "technique", "preset" and "device".
+  // GoldenError, one line naming golden.json, the file, what is expected and how to restore or
+  // re-approve it, when golden.json, the entry or one of those fields is missing.
+  nlohmann::json record_of(const std::string& file_name) const;
+  // True for a path-traced reference's file name (reference_stem + ".exr"), false for an
+  // approved output's (technique_stem, "reference.<preset>" included).
+  static bool is_reference_file(const std::string& file_name);
   // Writes atomically; moves an existing file to history/<stem>.<utc timestamp>.exr and
   // returns that history path ("" when nothing was replaced).
   std::string write(const std::string& stem, const std::string& device_class, const FloatImage& image);
@@ -54,7 +69,7 @@ class GoldenStore {
   std::string file_name(const std::string& stem, const std::string& device_class) const;
 
  private:
-  std::string root_, case_, dir_;
+  std::string root_, case_, sub_, dir_;
   bool write_half_ = false;
 };
 

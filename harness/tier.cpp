@@ -252,9 +252,17 @@ bool references_converged(const Case& c, const ReferenceSource& src) {
 
 bool references_present(const Case& c, const ReferenceSource& src) {
   if (c.reference_spp == 0) return true;
-  for (auto& stem : needed_stems(c))
+  const nlohmann::json meta = src.store.metadata();
+  for (auto& stem : needed_stems(c)) {
     if (!fs::exists(fs::path(src.store.dir()) / (stem + ".exr"))) return false;
-  return src.store.metadata().contains("noise_floor");
+    // A file without its record (spp, device) cannot be read: the entry is rendered again.
+    try {
+      src.store.record_of(stem + ".exr");
+    } catch (const GoldenError&) {
+      return false;
+    }
+  }
+  return meta.contains("noise_floor");
 }
 
 std::string render_references(Gpu& gpu, const Case& c, ReferenceSource& src, const RenderProgress& progress) {

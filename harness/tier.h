@@ -81,7 +81,8 @@ struct ReferenceSource {
 ReferenceSource reference_source(const std::string& goldens_dir, const std::string& cache_root, const Case& c_at_tier,
                                  Tier t);
 
-// True when the entry holds every reference file the case compares with, and a noise floor.
+// True when the entry holds every reference file the case compares with, each with its record in
+// golden.json (GoldenStore::record_of), and a noise floor.
 bool references_present(const Case& c_at_tier, const ReferenceSource& src);
 // The entry's noise floor: the worst over the AOVs the case compares with (infinity when none
 // is recorded); converged when it is at most the request's target.

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
-#include "bench/calibration_shared.h"
+#include "perf/calibration_shared.h"
 #include "perf/stats.h"
 #include "renderer/graph/pass.h"
 

@@ -1,4 +1,4 @@
-// Calibration micro-kernels (bench/calibrate_fma.comp, calibrate_fma_scalar.comp, calibrate_copy.comp,
+// Calibration micro-kernels (perf/calibrate_fma.comp, calibrate_fma_scalar.comp, calibrate_copy.comp,
 // calibrate_raster.vert/.frag): the measuring device's achieved FP32 FMA rate, copy bandwidth
 // and raster fill rate (pixels written through depth test), median of repeats. Every
 // `gibench bench` run records them, since the console-scaling model divides by them.

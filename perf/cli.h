@@ -19,7 +19,7 @@ inline void add_perf_commands(CLI::App& app, PerfCli& c) {
       "bench", "time every technique's passes at console-profile workloads; scale to the profiles; noise floor");
   b->add_option("--profile", c.bench.profiles, "profile name(s), comma-separated, or all")->required();
   b->add_option("--technique", c.bench.techniques, "only this technique (repeatable; default: all)");
-  b->add_option("--case", c.bench.case_name, "case or scene name (cases/, cases/scenes/) or JSON path");
+  b->add_option("--case", c.bench.case_name, "case or scene name (cases/, cases/scenes/; the working folder's, else the source tree's) or JSON path");
   b->add_option("--preset", c.bench.preset, "low | medium | high | ultra");
   b->add_option("--aov", c.bench.aovs,
                 "plan only this contract AOV (repeatable; default: every contract AOV the scene supports, so passes "
@@ -35,7 +35,7 @@ inline void add_perf_commands(CLI::App& app, PerfCli& c) {
   b->add_option("--json", c.bench.json, "write the run (every sample, calibration, scaled costs) as JSON");
   b->add_option("--budget-html", c.bench.budget_html,
                 "write each run's per-category budget tree (data/budgets.json, console-scaled) as an HTML page");
-  b->add_option("--history", c.bench.history, "append one line per run here (default bench/history.jsonl)");
+  b->add_option("--history", c.bench.history, "append one line per run here (default bench/history.jsonl in the working folder, else the source tree)");
   b->add_flag("--no-history", c.bench.no_history, "do not append to the history file");
   b->add_option("--device", c.bench.device, "device index or name substring");
   b->add_option("--data-dir", c.bench.data_dir, "folder with console-profiles.json and seed-timings.json");

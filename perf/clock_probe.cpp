@@ -4,7 +4,7 @@
 #include <map>
 #include <mutex>
 
-#include "bench/calibration_shared.h"
+#include "perf/calibration_shared.h"
 #include "perf/calibration.h"
 #include "renderer/graph/pass.h"
 

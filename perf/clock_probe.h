@@ -31,7 +31,7 @@ struct ClockCheck {
 
 class ClockProbe {
  public:
-  // Builds the probe kernel (bench/calibrate_fma.comp) and sizes it to ~0.2 ms on this device.
+  // Builds the probe kernel (perf/calibrate_fma.comp) and sizes it to ~0.2 ms on this device.
   explicit ClockProbe(Gpu& gpu);
   ~ClockProbe();
   double probe();          // one dispatch, ms; also updates the device's fastest

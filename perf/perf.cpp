@@ -23,16 +23,13 @@
 #include "perf/occupancy.h"
 #include "perf/pipeline_stats.h"
 #include "perf/profiles.h"
+#include "perf/project_files.h"
 #include "perf/stats.h"
 #include "revision.h"
 #include "renderer/graph/executor.h"
 #include "renderer/scene/scene_loader.h"
 #include "renderer/techniques/aov.h"
 #include "renderer/techniques/technique.h"
-
-#ifndef GIB_SOURCE_DIR
-#define GIB_SOURCE_DIR "."
-#endif
 
 namespace gib::perf {
 
@@ -140,33 +137,6 @@ std::string read_file(const std::string& path) {
   std::stringstream ss;
   ss << f.rdbuf();
   return ss.str();
-}
-
-// --case: a case file (its "scene"), a scene file, or a name under cases/ or cases/scenes/.
-std::string resolve_scene(const std::string& c) {
-  namespace fs = std::filesystem;
-  std::vector<fs::path> tries;
-  if (fs::path(c).extension() == ".json") tries.push_back(c);
-  tries.push_back(fs::path(GIB_SOURCE_DIR) / "cases" / (c + ".json"));
-  tries.push_back(fs::path(GIB_SOURCE_DIR) / "cases" / "scenes" / (c + ".json"));
-  for (auto& p : tries) {
-    if (!fs::exists(p)) continue;
-    nlohmann::json j;
-    try {
-      j = nlohmann::json::parse(read_file(p.string()));
-    } catch (const nlohmann::json::parse_error& e) {
-      throw PerfError(fmt::format("{}: expected valid JSON, got a parse error: {}", p.string(), e.what()));
-    }
-    if (j.is_object() && j.contains("scene")) {
-      if (!j["scene"].is_string())
-        throw PerfError(fmt::format("{}: /scene: expected a scene path string, got {}", p.string(), j["scene"].dump()));
-      return (p.parent_path() / j["scene"].get<std::string>()).string();
-    }
-    return p.string();
-  }
-  throw PerfError(fmt::format("--case: expected a case or scene name (cases/<name>.json, cases/scenes/<name>.json) or a "
-                              "JSON path, got '{}'",
-                              c));
 }
 
 struct Workload {
@@ -466,7 +436,9 @@ int cmd_bench(const BenchOptions& o) {
     for (auto& t : techniques()) techs.push_back(&t);
   else
     for (auto& n : o.techniques) techs.push_back(&find_technique(n));
-  const std::string scene_path = resolve_scene(o.case_name);
+  const std::string scene_path = resolve_case_scene(o.case_name);
+  // Before any GPU work: a missing default history folder fails now, not after the runs.
+  const std::string hist = o.no_history ? "" : o.history.empty() ? default_history_path() : o.history;
   Scene scene = load_scene(scene_path);
 
   // Pipeline statistics on: each pass's registers and shared memory where the driver says them.
@@ -1049,7 +1021,6 @@ int cmd_bench(const BenchOptions& o) {
     fmt::print("wrote {}\n", o.json);
   }
   if (!o.no_history) {
-    std::string hist = o.history.empty() ? std::string(GIB_SOURCE_DIR) + "/bench/history.jsonl" : o.history;
     nlohmann::json line{{"date", out["date"]},
                         {"revision", GIB_REVISION},
                         {"device", dev.name},

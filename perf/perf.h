@@ -33,7 +33,7 @@ struct BenchOptions {
   // that the scene supports (bench_outputs), so passes that only feed an AOV other than
   // radiance are timed too.
   std::vector<std::string> aovs;
-  std::string case_name = "cornell";    // a case (cases/<name>.json), a scene, or a path
+  std::string case_name = "cornell";    // a case (cases/<name>.json), a scene, or a path (resolve_case_scene)
   std::string preset = "medium";
   uint32_t frames = 0;        // timed frames per repeat (0: 5 on a CPU device, 30 on a GPU)
   uint32_t repeats = 2;       // fresh executor each; >= 2 gives the noise floor
@@ -41,7 +41,7 @@ struct BenchOptions {
   std::string scale_resolution;  // "1/8" or "0.125"; "" auto: 1 on a GPU, 1/8 on a CPU device
   std::string json;              // write the run here
   std::string budget_html;       // write the budget trees (data/budgets.json) as an HTML page here
-  std::string history;           // "" : <source>/bench/history.jsonl
+  std::string history;           // "": bench/history.jsonl (default_history_path)
   bool no_history = false;
   std::string device;
   std::string data_dir;

@@ -9,9 +9,7 @@
 #include <sstream>
 #include <unistd.h>
 
-#ifndef GIB_SOURCE_DIR
-#define GIB_SOURCE_DIR "."
-#endif
+#include "perf/project_files.h"
 
 namespace gib::perf {
 namespace {
@@ -401,17 +399,25 @@ std::string find_data_dir(const std::string& override_dir) {
     if (!ok(e)) throw PerfError(fmt::format("GIB_DATA_DIR={}: expected a folder with console-profiles.json", e));
     return e;
   }
+  // The working folder's data/, then the executable's (a pack), then the source tree's.
+  const std::vector<fs::path> roots = project_roots();
+  std::vector<fs::path> tries{roots.front() / "data"};
   std::error_code ec;
   fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) {
-    for (fs::path d : {exe.parent_path() / "data", exe.parent_path().parent_path() / "data"})
-      if (ok(d)) return d.string();
+    tries.push_back(exe.parent_path() / "data");
+    tries.push_back(exe.parent_path().parent_path() / "data");
   }
-  fs::path src = fs::path(GIB_SOURCE_DIR) / "data";
-  if (ok(src)) return fs::weakly_canonical(src).string();
+  for (size_t i = 1; i < roots.size(); ++i) tries.push_back(roots[i] / "data");
+  std::string tried;
+  for (const fs::path& d : tries) {
+    if (ok(d)) return fs::weakly_canonical(d).string();
+    tried += (tried.empty() ? "" : ", ") + d.string();
+  }
   throw PerfError(fmt::format(
-      "console profiles: expected console-profiles.json in --data-dir, $GIB_DATA_DIR, <exe>/data or {}, found none",
-      src.string()));
+      "console profiles: expected console-profiles.json in --data-dir, $GIB_DATA_DIR or a data/ folder, found none "
+      "(tried {})",
+      tried));
 }
 
 }  // namespace gib::perf

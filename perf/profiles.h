@@ -113,9 +113,11 @@ double scale_to_profile(const PassSplit& s, const DeviceThroughput& dev, const C
 // (the caller falls back to scale_to_profile and says so).
 std::optional<double> scale_raster_to_profile(double device_ms, const DeviceThroughput& dev, const ConsoleProfile& p);
 
-// Where the profile and seed data live: --data-dir, else $GIB_DATA_DIR, else <executable
-// dir>/data or <executable dir>/../data (a pack from ci/pack_gpu.sh), else <source>/data (the
-// repository's own data/, which every checkout has).
+// Where the profile and seed data live: --data-dir, else $GIB_DATA_DIR, else the first of
+// ./data (the working folder's, as for cases: perf/project_files.h), <executable dir>/data or
+// <executable dir>/../data (a pack from ci/pack_gpu.sh, a build folder) and <source>/data (the
+// tree the binary was built from). PerfError listing every folder tried when none has
+// console-profiles.json.
 std::string find_data_dir(const std::string& override_dir);
 
 }  // namespace gib::perf

@@ -1,11 +1,13 @@
 // Goldens and references: the 3x noise-floor rule on flip bounds against the
 // reference, what update-goldens --reference records in golden.json (spp, seed, device, driver,
-// noise floor per file), the --spp override and the spp split, atomic golden writes.
+// noise floor per file), that a file is read only with its record, the --spp override and the
+// spp split, atomic golden writes.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -149,6 +151,87 @@ TEST(GoldenWrites, FailedImageWriteKeepsTheOldFileAndNoStagedFile) {
   EXPECT_EQ(read_text(target), before);
   for (auto& e : fs::directory_iterator(dir.path() / "c"))
     EXPECT_TRUE(e.path().filename() == "reference.exr" || e.path().filename() == "history") << "left behind: " << e.path();
+}
+
+// ---------------------------------------------------------------- records (no GPU)
+
+std::string golden_error(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const GoldenError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+json reference_record() { return {{"aov", "radiance"}, {"spp", 256}, {"seed", 1}, {"device", "a device"}}; }
+json technique_record() { return {{"technique", "direct"}, {"preset", "medium"}, {"device", "a device"}}; }
+
+// A golden folder whose golden.json is gone: reading a file from it is one line naming
+// golden.json, the file and what its record holds, with how to get it back; the image alone
+// (what update-goldens compares with before replacing it) still reads.
+TEST(GoldenRecords, FileWithoutGoldenJsonIsOneLineNamingGoldenJsonAndTheFile) {
+  TempDir dir;
+  GoldenStore store(dir.str(), "c");
+  store.write("reference", "", FloatImage(4, 2, 4, 0.5f));
+  const std::string path = store.find("reference", "");
+  ASSERT_FALSE(path.empty());
+  const std::string where = (dir.path() / "c" / "golden.json").string();
+  const std::string e = golden_error([&] { store.read(path); });
+  SCOPED_TRACE(e);
+  ASSERT_FALSE(e.empty()) << "a reference without golden.json must not read silently";
+  EXPECT_EQ(e.find('\n'), std::string::npos) << "one line";
+  EXPECT_EQ(e.rfind(where + ": expected the record of reference.exr (aov, spp, device), got no file; ", 0), 0u);
+  EXPECT_NE(e.find("gibench update-goldens --case c --reference"), std::string::npos);
+  EXPECT_EQ(store.read_without_record(path).width, 4u);
+}
+
+TEST(GoldenRecords, MissingEntryOrFieldIsNamedByItsPointerAndAWholeRecordReads) {
+  TempDir dir;
+  GoldenStore store(dir.str(), "c");
+  store.write("reference", "", FloatImage(4, 2, 4, 0.5f));
+  store.write("direct.medium", "", FloatImage(4, 2, 4, 0.25f));
+  const std::string ref = store.find("reference", ""), tech = store.find("direct.medium", "");
+  const std::string where = (dir.path() / "c" / "golden.json").string();
+  store.write_metadata({{"files", {{"direct.medium.exr", technique_record()}}}});
+  EXPECT_EQ(store.read(tech).width, 4u) << "an approved output with its record";
+  std::string e = golden_error([&] { store.read(ref); });
+  EXPECT_EQ(e.rfind(where + ": /files/reference.exr: expected the record of reference.exr (aov, spp, device), got no entry; ", 0), 0u) << e;
+
+  json rec = reference_record();
+  rec.erase("spp");
+  store.write_metadata({{"files", {{"reference.exr", rec}, {"direct.medium.exr", technique_record()}}}});
+  e = golden_error([&] { store.read(ref); });
+  EXPECT_EQ(e.rfind(where + ": /files/reference.exr/spp: expected the record of reference.exr (aov, spp, device), got none; ", 0), 0u) << e;
+  rec["spp"] = 0;
+  store.write_metadata({{"files", {{"reference.exr", rec}, {"direct.medium.exr", technique_record()}}}});
+  e = golden_error([&] { store.read(ref); });
+  EXPECT_NE(e.find("/files/reference.exr/spp: expected the record of reference.exr (aov, spp, device), got 0; "), std::string::npos) << e;
+
+  store.write_metadata({{"files", {{"reference.exr", reference_record()}}}});
+  EXPECT_EQ(store.read(ref).width, 4u) << "a reference with its record";
+  EXPECT_EQ(store.record_of("reference.exr")["spp"], 256);
+  e = golden_error([&] { store.read(tech); });
+  EXPECT_EQ(e.rfind(where + ": /files/direct.medium.exr: expected the record of direct.medium.exr (technique, preset, device), got no entry; ", 0), 0u) << e;
+  EXPECT_NE(e.find("gibench update-goldens --case c --technique direct --reason"), std::string::npos) << e;
+
+  // The GPU tier's goldens say so in the command; a reference cache entry is rendered again.
+  GoldenStore gpu(dir.str(), "c", "gpu");
+  gpu.write("direct.medium", "", FloatImage(4, 2, 4, 0.25f));
+  e = golden_error([&] { gpu.read(gpu.find("direct.medium", "")); });
+  EXPECT_NE(e.find("--technique direct --tier gpu --reason"), std::string::npos) << e;
+  GoldenStore cache(dir.str(), "c", "0123abcd");
+  cache.write("reference", "", FloatImage(4, 2, 4, 0.5f));
+  e = golden_error([&] { cache.read(cache.find("reference", "")); });
+  EXPECT_NE(e.find("gibench references --case c --refresh"), std::string::npos) << e;
+}
+
+TEST(GoldenRecords, ReferenceFileNamesAreToldFromApprovedOutputs) {
+  for (const char* f : {"reference.exr", "reference.direct.exr", "reference.indirect_diffuse.f010.exr", "reference.f120.exr"})
+    EXPECT_TRUE(GoldenStore::is_reference_file(f)) << f;
+  for (const char* f : {"reference.medium.exr", "reference.low.nvidia.exr", "direct.medium.exr", "reference.direct.medium.exr",
+                        "reference", "reference.json"})
+    EXPECT_FALSE(GoldenStore::is_reference_file(f)) << f;
 }
 
 // ---------------------------------------------------------------- update-goldens (lavapipe)
@@ -319,10 +402,40 @@ TEST(GoldenClass, RowNamesTheClassItWasComparedWithAndSaysSoWhenAnotherStoodIn) 
   GoldenStore store(o.suite.goldens_dir, "tiny");
   fs::path plain = fs::path(store.dir()) / store.file_name("reference.low", cls);
   fs::copy_file(plain, fs::path(store.dir()) / store.file_name("reference.low", other));
+  json meta = store.metadata();  // an approved golden has its record
+  meta["files"][store.file_name("reference.low", other)] = meta["files"][store.file_name("reference.low", cls)];
+  store.write_metadata(meta);
   std::tie(rc, device, row) = row_with(other);
   EXPECT_EQ(rc, 0) << row.dump(2);
   EXPECT_EQ(row["golden_class"], other);
   EXPECT_EQ(row.dump().find("compared with the"), std::string::npos) << row.dump(2);
+}
+
+// A run on a golden folder whose golden.json was deleted fails, naming golden.json and the
+// file (the reference's spp, device and noise floor are gone); update-goldens, which reads the
+// old files without their records, writes it again and the run passes.
+TEST(GoldenRecords, RunWithoutGoldenJsonFailsNamingItAndReapprovalRestoresIt) {
+  TempDir dir;
+  fs::path cases = dir.path() / "cases";
+  write_tiny_case(cases);
+  UpdateOptions o = test::approve_goldens(cases, dir.path() / "goldens");
+  SuiteOptions run = o.suite;
+  run.out = (dir.path() / "out").string();
+  run.stability_scan = false;
+  ASSERT_EQ(cmd_run(run), 0);
+  const fs::path meta = dir.path() / "goldens" / "tiny" / "golden.json";
+  ASSERT_TRUE(fs::remove(meta));
+  EXPECT_EQ(cmd_run(run), 1);
+  json results = json::parse(read_text(fs::path(run.out) / "results.json"));
+  ASSERT_EQ(results["case_errors"].size(), 1u) << results.dump(2);
+  const std::string e = results["case_errors"][0];
+  EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+  EXPECT_EQ(e.rfind("tiny: " + meta.string() + ": expected the record of ", 0), 0u) << e;
+  EXPECT_NE(e.find("got no file"), std::string::npos) << e;
+
+  ASSERT_EQ(cmd_update_goldens(o), 0);
+  ASSERT_TRUE(fs::exists(meta));
+  EXPECT_EQ(cmd_run(run), 0);
 }
 
 TEST(UpdateGoldens, SppAndNoiseFloorNeedReference) {

@@ -13,17 +13,21 @@
 #include <map>
 #include <set>
 #include <algorithm>
+#include <cstdlib>
+#include <optional>
 
 #include "perf/calibration.h"
 #include "perf/frame_timing.h"
 #include "perf/clock_probe.h"
 #include "perf/perf.h"
 #include "perf/profiles.h"
+#include "perf/project_files.h"
 #include "perf/stats.h"
 #include "renderer/graph/executor.h"
 #include "renderer/scene/scene_loader.h"
 #include "renderer/techniques/technique.h"
 #include "tests/gpu_fixture.h"
+#include "tests/temp_dir.h"
 
 #ifndef GIB_SOURCE_DIR
 #error "GIB_SOURCE_DIR must point at the source tree"
@@ -468,6 +472,99 @@ TEST(PerfProfiles, RepoDataLoads) {
   EXPECT_NE(e(broken).find("/god_of_war_ragnarok/raytraced_cubemaps_ps5_4k_ms/resolve_full_res: expected milliseconds"),
             std::string::npos)
       << e(broken);
+}
+
+// ---------------------------------------------------------------- project files (no GPU)
+
+// Runs a test body with `dir` as the working folder and GIB_DATA_DIR unset, restoring both.
+class InWorkingFolder {
+ public:
+  explicit InWorkingFolder(const std::filesystem::path& dir) : was_(std::filesystem::current_path()) {
+    if (const char* e = std::getenv("GIB_DATA_DIR")) data_dir_ = e;
+    ::unsetenv("GIB_DATA_DIR");
+    std::filesystem::current_path(dir);
+  }
+  ~InWorkingFolder() {
+    std::filesystem::current_path(was_);
+    if (data_dir_) ::setenv("GIB_DATA_DIR", data_dir_->c_str(), 1);
+  }
+
+ private:
+  std::filesystem::path was_;
+  std::optional<std::string> data_dir_;
+};
+
+std::string perf_error(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const PerfError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A packed binary runs where its build's source tree does not exist: --case names resolve in
+// the working folder first (its cases/ and cases/scenes/, as `gibench run` reads ./cases), and a
+// name there hides the source tree's file of that name; the source tree is the fallback.
+TEST(PerfProjectFiles, CaseNamesResolveInTheWorkingFolderFirst) {
+  namespace fs = std::filesystem;
+  test::TempDir dir("gib_perf_cwd_");
+  fs::create_directories(dir.path() / "cases" / "scenes");
+  dir.write("cases/scenes/room.json", R"({"objects": []})");
+  dir.write("cases/lit-room.json", R"({"description": "a case", "scene": "scenes/room.json"})");
+  dir.write("cases/scenes/cornell.json", R"({"objects": []})");  // hides the source tree's cornell
+  InWorkingFolder here(dir.path());
+  const fs::path cwd = fs::current_path();
+  EXPECT_EQ(fs::weakly_canonical(resolve_case_scene("lit-room")), cwd / "cases" / "scenes" / "room.json")
+      << "a case: its scene, relative to the case file";
+  EXPECT_EQ(fs::path(resolve_case_scene("room")), cwd / "cases" / "scenes" / "room.json");
+  EXPECT_EQ(fs::weakly_canonical(resolve_case_scene("cases/lit-room.json")), cwd / "cases" / "scenes" / "room.json")
+      << "a path relative to the working folder";
+  EXPECT_EQ(fs::path(resolve_case_scene("cornell")), cwd / "cases" / "scenes" / "cornell.json");
+  // Only in the source tree: found there.
+  const fs::path found = resolve_case_scene("glossy_hall");
+  EXPECT_EQ(fs::weakly_canonical(found), fs::weakly_canonical(fs::path(GIB_SOURCE_DIR) / "cases/scenes/glossy_hall.json"));
+}
+
+TEST(PerfProjectFiles, MissingCaseNameIsOneLineListingEveryPlaceTried) {
+  namespace fs = std::filesystem;
+  test::TempDir dir("gib_perf_cwd_");
+  InWorkingFolder here(dir.path());
+  const fs::path cwd = fs::current_path(), src(GIB_SOURCE_DIR);
+  const std::string e = perf_error([] { resolve_case_scene("no-such-case"); });
+  SCOPED_TRACE(e);
+  ASSERT_FALSE(e.empty()) << "a missing name must throw PerfError";
+  EXPECT_EQ(e.find('\n'), std::string::npos) << "one line";
+  EXPECT_EQ(e.rfind("--case: expected a case or scene name", 0), 0u) << "names the flag first";
+  EXPECT_NE(e.find("got 'no-such-case'"), std::string::npos);
+  for (const fs::path& p : {cwd / "cases/no-such-case.json", cwd / "cases/scenes/no-such-case.json",
+                            src / "cases/no-such-case.json", src / "cases/scenes/no-such-case.json"})
+    EXPECT_NE(e.find(p.string()), std::string::npos) << "not listed: " << p;
+  EXPECT_LT(e.find(cwd.string()), e.find(src.string() + "/cases")) << "the working folder is tried first";
+  // The pass benchmarks' scene lookup says the same.
+  const std::string s = perf_error([] { find_project_file("cases/scenes/nowhere.json", "GIB_BENCH_CASE 'nowhere'"); });
+  EXPECT_EQ(s.rfind("GIB_BENCH_CASE 'nowhere': expected cases/scenes/nowhere.json", 0), 0u) << s;
+  EXPECT_NE(s.find((cwd / "cases/scenes/nowhere.json").string()), std::string::npos) << s;
+  EXPECT_NE(s.find((src / "cases/scenes/nowhere.json").string()), std::string::npos) << s;
+}
+
+// data/ and bench/history.jsonl follow the same order: the working folder's, else the source
+// tree's.
+TEST(PerfProjectFiles, DataAndHistoryComeFromTheWorkingFolderFirst) {
+  namespace fs = std::filesystem;
+  test::TempDir dir("gib_perf_cwd_");
+  {
+    InWorkingFolder here(dir.path());
+    EXPECT_EQ(fs::weakly_canonical(default_history_path()), fs::weakly_canonical(fs::path(GIB_SOURCE_DIR) / "bench/history.jsonl"))
+        << "no bench/ here: the source tree's";
+  }
+  fs::create_directories(dir.path() / "data");
+  fs::create_directories(dir.path() / "bench");
+  fs::copy_file(fs::path(GIB_SOURCE_DIR) / "data/console-profiles.json", dir.path() / "data/console-profiles.json");
+  InWorkingFolder here(dir.path());
+  const fs::path cwd = fs::current_path();
+  EXPECT_EQ(fs::path(find_data_dir("")), fs::weakly_canonical(cwd / "data"));
+  EXPECT_EQ(fs::path(default_history_path()), cwd / "bench" / "history.jsonl");
 }
 
 // bench plans the contract AOVs the scene supports (not only radiance), so gow-ragnarok's

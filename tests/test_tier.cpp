@@ -209,6 +209,14 @@ TEST(Tier, GpuTierRendersReferencesOnceApprovesFromARunAndMatchesItsGoldens) {
   const auto stamp = fs::last_write_time(entry / "reference.exr");
   ASSERT_EQ(cmd_references(o, false, false), 0);
   EXPECT_EQ(fs::last_write_time(entry / "reference.exr"), stamp) << "a cached reference is not rendered again";
+  {  // An entry whose reference lost its record in golden.json cannot be read: it is rendered again.
+    json meta = json::parse(std::ifstream(entry / "golden.json"));
+    meta["files"].erase("reference.exr");
+    std::ofstream(entry / "golden.json") << meta.dump(2);
+  }
+  ASSERT_EQ(cmd_references(o, false, false), 0);
+  EXPECT_TRUE(json::parse(std::ifstream(entry / "golden.json"))["files"].contains("reference.exr"))
+      << "the record is written again with the render";
 
   o.out = (dir.path() / "first").string();
   EXPECT_EQ(cmd_run(o), 1) << "no GPU-tier golden approved yet";

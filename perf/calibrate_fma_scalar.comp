@@ -6,7 +6,7 @@
 // if both reach the same rate, neither is limited by how it was written.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
-#include "bench/calibration_shared.h"
+#include "perf/calibration_shared.h"
 layout(local_size_x = kCalibScalarGroup) in;
 layout(std430, set = 0, binding = kCalibBindOut) writeonly buffer Out { float outv[]; };
 layout(push_constant) uniform Push { CalibFmaPush push; };

@@ -1,4 +1,4 @@
-// Shared by the calibration kernels (bench/calibrate_fma.comp, calibrate_fma_scalar.comp,
+// Shared by the calibration kernels (perf/calibrate_fma.comp, calibrate_fma_scalar.comp,
 // calibrate_copy.comp, calibrate_raster.vert/.frag) and perf/calibration.cpp: the device's
 // achieved FP32 FMA rate, copy bandwidth and raster fill rate, which the console-scaling model
 // divides pass costs by (bench/README.md).

@@ -4,7 +4,7 @@
 // colour and depth targets: the fill work of a visibility pass (D32 depth test and write, one
 // rg32_uint target) with no scene, no vertex fetch and no fragment arithmetic.
 #extension GL_GOOGLE_include_directive : require
-#include "bench/calibration_shared.h"
+#include "perf/calibration_shared.h"
 layout(push_constant) uniform Push { CalibRasterPush push; };
 layout(location = 0) flat out uint out_layer;
 
