@@ -29,10 +29,10 @@ namespace fs = std::filesystem;
 
 namespace gib {
 
-unsigned resolve_jobs(unsigned requested, bool cpu_device, size_t devices) {
+unsigned resolve_jobs(unsigned requested, bool cpu_device) {
   if (requested) return requested;
   if (cpu_device) return std::max(1u, std::thread::hardware_concurrency());
-  return kGpuJobs * unsigned(std::max<size_t>(1, devices));
+  return kGpuJobs;
 }
 
 std::vector<std::string> split_devices(const std::string& device) {

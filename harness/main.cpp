@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
                   "(default: quick on lavapipe at the CI tier, full elsewhere)");
   run->add_option("-j,--jobs", run_opts.jobs,
                   "rows rendered at once, one worker process each (default 0: one per core on a CPU device, "
-                  "4 per GPU; --device 0,1 spreads them over GPUs)");
+                  "8 on a GPU; --device 0,1 spreads them over GPUs)");
   run->add_flag("--record-timings", run_opts.record_timings,
                 "write each row's wall seconds into cases/timings/lavapipe.json (the quick profile's costs; CPU device)");
   run->add_flag("--dry-run", run_opts.dry_run,

@@ -193,7 +193,7 @@ int cmd_run(const SuiteOptions& o) {
   const Profile profile = resolve_profile(o.profile, cpu && s.tier == Tier::ci);
   RunPlan rp = make_run_plan(o, s.cases, profile);
   // --noise-floor writes each case's golden.json: one process.
-  const unsigned jobs = o.noise_floor ? 1u : std::min<unsigned>(resolve_jobs(o.jobs, cpu, devices.size()),
+  const unsigned jobs = o.noise_floor ? 1u : std::min<unsigned>(resolve_jobs(o.jobs, cpu),
                                                                 unsigned(std::max<size_t>(1, rp.run.size())));
   fmt::print("device: {} ({} {}), device class {}, golden class {}, tier {}{}\n", s.suite.device.name,
              s.suite.device.driver_name, s.suite.device.driver_info, s.suite.device_class, s.suite.golden_class,

@@ -169,9 +169,9 @@ TEST(Jobs, DevicesAndWorkerCounts) {
   EXPECT_EQ(split_devices("0,1"), (std::vector<std::string>{"0", "1"}));
   EXPECT_THROW(split_devices("0,,1"), std::invalid_argument);
   EXPECT_THROW(split_devices("0,"), std::invalid_argument);
-  EXPECT_EQ(resolve_jobs(3, true, 1), 3u);
-  EXPECT_EQ(resolve_jobs(0, false, 2), 2 * kGpuJobs);
-  EXPECT_GE(resolve_jobs(0, true, 1), 1u);
+  EXPECT_EQ(resolve_jobs(3, true), 3u);
+  EXPECT_EQ(resolve_jobs(0, false), kGpuJobs);
+  EXPECT_GE(resolve_jobs(0, true), 1u);
 }
 
 // Three 16x8 Cornell cases (direct, the reference row, a negative control): the rows of a run
