@@ -174,6 +174,17 @@ TEST(Jobs, DevicesAndWorkerCounts) {
   EXPECT_GE(resolve_jobs(0, true), 1u);
 }
 
+// A 16x8 Cornell case with these technique runs, rendered in a second.
+json tiny_case(const json& techniques) {
+  return {{"description", "tiny case for the pipeline tests"},
+          {"scene", std::string(GIB_SOURCE_DIR) + "/cases/scenes/cornell.json"},
+          {"width", 16},
+          {"height", 8},
+          {"reference_spp", 4},
+          {"timing_frames", 1},
+          {"techniques", techniques}};
+}
+
 // Three 16x8 Cornell cases (direct, the reference row, a negative control): the rows of a run
 // in 3 worker processes are the rows of a serial run, with the same verdicts, metrics and
 // images (0 differing golden values), in the same order.
@@ -182,20 +193,15 @@ TEST(Jobs, ParallelRowsAreTheSerialRowsBitForBit) {
   fs::path cases = dir.path() / "cases";
   fs::create_directories(cases);
   for (const char* name : {"alpha", "beta", "gamma"}) {
-    json c = {{"description", "tiny case for the parallel-run test"},
-              {"scene", std::string(GIB_SOURCE_DIR) + "/cases/scenes/cornell.json"},
-              {"width", 16},
-              {"height", 8},
-              {"reference_spp", 4},
-              {"timing_frames", 1},
-              {"techniques",
-               {{{"technique", "direct"}, {"presets", {"low", "medium"}}, {"thresholds", {{{"metric", "flip"}, {"max", 0.99}}}}},
-                {{"technique", "reference"}, {"presets", {"low"}}, {"spp", 4}}}},
-              {"negative_controls",
+    json c = tiny_case({{{"technique", "direct"},
+                         {"presets", {"low", "medium"}},
+                         {"thresholds", {{{"metric", "flip"}, {"max", 0.99}}}}},
+                        {{"technique", "reference"}, {"presets", {"low"}}, {"spp", 4}}});
+    c.update({{"negative_controls",
                {{{"name", "identical"},
                  {"why", "direct light alone is not the full radiance"},
                  {"technique", "direct"},
-                 {"thresholds", {{{"metric", "flip"}, {"max", 0.0}}}}}}}};
+                 {"thresholds", {{{"metric", "flip"}, {"max", 0.0}}}}}}}});
     std::ofstream(cases / (std::string(name) + ".json")) << c.dump(2);
   }
   UpdateOptions up = test::approve_goldens(cases, dir.path() / "goldens");
@@ -235,13 +241,7 @@ TEST(Jobs, QuickProfileRowsLeftOutAreListedAsNotRun) {
   test::TempDir dir("gib_quick_");
   fs::path cases = dir.path() / "cases";
   fs::create_directories(cases);
-  json c = {{"description", "tiny case for the quick-profile test"},
-            {"scene", std::string(GIB_SOURCE_DIR) + "/cases/scenes/cornell.json"},
-            {"width", 16},
-            {"height", 8},
-            {"reference_spp", 4},
-            {"timing_frames", 1},
-            {"techniques", {{{"technique", "direct"}, {"presets", {"low", "medium", "high", "ultra"}}}}}};
+  json c = tiny_case({{{"technique", "direct"}, {"presets", {"low", "medium", "high", "ultra"}}}});
   std::ofstream(cases / "solo.json") << c.dump(2);
   UpdateOptions up = test::approve_goldens(cases, dir.path() / "goldens");
   SuiteOptions o = up.suite;
