@@ -17,6 +17,11 @@ std::string row_key(const std::string& case_name, const std::string& kind, const
   return kind == "negative_control" ? case_name + "/negative:" + control : case_name + "/" + technique + "." + preset;
 }
 
+std::string row_key_of(const nlohmann::json& row) {
+  return row_key(row.value("case", ""), row.value("kind", ""), row.value("technique", ""), row.value("preset", ""),
+                 row.value("negative_control", ""));
+}
+
 std::string row_seconds_path(const std::string& cases_dir) {
   return (std::filesystem::path(cases_dir) / "timings" / "lavapipe.json").string();
 }
@@ -62,13 +67,13 @@ std::vector<PlannedRow> plan_suite(const std::vector<Case>& cases, const RowSeco
       const TechniqueRun& run = c.techniques[ri];
       for (auto& preset : run.presets)
         rows.push_back({row_key(c.name, "technique", run.name(), preset, ""), ci, "technique", ri, run.technique,
-                        preset, "", estimated_row_seconds(c, run, "technique")});
+                        preset, "", estimated_row_seconds(c, run)});
     }
     for (size_t ni = 0; ni < c.negative_controls.size(); ++ni) {
       const NegativeControl& nc = c.negative_controls[ni];
       rows.push_back({row_key(c.name, "negative_control", nc.run.technique, "", nc.name), ci, "negative_control", ni,
                       nc.run.technique, nc.run.presets.front(), nc.name,
-                      estimated_row_seconds(c, nc.run, "negative_control")});
+                      estimated_row_seconds(c, nc.run)});
     }
   }
   for (PlannedRow& r : rows)
@@ -108,8 +113,7 @@ constexpr double kRenderOverheadSeconds = 2.0;  // executor, pipelines (compiled
 
 }  // namespace
 
-double estimated_row_seconds(const Case& c, const TechniqueRun& run, const std::string& kind) {
-  (void)kind;
+double estimated_row_seconds(const Case& c, const TechniqueRun& run) {
   const double mpixels = double(c.width) * double(c.height) * 1e-6;
   double frames = double(run.frames ? run.frames : c.frames) + double(c.timing_frames);
   // A reference row with an spp budget: its samples (the frames split them), plus timing frames

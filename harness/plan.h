@@ -7,6 +7,7 @@
 #pragma once
 
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,8 @@ namespace gib {
 // One row of the suite: "case/technique.preset" or "case/negative:name".
 std::string row_key(const std::string& case_name, const std::string& kind, const std::string& technique,
                     const std::string& preset, const std::string& control);
+// The key of a row as results.json records it (its case, kind, technique, preset, control).
+std::string row_key_of(const nlohmann::json& row);
 
 struct PlannedRow {
   std::string key;
@@ -54,7 +57,7 @@ const TechniqueRun& planned_run(const std::vector<Case>& cases, const PlannedRow
 // Its constants were fitted to a full CI-tier run (plan.cpp); it orders rows (the parallel
 // queue starts the longest first, the quick profile skips the slowest) and gives an ETA before
 // any row time is recorded. Never a verdict.
-double estimated_row_seconds(const Case& c, const TechniqueRun& run, const std::string& kind);
+double estimated_row_seconds(const Case& c, const TechniqueRun& run);
 
 // quick: a subset that touches every case and every technique (see select_quick); full: every
 // row. Default: quick at the CI tier on a CPU device (lavapipe), full elsewhere.

@@ -27,8 +27,7 @@ std::map<std::string, double> recorded_row_seconds(const std::string& out_dir) {
     nlohmann::json j = nlohmann::json::parse(in);
     for (auto& r : j.at("results"))
       if (r.contains("wall_s") && r["wall_s"].is_number())
-        out[row_key(r.value("case", ""), r.value("kind", ""), r.value("technique", ""), r.value("preset", ""),
-                    r.value("negative_control", ""))] = r["wall_s"].get<double>();
+        out[row_key_of(r)] = r["wall_s"].get<double>();
   } catch (const std::exception&) {
     return {};  // an unreadable old results.json only costs the ETA
   }
@@ -65,7 +64,6 @@ double SuiteProgress::eta_s() const {
   double left = 0;
   const auto now = std::chrono::steady_clock::now();
   for (auto& [k, s] : expected_) {
-    if (std::any_of(done_.begin(), done_.end(), [&](auto& d) { return d.first == k; })) continue;
     auto it = running_.find(k);
     double ran = it == running_.end() ? 0 : std::chrono::duration<double>(now - it->second.since).count();
     left += std::max(0.0, s - ran);
@@ -103,10 +101,10 @@ void SuiteProgress::draw(bool force) {
 void SuiteProgress::finished(const RowLine& row) {
   running_.erase(row.key);
   done_.push_back({row.key, row.wall_s});
-  auto it = expected_.find(row.key);
-  if (it != expected_.end()) {
+  if (auto it = expected_.find(row.key); it != expected_.end()) {
     done_expected_ += it->second;
     done_actual_ += row.wall_s;
+    expected_.erase(it);
   }
   if (quiet_) return;
   clear_line();
@@ -119,8 +117,9 @@ void SuiteProgress::finished(const RowLine& row) {
   draw(true);
 }
 
-void SuiteProgress::print_slowest(size_t n) const {
+void SuiteProgress::print_slowest(size_t n) {
   if (quiet_ || done_.empty()) return;
+  clear_line();  // the run is over: the live line gives way to the summary
   std::vector<std::pair<std::string, double>> rows = done_;
   std::sort(rows.begin(), rows.end(), [](auto& a, auto& b) { return a.second > b.second; });
   double sum = 0;

@@ -31,7 +31,7 @@ class SuiteProgress {
   void frame(const std::string& key, const std::string& what, uint32_t done, uint32_t total);
   void finished(const RowLine& row);
   // The slowest rows (up to n) with their wall times, and the run's total.
-  void print_slowest(size_t n = 10) const;
+  void print_slowest(size_t n = 10);
   double elapsed_s() const;
 
  private:
@@ -44,7 +44,7 @@ class SuiteProgress {
   void clear_line();
   double eta_s() const;
 
-  std::map<std::string, double> expected_;
+  std::map<std::string, double> expected_;  // rows not finished yet
   size_t total_;
   unsigned jobs_;
   bool live_, quiet_;

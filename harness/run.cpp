@@ -226,13 +226,8 @@ int cmd_run(const SuiteOptions& o) {
   std::map<std::string, size_t> order;
   for (size_t i = 0; i < rp.all.size(); ++i) order[rp.all[i].key] = i;
   std::vector<nlohmann::json> rows = j["results"].get<std::vector<nlohmann::json>>();
-  std::stable_sort(rows.begin(), rows.end(), [&](auto& a, auto& b) {
-    auto key = [&](const nlohmann::json& r) {
-      return order[row_key(r.value("case", ""), r.value("kind", ""), r.value("technique", ""), r.value("preset", ""),
-                           r.value("negative_control", ""))];
-    };
-    return key(a) < key(b);
-  });
+  std::stable_sort(rows.begin(), rows.end(),
+                   [&](auto& a, auto& b) { return order[row_key_of(a)] < order[row_key_of(b)]; });
   j["results"] = rows;
   if (!rp.shard.is_null()) j["shard"] = rp.shard;
   j["run"] = {{"profile", profile_name(profile)}, {"jobs", jobs}, {"rows_run", rp.run.size()},
@@ -243,8 +238,7 @@ int cmd_run(const SuiteOptions& o) {
     RowSeconds measured;
     for (auto& r : j["results"])
       if (r.value("wall_s", 0.0) > 0)
-        measured[row_key(r.value("case", ""), r.value("kind", ""), r.value("technique", ""), r.value("preset", ""),
-                         r.value("negative_control", ""))] = r["wall_s"].get<double>();
+        measured[row_key_of(r)] = r["wall_s"].get<double>();
     record_row_seconds(o.cases_dir, measured,
                        fmt::format("{} ({}), {}", s.suite.device.name, s.suite.device.driver_info, plural(jobs, "worker")));
     fmt::print("recorded {} row times in {}\n", measured.size(), row_seconds_path(o.cases_dir));

@@ -57,10 +57,6 @@ nlohmann::json read_results(const fs::path& dir) {
   }
 }
 
-std::string key_of(const nlohmann::json& row) {
-  return row_key(row.value("case", ""), row.value("kind", ""), row.value("technique", ""), row.value("preset", ""),
-                 row.value("negative_control", ""));
-}
 
 }  // namespace
 
@@ -114,7 +110,7 @@ int cmd_merge(const MergeOptions& o) {
     const nlohmann::json& j = shards[i];
     devices.push_back({{"shard", j["shard"]["index"]}, {"name", j["device"].value("name", "")}});
     for (auto& row : j["results"]) {
-      std::string key = key_of(row);
+      std::string key = row_key_of(row);
       if (auto [it, fresh] = rows.emplace(key, row); !fresh)
         throw std::runtime_error(fmt::format("{}: row {} duplicated (also in another shard)", o.shard_dirs[i], key));
     }
