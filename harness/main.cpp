@@ -12,7 +12,7 @@
 #include "harness/sweep.h"
 #include "harness/report_check.h"
 #include "harness/timing.h"
-#include "harness/tier.h"
+#include "harness/references.h"
 
 namespace {
 

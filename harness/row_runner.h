@@ -15,7 +15,7 @@
 #include "harness/plan.h"
 #include "harness/progress.h"
 #include "harness/suite.h"
-#include "harness/tier.h"
+#include "harness/references.h"
 #include "renderer/vk/gpu.h"
 
 namespace gib {

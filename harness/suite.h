@@ -40,7 +40,7 @@ struct SuiteOptions {
   std::vector<std::string> techniques;
   // "ci" | "gpu" | "" (by device: ci on lavapipe, gpu elsewhere; harness/tier.h).
   std::string tier;
-  // The GPU tier's reference cache (harness/tier.h reference_cache_root; "" = the default).
+  // The GPU tier's reference cache (harness/references.h reference_cache_root; "" = the default).
   std::string reference_cache;
   // run: "quick" | "full" | "" (by device: quick on a CPU device at the CI tier, full elsewhere;
   // plan.h). The library's default is full; the CLI's is "".

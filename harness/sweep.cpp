@@ -9,7 +9,7 @@
 
 #include "harness/case_render.h"
 #include "harness/goldens.h"
-#include "harness/tier.h"
+#include "harness/references.h"
 #include "metrics/flip.h"
 #include "renderer/techniques/technique.h"
 

@@ -18,7 +18,7 @@
 
 #include "harness/case.h"
 #include "harness/sweep.h"
-#include "harness/tier.h"
+#include "harness/references.h"
 #include "tests/gpu_fixture.h"
 
 namespace gib {

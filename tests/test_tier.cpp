@@ -11,7 +11,7 @@
 #include "harness/case.h"
 #include "harness/image_io.h"
 #include "harness/suite.h"
-#include "harness/tier.h"
+#include "harness/references.h"
 #include "renderer/codecs/half.h"
 #include "tests/temp_dir.h"
 

@@ -44,6 +44,7 @@ class DispatchLogCmd final : public Cmd {
   void end_rendering() override { inner_.end_rendering(); }
   void barrier(uint32_t src_stages, uint32_t dst_stages) override { inner_.barrier(src_stages, dst_stages); }
   void fill(const Buffer& buffer, uint32_t value) override { inner_.fill(buffer, value); }
+  void update(const Buffer& buffer, const void* data, uint32_t bytes) override { inner_.update(buffer, data, bytes); }
   void clear(const Image& image, const float value[4]) override { inner_.clear(image, value); }
   void copy(const Image& src, const Image& dst) override { inner_.copy(src, dst); }
   void timestamp(uint32_t query) override { inner_.timestamp(query); }

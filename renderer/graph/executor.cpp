@@ -365,7 +365,7 @@ void Executor::upload_scene(float time) {
   indoor_volumes_ = std::move(flat.indoor_volumes);
 }
 
-void Executor::upload_frame_constants(float time) {
+void Executor::record_frame_constants(Cmd& cmd, float time) {
   Camera cam = scene_.camera_at(time);
   cam.position += settings_.world_offset;  // the camera moves with the scene (upload_scene)
   cam.target += settings_.world_offset;
@@ -410,8 +410,10 @@ void Executor::upload_frame_constants(float time) {
     f.indoor_min[i] = {v.min.x, v.min.y, v.min.z, 0};
     f.indoor_max[i] = {v.max.x, v.max.y, v.max.z, 0};
   }
+  static_assert(sizeof(f) <= 65536 && sizeof(f) % 4 == 0, "frame constants fit Cmd::update");
   if (!scene_gpu_.frame) scene_gpu_.frame = gpu_.create_buffer(sizeof(f), BufferUsage::uniform, "frame_constants");
-  gpu_.upload(*scene_gpu_.frame, &f, sizeof(f));
+  cmd.update(*scene_gpu_.frame, &f, sizeof(f));
+  cmd.barrier(kStageTransfer, kStageCompute | kStageGraphics);
 }
 
 std::map<std::string, ResolvedSlot> Executor::bind_slots(const PassDecl& decl) {
@@ -481,7 +483,6 @@ FrameResult Executor::run_frame() {
     upload_scene(time);
     scene_uploaded_ = true;
   }
-  upload_frame_constants(time);
   auto running = plan_.running();
   // On a CPU device (lavapipe) timestamps inside one submission misattribute work: llvmpipe
   // runs dispatches and draws lazily, so a pass's cost shows up in a later pass or between
@@ -511,7 +512,10 @@ FrameResult Executor::run_frame() {
   std::vector<std::vector<LoggedDispatch>> logged(running.size());
   for (size_t i = 0; i < running.size(); ++i) {
     const PlannedPass* pp = running[i];
-    if (!cmd) cmd = gpu_.begin(query_count);
+    if (!cmd) {
+      cmd = gpu_.begin(query_count);
+      if (i == 0) record_frame_constants(*cmd, time);
+    }
     const PassDecl& decl = decls_[pp->decl_index];
     if (!pp->barrier_before.resources.empty())
       cmd->barrier(pp->barrier_before.src_kinds, pp->barrier_before.dst_kind);

@@ -80,7 +80,8 @@ class Executor {
   uint32_t record_scans(Cmd& cmd, size_t running_index, bool& reset);
   void collect_scan_results();
   void upload_scene(float time);
-  void upload_frame_constants(float time);
+  // The frame's constants, written by the frame's first command buffer (no upload of its own).
+  void record_frame_constants(Cmd& cmd, float time);
   Gpu& gpu_;
   const Scene& scene_;
   Settings settings_;

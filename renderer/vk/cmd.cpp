@@ -34,34 +34,20 @@ VkCmd::VkCmd(VkGpu& g, VkCommandPool p, uint32_t qcount) : gpu(g), pool(p), quer
   check(vkBeginCommandBuffer(cb, &bi), "vkBeginCommandBuffer");
   if (query_count) {
     if (gpu.info().timestamp_period_ns == 0) throw GpuError("vulkan: the queue has no timestamp support");
-    VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-    qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    qi.queryCount = query_count;
-    check(vkCreateQueryPool(gpu.device, &qi, nullptr, &queries), "vkCreateQueryPool");
+    queries = gpu.take_query_pool(query_count);
     vkCmdResetQueryPool(cb, queries, 0, query_count);
   }
 }
 
 VkCmd::~VkCmd() {
-  for (auto dp : descriptor_pools_) vkDestroyDescriptorPool(gpu.device, dp, nullptr);
-  if (queries) vkDestroyQueryPool(gpu.device, queries, nullptr);
+  for (auto dp : descriptor_pools_) gpu.keep_descriptor_pool(dp);
+  if (queries) gpu.keep_query_pool(queries, query_count);
   vkFreeCommandBuffers(gpu.device, pool, 1, &cb);
 }
 
 VkDescriptorPool VkCmd::descriptor_pool() {
-  constexpr uint32_t kSetsPerPool = 64;
   if (descriptor_pools_.empty() || sets_in_pool_ == kSetsPerPool) {
-    VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kSetsPerPool * 16},
-                                    {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSetsPerPool * 4},
-                                    {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kSetsPerPool * 16},
-                                    {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kSetsPerPool * 4}};
-    VkDescriptorPoolCreateInfo ci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    ci.maxSets = kSetsPerPool;
-    ci.poolSizeCount = 4;
-    ci.pPoolSizes = sizes;
-    VkDescriptorPool dp;
-    check(vkCreateDescriptorPool(gpu.device, &ci, nullptr, &dp), "vkCreateDescriptorPool");
-    descriptor_pools_.push_back(dp);
+    descriptor_pools_.push_back(gpu.take_descriptor_pool());
     sets_in_pool_ = 0;
   }
   ++sets_in_pool_;
@@ -202,6 +188,13 @@ void VkCmd::fill(const Buffer& buffer, uint32_t value) {
   vkCmdFillBuffer(cb, static_cast<const VkBufferObj&>(buffer).handle, 0, VK_WHOLE_SIZE, value);
 }
 
+void VkCmd::update(const Buffer& buffer, const void* data, uint32_t bytes) {
+  if (bytes == 0 || bytes > 65536 || bytes % 4 || bytes > buffer.size())
+    throw GpuError(fmt::format("update: expected 4 to 65536 bytes, a multiple of 4, within the buffer's {}; got {}",
+                               buffer.size(), bytes));
+  vkCmdUpdateBuffer(cb, static_cast<const VkBufferObj&>(buffer).handle, 0, bytes, data);
+}
+
 void VkCmd::clear(const Image& image, const float value[4]) {
   auto& img = static_cast<const VkImageObj&>(image);
   VkImageSubresourceRange range{img.aspect, 0, 1, 0, 1};
@@ -253,15 +246,13 @@ std::unique_ptr<Cmd> VkGpu::begin(uint32_t query_count) {
 std::vector<double> VkGpu::submit(std::unique_ptr<Cmd> cmd_) {
   auto* cmd = static_cast<VkCmd*>(cmd_.get());
   check(vkEndCommandBuffer(cmd->cb), "vkEndCommandBuffer");
-  VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VkFence fence;
-  check(vkCreateFence(device, &fi, nullptr, &fence), "vkCreateFence");
+  VkFence fence = submit_fence();
   VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   si.commandBufferCount = 1;
   si.pCommandBuffers = &cmd->cb;
   VkResult r = vkQueueSubmit(queue, 1, &si, fence);
   if (r == VK_SUCCESS) r = vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX);
-  vkDestroyFence(device, fence, nullptr);
+  if (r == VK_SUCCESS) r = vkResetFences(device, 1, &fence);
   check(r, "vkQueueSubmit/vkWaitForFences");
   std::vector<double> ns;
   if (cmd->queries_written) {

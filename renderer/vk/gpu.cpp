@@ -314,6 +314,10 @@ VkGpu::VkGpu(const GpuOptions& options) {
 VkGpu::~VkGpu() {
   if (device) vkDeviceWaitIdle(device);
   pipelines_.clear();
+  for (VkDescriptorPool dp : free_descriptor_pools_) vkDestroyDescriptorPool(device, dp, nullptr);
+  for (auto& [count, qp] : free_query_pools_) vkDestroyQueryPool(device, qp, nullptr);
+  if (fence_) vkDestroyFence(device, fence_, nullptr);
+  destroy_staging(staging_);
   if (pool_) vkDestroyCommandPool(device, pool_, nullptr);
   if (nearest_sampler) vkDestroySampler(device, nearest_sampler, nullptr);
   if (device) vkDestroyDevice(device, nullptr);
@@ -361,8 +365,103 @@ void VkGpu::one_shot(const std::function<void(VkCommandBuffer)>& record) {
   VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   si.commandBufferCount = 1;
   si.pCommandBuffers = &cmd.cb;
-  check(vkQueueSubmit(queue, 1, &si, VK_NULL_HANDLE), "vkQueueSubmit");
-  check(vkQueueWaitIdle(queue), "vkQueueWaitIdle");
+  VkFence fence = submit_fence();
+  check(vkQueueSubmit(queue, 1, &si, fence), "vkQueueSubmit");
+  check(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  check(vkResetFences(device, 1, &fence), "vkResetFences");
+}
+
+// ---------------------------------------------------------------- kept objects
+VkDescriptorPool VkGpu::take_descriptor_pool() {
+  if (!free_descriptor_pools_.empty()) {
+    VkDescriptorPool dp = free_descriptor_pools_.back();
+    free_descriptor_pools_.pop_back();
+    return dp;
+  }
+  constexpr uint32_t kSetsPerPool = VkCmd::kSetsPerPool;
+  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kSetsPerPool * 16},
+                                  {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSetsPerPool * 4},
+                                  {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kSetsPerPool * 16},
+                                  {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kSetsPerPool * 4}};
+  VkDescriptorPoolCreateInfo ci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  ci.maxSets = kSetsPerPool;
+  ci.poolSizeCount = 4;
+  ci.pPoolSizes = sizes;
+  VkDescriptorPool dp;
+  check(vkCreateDescriptorPool(device, &ci, nullptr, &dp), "vkCreateDescriptorPool");
+  return dp;
+}
+
+void VkGpu::keep_descriptor_pool(VkDescriptorPool pool) {
+  vkResetDescriptorPool(device, pool, 0);
+  free_descriptor_pools_.push_back(pool);
+}
+
+VkQueryPool VkGpu::take_query_pool(uint32_t count) {
+  auto it = free_query_pools_.find(count);
+  if (it != free_query_pools_.end()) {
+    VkQueryPool qp = it->second;
+    free_query_pools_.erase(it);
+    return qp;
+  }
+  VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+  qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
+  qi.queryCount = count;
+  VkQueryPool qp;
+  check(vkCreateQueryPool(device, &qi, nullptr, &qp), "vkCreateQueryPool");
+  return qp;
+}
+
+void VkGpu::keep_query_pool(VkQueryPool pool, uint32_t count) { free_query_pools_.emplace(count, pool); }
+
+VkFence VkGpu::submit_fence() {
+  if (!fence_) {
+    VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    check(vkCreateFence(device, &fi, nullptr, &fence_), "vkCreateFence");
+  }
+  return fence_;
+}
+
+VkGpu::Staging VkGpu::make_staging(uint64_t bytes) {
+  Staging st;
+  st.bytes = bytes ? bytes : 4;
+  VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  bi.size = st.bytes;
+  bi.usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  check(vkCreateBuffer(device, &bi, nullptr, &st.buffer), "vkCreateBuffer (staging)");
+  VkMemoryRequirements req;
+  vkGetBufferMemoryRequirements(device, st.buffer, &req);
+  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  ai.allocationSize = req.size;
+  ai.memoryTypeIndex = memory_type(req.memoryTypeBits,
+                                   VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT |
+                                       VK_MEMORY_PROPERTY_HOST_CACHED_BIT,
+                                   VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  check(vkAllocateMemory(device, &ai, nullptr, &st.memory), "vkAllocateMemory (staging)");
+  check(vkBindBufferMemory(device, st.buffer, st.memory, 0), "vkBindBufferMemory (staging)");
+  check(vkMapMemory(device, st.memory, 0, VK_WHOLE_SIZE, 0, &st.mapped), "vkMapMemory (staging)");
+  return st;
+}
+
+void VkGpu::destroy_staging(Staging& st) {
+  if (st.buffer) vkDestroyBuffer(device, st.buffer, nullptr);
+  if (st.memory) vkFreeMemory(device, st.memory, nullptr);
+  st = Staging{};
+}
+
+VkGpu::Staging& VkGpu::staging(uint64_t bytes, Staging& temporary) {
+  if (bytes > kKeptStagingBytes) {
+    temporary = make_staging(bytes);
+    return temporary;
+  }
+  if (staging_.bytes < bytes) {
+    destroy_staging(staging_);
+    // Grown in powers of two from 1 MiB, so a row's first readbacks settle it.
+    uint64_t size = 1ull << 20;
+    while (size < bytes) size *= 2;
+    staging_ = make_staging(size);
+  }
+  return staging_;
 }
 
 // ---------------------------------------------------------------- buffers
@@ -398,32 +497,17 @@ std::shared_ptr<Buffer> VkGpu::create_buffer(uint64_t bytes, BufferUsage usage, 
 
 namespace {
 // A host-visible staging buffer for transfers to and from device-local memory.
-struct Staging {
+// The staging memory of one transfer: the kept buffer, or a temporary one above its size.
+struct StagingUse {
   VkGpu& gpu;
-  VkBuffer buffer = VK_NULL_HANDLE;
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  void* mapped = nullptr;
-  Staging(VkGpu& g, uint64_t bytes) : gpu(g) {
-    VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
-    bi.size = bytes ? bytes : 4;
-    bi.usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-    check(vkCreateBuffer(gpu.device, &bi, nullptr, &buffer), "vkCreateBuffer (staging)");
-    VkMemoryRequirements req;
-    vkGetBufferMemoryRequirements(gpu.device, buffer, &req);
-    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    ai.allocationSize = req.size;
-    ai.memoryTypeIndex = gpu.memory_type(req.memoryTypeBits,
-                                         VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT |
-                                             VK_MEMORY_PROPERTY_HOST_CACHED_BIT,
-                                         VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    check(vkAllocateMemory(gpu.device, &ai, nullptr, &memory), "vkAllocateMemory (staging)");
-    check(vkBindBufferMemory(gpu.device, buffer, memory, 0), "vkBindBufferMemory (staging)");
-    check(vkMapMemory(gpu.device, memory, 0, VK_WHOLE_SIZE, 0, &mapped), "vkMapMemory (staging)");
+  VkGpu::Staging temporary;
+  VkGpu::Staging& s;
+  StagingUse(VkGpu& g, uint64_t bytes) : gpu(g), s(g.staging(bytes, temporary)) {}
+  ~StagingUse() {
+    if (temporary.buffer) gpu.destroy_staging(temporary);
   }
-  ~Staging() {
-    vkDestroyBuffer(gpu.device, buffer, nullptr);
-    vkFreeMemory(gpu.device, memory, nullptr);
-  }
+  StagingUse(const StagingUse&) = delete;
+  StagingUse& operator=(const StagingUse&) = delete;
 };
 
 void host_to_device_barrier(VkCommandBuffer cb) {
@@ -443,11 +527,11 @@ void VkGpu::upload(const Buffer& dst_, const void* data, uint64_t bytes, uint64_
   auto& dst = static_cast<const VkBufferObj&>(dst_);
   if (offset + bytes > dst.size()) throw GpuError("upload: range exceeds buffer size");
   if (bytes == 0) return;
-  Staging s(*this, bytes);
-  std::memcpy(s.mapped, data, bytes);
+  StagingUse use(*this, bytes);
+  std::memcpy(use.s.mapped, data, bytes);
   one_shot([&](VkCommandBuffer cb) {
     VkBufferCopy region{0, offset, bytes};
-    vkCmdCopyBuffer(cb, s.buffer, dst.handle, 1, &region);
+    vkCmdCopyBuffer(cb, use.s.buffer, dst.handle, 1, &region);
     host_to_device_barrier(cb);
   });
 }
@@ -456,13 +540,13 @@ void VkGpu::download(const Buffer& src_, void* data, uint64_t bytes, uint64_t of
   auto& src = static_cast<const VkBufferObj&>(src_);
   if (offset + bytes > src.size()) throw GpuError("download: range exceeds buffer size");
   if (bytes == 0) return;
-  Staging s(*this, bytes);
+  StagingUse use(*this, bytes);
   one_shot([&](VkCommandBuffer cb) {
     host_to_device_barrier(cb);
     VkBufferCopy region{offset, 0, bytes};
-    vkCmdCopyBuffer(cb, src.handle, s.buffer, 1, &region);
+    vkCmdCopyBuffer(cb, src.handle, use.s.buffer, 1, &region);
   });
-  std::memcpy(data, s.mapped, bytes);
+  std::memcpy(data, use.s.mapped, bytes);
 }
 
 // ---------------------------------------------------------------- images
@@ -547,14 +631,14 @@ void VkGpu::upload(const Image& dst_, const void* texels, uint64_t bytes) {
   auto& dst = static_cast<const VkImageObj&>(dst_);
   uint64_t expect = uint64_t(dst.width()) * dst.height() * format_bytes_per_texel(dst.format());
   if (bytes != expect) throw GpuError(fmt::format("upload image: expected {} bytes, got {}", expect, bytes));
-  Staging s(*this, bytes);
-  std::memcpy(s.mapped, texels, bytes);
+  StagingUse use(*this, bytes);
+  std::memcpy(use.s.mapped, texels, bytes);
   one_shot([&](VkCommandBuffer cb) {
     host_to_device_barrier(cb);
     VkBufferImageCopy r{};
     r.imageSubresource = {dst.aspect, 0, 0, 1};
     r.imageExtent = {dst.width(), dst.height(), 1};
-    vkCmdCopyBufferToImage(cb, s.buffer, dst.handle, VK_IMAGE_LAYOUT_GENERAL, 1, &r);
+    vkCmdCopyBufferToImage(cb, use.s.buffer, dst.handle, VK_IMAGE_LAYOUT_GENERAL, 1, &r);
     host_to_device_barrier(cb);
   });
 }
@@ -562,17 +646,17 @@ void VkGpu::upload(const Image& dst_, const void* texels, uint64_t bytes) {
 std::vector<uint8_t> VkGpu::download(const Image& src_) {
   auto& src = static_cast<const VkImageObj&>(src_);
   uint64_t bytes = uint64_t(src.width()) * src.height() * format_bytes_per_texel(src.format());
-  Staging s(*this, bytes);
+  StagingUse use(*this, bytes);
   one_shot([&](VkCommandBuffer cb) {
     host_to_device_barrier(cb);
     VkBufferImageCopy r{};
     r.imageSubresource = {src.aspect, 0, 0, 1};
     r.imageExtent = {src.width(), src.height(), 1};
-    vkCmdCopyImageToBuffer(cb, src.handle, VK_IMAGE_LAYOUT_GENERAL, s.buffer, 1, &r);
+    vkCmdCopyImageToBuffer(cb, src.handle, VK_IMAGE_LAYOUT_GENERAL, use.s.buffer, 1, &r);
     host_to_device_barrier(cb);
   });
   std::vector<uint8_t> out(bytes);
-  std::memcpy(out.data(), s.mapped, bytes);
+  std::memcpy(out.data(), use.s.mapped, bytes);
   return out;
 }
 

@@ -150,6 +150,9 @@ class Cmd {
   virtual void end_rendering() = 0;
   virtual void barrier(uint32_t src_stages, uint32_t dst_stages) = 0;  // global memory barrier
   virtual void fill(const Buffer& buffer, uint32_t value) = 0;
+  // Host data written from the command stream at its place in it: at most 65536 bytes, a
+  // multiple of 4, from the start of the buffer (a transfer write).
+  virtual void update(const Buffer& buffer, const void* data, uint32_t bytes) = 0;
   virtual void clear(const Image& image, const float value[4]) = 0;  // float or uint formats
   virtual void copy(const Image& src, const Image& dst) = 0;         // same format and extent
   virtual void timestamp(uint32_t query) = 0;                        // bottom-of-pipe
