@@ -62,6 +62,9 @@ struct GltfImportReport {
   std::vector<std::string> notes;                   // content present but not imported
 };
 
+// The report as the scene keeps it: what was read (one line) and what was ignored.
+SceneImport scene_import(const GltfImportReport& report);
+
 // Limits on what one import may add (absurd counts are errors, not allocations).
 inline constexpr uint64_t kGltfMaxTriangles = 1ull << 24;     // instanced, per import
 inline constexpr uint64_t kGltfMaxVertices = 3ull << 24;      // instanced, per import
