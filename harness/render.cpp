@@ -1,6 +1,7 @@
 #include "harness/render.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <chrono>
@@ -138,14 +139,20 @@ Scene load_scene_measured(const std::string& path, SceneLoad& load) {
     load.mesh_bytes += m.positions.size() * sizeof(Vec3) + m.normals.size() * sizeof(Vec3) +
                        m.uvs.size() * sizeof(Vec2) + m.indices.size() * sizeof(uint32_t);
   load.texture_bytes = textures_bytes(scene.textures);
+  load.imports = scene.imports;
   return scene;
 }
 
 std::string to_string(const SceneLoad& l) {
-  return fmt::format("scene load: {:.1f} ms; holds {:.1f} KiB of meshes, {:.1f} KiB of textures with mips; peak RSS {}",
-                     l.ms, l.mesh_bytes / 1024.0, l.texture_bytes / 1024.0,
-                     l.peak_rss_known ? fmt::format("+{:.1f} MiB while loading", l.peak_rss_growth / 1048576.0)
-                                      : std::string("unknown (no /proc/self/status)"));
+  std::string out =
+      fmt::format("scene load: {:.1f} ms; holds {:.1f} KiB of meshes, {:.1f} KiB of textures with mips; peak RSS {}",
+                  l.ms, l.mesh_bytes / 1024.0, l.texture_bytes / 1024.0,
+                  l.peak_rss_known ? fmt::format("+{:.1f} MiB while loading", l.peak_rss_growth / 1048576.0)
+                                   : std::string("unknown (no /proc/self/status)"));
+  for (const SceneImport& i : l.imports)
+    out += fmt::format("\n  glTF {}: read {}\n  glTF {}: ignored: {}", i.file, i.read, i.file,
+                       i.ignored.empty() ? std::string("nothing") : fmt::format("{}", fmt::join(i.ignored, "; ")));
+  return out;
 }
 
 RenderRun render(const RenderOptions& o) {
@@ -274,6 +281,8 @@ int cmd_render(const RenderOptions& o) {
     j["scene_load"] = {{"ms", run.scene_load.ms}, {"mesh_bytes", run.scene_load.mesh_bytes},
                        {"texture_bytes", run.scene_load.texture_bytes}};
     if (run.scene_load.peak_rss_known) j["scene_load"]["peak_rss_growth_bytes"] = run.scene_load.peak_rss_growth;
+    for (const SceneImport& i : run.scene_load.imports)
+      j["scene_load"]["imports"].push_back({{"file", i.file}, {"read", i.read}, {"ignored", i.ignored}});
     j["options"] = parse_render_options(t, o.options);
     j["output_non_finite"] = {{"nan", bad.nan}, {"inf", bad.inf}, {"pixels", bad.pixels}};
     auto& passes = j["passes"] = nlohmann::json::array();

@@ -43,9 +43,11 @@ struct SceneLoad {
   uint64_t mesh_bytes = 0, texture_bytes = 0;
   uint64_t peak_rss_growth = 0;
   bool peak_rss_known = false;
+  std::vector<SceneImport> imports;  // the glTF objects': what each read and ignored
 };
 Scene load_scene_measured(const std::string& path, SceneLoad& load);
-std::string to_string(const SceneLoad& load);  // one line for the console
+// For the console: one line, then two per glTF import (read, ignored).
+std::string to_string(const SceneLoad& load);
 
 struct RenderRun {
   DeviceInfo device;

@@ -203,6 +203,13 @@ class Exporter {
       if (!mesh.normals.empty()) {
         std::vector<Vec3> normals = mesh.normals;
         normals.resize(n, Vec3{0, 0, 0});
+        // Written as they are (the round trip is exact), though glTF asks for unit normals.
+        const size_t off = static_cast<size_t>(std::count_if(normals.begin(), normals.end(), [](Vec3 v) {
+          return !(std::fabs(length(v) - 1.0f) <= 5e-4f);
+        }));
+        if (off)
+          r_.lossy.push_back(fmt::format("{}: {} normal(s) not of unit length or not finite, written as they are (glTF "
+                                         "validators report them as errors)", mesh.name, off));
         attr["NORMAL"] = add_accessor(normals.data(), n, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 12, TINYGLTF_TARGET_ARRAY_BUFFER);
       }
       if (!mesh.uvs.empty()) {

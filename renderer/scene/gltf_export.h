@@ -27,7 +27,9 @@ namespace gib {
 struct GltfExportReport {
   uint32_t meshes = 0, nodes = 0, materials = 0, lights = 0;
   bool sun = false, camera = false;
-  std::vector<std::string> lossy;  // what the file does not carry, one line each
+  // What the file does not carry, one line each; also normals that are not unit length or not
+  // finite, written as they are (exact round trip) though glTF validators reject them.
+  std::vector<std::string> lossy;
 };
 
 // `.glb` writes one binary file; any other name writes JSON glTF plus "<stem>.bin" beside it.

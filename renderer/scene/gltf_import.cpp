@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -11,6 +12,7 @@
 #include <optional>
 
 #include "renderer/scene/gltf_importer.h"
+#include "renderer/scene/gltf_schema.h"
 #include "renderer/scene/scene_loader.h"
 
 namespace gib {
@@ -20,14 +22,28 @@ namespace gltf {
 namespace {
 
 constexpr size_t kMaxPrimitiveVertices = size_t{1} << 24;  // as the JSON mesh primitive
-const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
 
-std::string mode_name(int mode) {
+std::string topology(int mode) {
   static const char* names[] = {"POINTS", "LINES", "LINE_LOOP", "LINE_STRIP", "TRIANGLES", "TRIANGLE_STRIP", "TRIANGLE_FAN"};
-  return mode >= 0 && mode <= 6 ? fmt::format("{} ({})", mode, names[mode]) : std::to_string(mode);
+  return mode >= 0 && mode <= 6 ? names[mode] : std::to_string(mode);
 }
 
 }  // namespace
+
+// glTF 2.0, "Primitive topologies": strip triangle i is (v_i, v_{i+1+i%2}, v_{i+2-i%2}), so
+// every triangle keeps the first one's winding; fan triangle i is (v_{i+1}, v_{i+2}, v_0).
+std::vector<uint32_t> triangle_list(const std::vector<uint32_t>& v, int mode) {
+  std::vector<uint32_t> out;
+  if (v.size() < 3) return out;
+  out.reserve(3 * (v.size() - 2));
+  for (size_t i = 0; i + 2 < v.size(); ++i) {
+    const std::array<uint32_t, 3> t = mode == TINYGLTF_MODE_TRIANGLE_FAN ? std::array{v[i + 1], v[i + 2], v[0]}
+                                      : i % 2                           ? std::array{v[i], v[i + 2], v[i + 1]}
+                                                                        : std::array{v[i], v[i + 1], v[i + 2]};
+    out.insert(out.end(), t.begin(), t.end());
+  }
+  return out;
+}
 
 void Importer::run(const Mat4& transform) {
   check_asset();
@@ -40,19 +56,18 @@ void Importer::run(const Mat4& transform) {
   load_textures();
   if (ignored_suns_) report_.notes.push_back(fmt::format("{} directional light(s) ignored: the scene sets its sun", ignored_suns_));
   for (const std::string& a : ignored_attributes_) report_.notes.push_back("attribute " + a + " ignored");
+  for (const auto& [mi, pj] : skipped_)
+    report_.notes.push_back(fmt::format("/meshes/{}/primitives/{}: {} skipped (points and lines cannot be shaded)", mi, pj,
+                                        topology(m_.meshes[mi].primitives[pj].mode)));
 }
 
 void Importer::check_asset() {
   const tg::Asset& a = m_.asset;
   if (a.version.rfind("2.", 0) != 0) w_.fail("/asset/version", "\"2.0\" (glTF 2)", quoted(a.version));
   if (!a.minVersion.empty() && a.minVersion != "2.0") w_.fail("/asset/minVersion", "\"2.0\" or none", quoted(a.minVersion));
-  for (size_t i = 0; i < m_.extensionsRequired.size(); ++i)
-    if (!kSupportedExtensions.count(m_.extensionsRequired[i]))
-      w_.fail(fmt::format("/extensionsRequired/{}", i),
-              "a required extension gibench supports (KHR_lights_punctual, KHR_materials_emissive_strength)",
-              quoted(m_.extensionsRequired[i]));
+  // extensionsRequired was checked on the JSON (check_extensions).
   for (const std::string& e : m_.extensionsUsed)
-    if (!kSupportedExtensions.count(e)) report_.notes.push_back("extension " + e + " (optional) ignored");
+    if (!supported_extension(e)) report_.notes.push_back("extension " + e + " (optional) ignored");
   if (!m_.skins.empty()) report_.notes.push_back(fmt::format("{} skin(s) ignored: meshes stay in bind pose", m_.skins.size()));
   if (!m_.animations.empty()) report_.notes.push_back(fmt::format("{} animation(s) ignored", m_.animations.size()));
 }
@@ -150,8 +165,8 @@ uint32_t Importer::mesh_for(size_t mi, size_t pj) {
   if (!inserted) return it->second;
   const tg::Primitive& pr = m_.meshes[mi].primitives[pj];
   const std::string pp = fmt::format("/meshes/{}/primitives/{}", mi, pj), ap = pp + "/attributes/";
-  if (pr.mode != TINYGLTF_MODE_TRIANGLES)
-    w_.fail(pp + "/mode", "4 (TRIANGLES; other primitive modes are not supported)", mode_name(pr.mode));
+  // TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN here: the schema bounds the mode to [0, 6] and
+  // add_instances skips points and lines.
   auto attribute = [&](const char* name) {
     auto a = pr.attributes.find(name);
     return a == pr.attributes.end() ? std::nullopt : std::optional<int>(a->second);
@@ -185,17 +200,23 @@ uint32_t Importer::mesh_for(size_t mi, size_t pj) {
   }
   for (const auto& [name, index] : pr.attributes)
     if (name != "POSITION" && name != "NORMAL" && name != "TEXCOORD_0") ignored_attributes_.insert(name);
+  // The vertex sequence (indices, or the vertices in order), then its triangles.
+  const bool list = pr.mode == TINYGLTF_MODE_TRIANGLES;
+  const std::string needs = list ? "a multiple of 3" : "at least 3";
   if (pr.indices != -1) {
     const AccessorData ia = accessor(
         m_, pr.indices, w_, pp + "/indices", TINYGLTF_TYPE_SCALAR,
         {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT}, "indices");
-    if (ia.count % 3) w_.fail(pp + "/indices", "a multiple of 3 indices (TRIANGLES)", fmt::format("{} in {}", ia.count, ia.pointer));
+    if (list ? ia.count % 3 != 0 : ia.count < 3)
+      w_.fail(pp + "/indices", fmt::format("{} indices ({})", needs, topology(pr.mode)), fmt::format("{} in {}", ia.count, ia.pointer));
     mesh.indices = read_indices(ia, n, w_, pp + "/indices");
   } else {
-    if (n % 3) w_.fail(ap + "POSITION", "a multiple of 3 vertices (TRIANGLES without indices)", std::to_string(n));
+    if (list ? n % 3 != 0 : n < 3)
+      w_.fail(ap + "POSITION", fmt::format("{} vertices ({} without indices)", needs, topology(pr.mode)), std::to_string(n));
     mesh.indices.resize(n);
     for (size_t i = 0; i < n; ++i) mesh.indices[i] = static_cast<uint32_t>(i);
   }
+  if (!list) mesh.indices = triangle_list(mesh.indices, pr.mode);
   if (!pr.targets.empty()) report_.notes.push_back(fmt::format("{}: morph targets ignored", pp));
   const std::string& mesh_name = m_.meshes[mi].name;
   mesh.name = opt_.instance_prefix + (mesh_name.empty() ? "mesh" + std::to_string(mi) : mesh_name) +
@@ -343,6 +364,16 @@ GltfImportReport import_gltf_bytes(Scene& scene, const std::vector<uint8_t>& byt
     w.fail_file("a glTF file that can be imported", json_messages::ascii_line(e.what()));
   }
   return report;
+}
+
+SceneImport scene_import(const GltfImportReport& r) {
+  SceneImport out;
+  out.file = r.path;
+  out.read = fmt::format("{} meshes, {} instances ({} triangles, {} vertices), {} materials, {} textures ({:.1f} KiB with mips), {} lights{}{}",
+                         r.mesh_count, r.instance_count, r.triangles, r.vertices, r.material_count, r.texture_count,
+                         r.texture_bytes / 1024.0, r.lights, r.camera ? ", the camera" : "", r.sun ? ", the sun" : "");
+  out.ignored = r.notes;
+  return out;
 }
 
 GltfImportReport import_gltf(Scene& scene, const std::string& path, const Mat4& transform, const GltfImportOptions& options) {

@@ -2,7 +2,9 @@
 // The scene key that uses it ({"type": "gltf", "file": ...}) and its rules are documented in
 // cases/scenes/README.md, section "glTF objects".
 //
-// What is imported: TRIANGLES primitives (indexed or not) with POSITION, NORMAL and TEXCOORD_0;
+// What is imported: TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN primitives (indexed or not; strips
+// and fans become triangle lists) with POSITION, NORMAL and TEXCOORD_0 (points and lines are
+// skipped, noted in the report);
 // the default scene's node tree (matrix or TRS, composed with the object's transform: one
 // Instance per primitive per node); metallic-roughness material factors; KHR_lights_punctual
 // point and spot lights (directional -> the scene's sun); KHR_materials_emissive_strength;
@@ -16,7 +18,9 @@
 // one to one onto the scene's radiometric ones (see gltf_importer.h, "Units").
 //
 // Every problem is one SceneError line naming the glTF file and, where it has one, the JSON
-// pointer inside it: `<file>: <pointer>: expected <what>, got <what>`.
+// pointer inside it: `<file>: <pointer>: expected <what>, got <what>`. The JSON is checked
+// against glTF 2.0's schema (types, required properties, indices) before tinygltf reads it
+// (gltf_schema.h).
 #pragma once
 #include <cstdint>
 #include <string>
@@ -61,6 +65,9 @@ struct GltfImportReport {
   std::vector<GltfMaterialInfo> materials;          // one per glTF material (then the default one)
   std::vector<std::string> notes;                   // content present but not imported
 };
+
+// The report as the scene keeps it: what was read (one line) and what was ignored.
+SceneImport scene_import(const GltfImportReport& report);
 
 // Limits on what one import may add (absurd counts are errors, not allocations).
 inline constexpr uint64_t kGltfMaxTriangles = 1ull << 24;     // instanced, per import

@@ -118,6 +118,10 @@ void Importer::add_instances(size_t ni, const std::string& np, const Mat4& world
     solid = v.Get<bool>();
   }
   for (size_t pj = 0; pj < prims.size(); ++pj) {
+    if (prims[pj].mode < TINYGLTF_MODE_TRIANGLES) {  // POINTS, LINES, LINE_LOOP, LINE_STRIP
+      skipped_.insert({mi, pj});
+      continue;
+    }
     Instance inst;
     inst.mesh = mesh_for(mi, pj);
     inst.material = material_for(prims[pj].material, fmt::format("/meshes/{}/primitives/{}/material", mi, pj));

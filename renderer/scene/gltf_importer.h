@@ -35,6 +35,10 @@ inline constexpr double kInf = std::numeric_limits<double>::infinity();
 inline std::string quoted(const std::string& s) { return json_messages::describe(nlohmann::json(s)); }
 inline bool finite(Vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
+// A TRIANGLE_STRIP (5) or TRIANGLE_FAN (6) vertex sequence as a triangle list, the winding
+// glTF gives each triangle kept.
+std::vector<uint32_t> triangle_list(const std::vector<uint32_t>& sequence, int mode);
+
 class Importer {
  public:
   Importer(Scene& scene, const tg::Model& m, const Where& w, const GltfImportOptions& opt, const ImageLog& images,
@@ -74,6 +78,7 @@ class Importer {
   std::map<std::string, int> suffixes_;                     // the next "#k" to try per name
   std::map<std::pair<size_t, size_t>, uint32_t> meshes_;    // (glTF mesh, primitive) -> Scene mesh
   std::set<std::string> ignored_attributes_;
+  std::set<std::pair<size_t, size_t>> skipped_;             // (glTF mesh, primitive) of points or lines
   int64_t default_material_ = -1;
   std::map<std::pair<size_t, bool>, int32_t> textures_;  // (glTF image, sRGB) -> Scene texture
   uint32_t ignored_suns_ = 0;

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "renderer/scene/gltf_import.h"
+#include "renderer/scene/gltf_schema.h"
 #include "renderer/scene/json_messages.h"
 #include "renderer/scene/scene_loader.h"
 
@@ -208,6 +209,14 @@ tinygltf::Model load_model(const std::vector<uint8_t>& bytes, const Where& where
   const uint8_t* text = glb ? bytes.data() + 20 : bytes.data();
   const size_t text_size = glb ? read_u32(bytes.data() + 12) : bytes.size();
   check_nesting(text, text_size, where);
+  // The schema's types, required properties and indices, on the JSON as written (tinygltf
+  // would skip or default what it does not understand); JSON that does not parse is left to
+  // tinygltf's message.
+  const nlohmann::json doc = nlohmann::json::parse(text, text + text_size, nullptr, false);
+  if (!doc.is_discarded()) {
+    check_schema(doc, where);
+    check_extensions(doc, where);
+  }
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&on_image, &images);

@@ -169,8 +169,17 @@ struct Camera {
   std::vector<CameraKey> animation;  // empty: static
 };
 
+// What one glTF object read from its file and what of the file it ignored, so a user can tell
+// why an image differs from their glTF viewer's (`gibench render` prints it with the scene load).
+struct SceneImport {
+  std::string file;
+  std::string read;                  // one line: meshes, instances, triangles, materials, ...
+  std::vector<std::string> ignored;  // one line each: content present in the file but not imported
+};
+
 struct Scene {
   std::string source;  // file it came from (for messages)
+  std::vector<SceneImport> imports;  // the glTF objects' imports, in object order
   std::vector<Material> materials;
   std::vector<Texture> textures;  // image textures (glTF imports), with their mips
   std::vector<Mesh> meshes;

@@ -501,6 +501,7 @@ void import_gltf_object(const Node& n, size_t index, Scene& scene, GltfObjects& 
   options.take_sun = !shared.scene_sun;
   const GltfImportReport report = import_gltf(scene, path.string(), Mat4::trs(trs.t, trs.r, trs.s), options);
   shared.camera_taken = shared.camera_taken || report.camera;
+  scene.imports.push_back(scene_import(report));
 }
 
 LocalLight parse_light(const Node& n) {
@@ -624,17 +625,23 @@ Scene parse_document(const json& doc, const std::string& source_name) {
   Scene scene;
   scene.source = source_name;
 
-  Node mats = root["materials"];
-  if (!mats.present() || !mats.v->is_object() || mats.v->empty()) mats.fail("non-empty object of materials");
-  std::map<std::string, uint32_t> material_index;
-  for (auto it = mats.v->begin(); it != mats.v->end(); ++it) {
-    if (it.key().empty()) mats[it.key()].fail("non-empty material name", "\"\"");
-    material_index[it.key()] = static_cast<uint32_t>(scene.materials.size());
-    scene.materials.push_back(parse_material(mats[it.key()], it.key()));
-  }
-
   Node objects = root["objects"];
   check_array(objects, true);
+  // The library is needed only by primitive objects (each names a material); glTF objects bring
+  // their files' materials.
+  bool primitives = false;
+  for (size_t i = 0; i < objects.v->size(); ++i) primitives = primitives || object_type(objects[i]) == ObjectType::primitive;
+  Node mats = root["materials"];
+  if ((primitives || mats.present()) && (!mats.present() || !mats.v->is_object() || mats.v->empty()))
+    mats.fail("non-empty object of materials (primitive objects name one)");
+  std::map<std::string, uint32_t> material_index;
+  if (mats.present())
+    for (auto it = mats.v->begin(); it != mats.v->end(); ++it) {
+      if (it.key().empty()) mats[it.key()].fail("non-empty material name", "\"\"");
+      material_index[it.key()] = static_cast<uint32_t>(scene.materials.size());
+      scene.materials.push_back(parse_material(mats[it.key()], it.key()));
+    }
+
   std::map<std::string, uint32_t> mesh_index;
   GltfObjects gltf{std::filesystem::path(source_name).parent_path(), root["camera"].present(), root["sun"].present()};
   for (size_t i = 0; i < objects.v->size(); ++i) {
