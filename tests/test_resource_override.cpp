@@ -14,21 +14,28 @@ namespace {
 
 constexpr uint64_t kBufferBytes = 64;
 
-// "produce": clears image `a` to 1 and fills buffer `buf` with 0x01010101 (or, with `rw`,
-// writes them through read_write slots); "consume": copies them into `b` and `buf2`.
+ResourceDesc image_desc() { return ResourceDesc{Format::rgba32_float, SizeRule::render}; }
+ResourceDesc buffer_desc() {
+  ResourceDesc d;
+  d.format = Format::buffer;
+  d.size = SizeRule::buffer;
+  d.bytes = kBufferBytes;
+  return d;
+}
+PassDecl transfer_pass(const char* name, std::vector<Slot> slots) {
+  PassDecl d;
+  d.name = name;
+  d.kind = PassKind::transfer;
+  d.slots = std::move(slots);
+  return d;
+}
+
+// "produce": clears image `a` to 1 and fills buffer `buf` with 0x01010101; "consume": copies
+// them into `b` and `buf2`.
 class Produce final : public Pass {
  public:
   PassDecl declare(const Scene&, const Settings&) const override {
-    PassDecl d;
-    d.name = "produce";
-    d.kind = PassKind::transfer;
-    ResourceDesc img{Format::rgba32_float, SizeRule::render};
-    ResourceDesc buf;
-    buf.format = Format::buffer;
-    buf.size = SizeRule::buffer;
-    buf.bytes = kBufferBytes;
-    d.slots = {{"a", Access::write, img}, {"buf", Access::write, buf}};
-    return d;
+    return transfer_pass("produce", {{"a", Access::write, image_desc()}, {"buf", Access::write, buffer_desc()}});
   }
   void record(RecordContext& ctx) override {
     const float one[4] = {1, 1, 1, 1};
@@ -40,16 +47,10 @@ class Produce final : public Pass {
 class Consume final : public Pass {
  public:
   PassDecl declare(const Scene&, const Settings&) const override {
-    PassDecl d;
-    d.name = "consume";
-    d.kind = PassKind::transfer;
-    ResourceDesc img{Format::rgba32_float, SizeRule::render};
-    ResourceDesc buf;
-    buf.format = Format::buffer;
-    buf.size = SizeRule::buffer;
-    buf.bytes = kBufferBytes;
-    d.slots = {{"a", Access::read}, {"buf", Access::read}, {"b", Access::write, img}, {"buf2", Access::write, buf}};
-    return d;
+    return transfer_pass("consume", {{"a", Access::read},
+                                     {"buf", Access::read},
+                                     {"b", Access::write, image_desc()},
+                                     {"buf2", Access::write, buffer_desc()}});
   }
   void record(RecordContext& ctx) override {
     ctx.cmd.copy(ctx.image("a"), ctx.image("b"));
