@@ -8,6 +8,7 @@
 #include <random>
 
 #include "harness/attribution/attribution.h"
+#include "harness/attribution/attribution_report.h"
 
 namespace gib::attribution {
 namespace {
@@ -181,6 +182,30 @@ TEST(Attribution, AnExactStageGetsAboutNothing) {
     EXPECT_FALSE(r.stages[0].resolved) << r.roi;  // reported as "not resolved", never ranked
     EXPECT_TRUE(r.stages[1].resolved) << r.roi;
   }
+}
+
+TEST(Attribution, TableJsonAndWaterfallSayTheSame) {
+  const Attribution a = Synthetic().run(2);
+  ReportContext ctx{"synthetic", "chain", "medium", "radiance", "cpu",
+                    {{"probes", {"p"}, "exact"}, {"trace", {"t"}, ""}, {"gather", {"g"}, "x"}, {"denoise", {"d"}, "y"}}};
+  const std::string table = format_table(a, ctx);
+  EXPECT_NE(table.find("trace        no oracle yet (t)"), std::string::npos) << table;
+  EXPECT_NE(table.find("not resolved"), std::string::npos);           // the exact probes stage
+  EXPECT_NE(table.find("largest share: gather"), std::string::npos);
+  const nlohmann::json j = to_json(a, ctx);
+  ASSERT_EQ(j["rois"].size(), 2u);
+  double sum = 0;
+  for (const auto& b : j["rois"][0]["bars"]) sum += b["shapley"].get<double>();
+  EXPECT_NEAR(sum, j["rois"][0]["technique"]["mse"].get<double>() - j["rois"][0]["oracle_floor"]["mse"].get<double>(),
+              1e-12);
+  EXPECT_EQ(j["rois"][0]["subsets"].size(), 8u);
+  EXPECT_EQ(j["rois"][0]["largest"], "gather");
+  const std::string html = waterfall_html(a, ctx);
+  size_t svgs = 0;
+  for (size_t at = html.find("<svg"); at != std::string::npos; at = html.find("<svg", at + 1)) ++svgs;
+  EXPECT_EQ(svgs, 2u);  // one waterfall per ROI
+  EXPECT_EQ(mask_names(a.stages, 5), "probes, denoise");
+  EXPECT_EQ(mask_names(a.stages, 0), "none");
 }
 
 }  // namespace
