@@ -28,7 +28,8 @@ namespace {
 // `budget`: a path tracer's samples per pixel, split over frames (0: the case's frames at the
 // preset's samples per frame, like any technique).
 CaseRender render(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::string& preset, uint32_t seed_offset,
-                  uint32_t at_frame, bool scan, uint32_t budget, const FrameProgress& progress = {}) {
+                  uint32_t at_frame, bool scan, uint32_t budget, const FrameProgress& progress = {},
+                  const RunHooks* hooks = nullptr) {
   const Technique& t = find_technique(run.technique);
   Settings s;
   s.width = c.width;
@@ -70,6 +71,8 @@ CaseRender render(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::s
 
   Executor ex(gpu, c.scene, s, make_passes(t), outputs);
   ex.enable_stability_scan(scan);
+  if (hooks)
+    for (const ResourceOverride& o : hooks->overrides) ex.add_override(o);
   std::vector<FrameResult> results;
   CaseRender r;
   std::vector<uint32_t> eval = reference ? std::vector<uint32_t>{} : evaluation_frames(c);
@@ -123,6 +126,8 @@ CaseRender render(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::s
     if (ex.plan().find(v.resource)) r.views[v.name] = v.draw(ex.read_buffer(v.resource), s.width, s.height);
   for (const TechniquePrintout& p : t.printouts)
     if (ex.plan().find(p.resource)) r.printouts[p.name] = p.print(ex.read_buffer(p.resource), s.width, s.height);
+  if (hooks)
+    for (const std::string& name : hooks->read) r.read[name] = ex.read_bytes(name);
   r.scanned = scan;
   if (scan) r.stability = ex.stability();
   if (reference)
@@ -136,7 +141,7 @@ CaseRender render(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::s
   // rendered without the scan (sweep, update-goldens, the noise floor: its convergence frames
   // are scan-free, and their sum is the cost sweep reports), the case's frames after the first
   // are timed instead; scan-free only when the scan was off (timing.scan_free says).
-  const uint32_t timing_frames = spp_budget && !scan ? 0 : c.timing_frames;
+  const uint32_t timing_frames = (spp_budget && !scan) || hooks ? 0 : c.timing_frames;
   if (timing_frames) {
     r.timing = perf::time_frames(ex, 0, timing_frames);
   } else {
@@ -158,6 +163,11 @@ CaseRender render(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::s
 CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::string& preset,
                        uint32_t seed_offset, uint32_t at_frame, bool scan, const FrameProgress& progress) {
   return render(gpu, c, run, preset, seed_offset, at_frame, scan, run.technique == "reference" ? run.spp : 0, progress);
+}
+
+CaseRender render_case_hooked(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::string& preset,
+                              uint32_t seed_offset, const RunHooks& hooks) {
+  return render(gpu, c, run, preset, seed_offset, 0, false, run.technique == "reference" ? run.spp : 0, {}, &hooks);
 }
 
 CaseRender render_reference(Gpu& gpu, const Case& c, uint32_t seed_offset, uint32_t at_frame,

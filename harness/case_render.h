@@ -9,6 +9,7 @@
 #include "harness/case.h"
 #include "harness/render.h"
 #include "perf/frame_timing.h"
+#include "renderer/graph/executor.h"
 #include "renderer/graph/stability.h"
 
 namespace gib {
@@ -37,6 +38,15 @@ struct CaseRender {
   std::map<std::string, double> stats;          // Technique::stats at the last frame (those in the plan)
   std::map<std::string, FloatImage> views;      // Technique::views at the last frame (those in the plan)
   std::map<std::string, std::string> printouts; // Technique::printouts at the last frame (those in the plan)
+  std::map<std::string, std::vector<uint8_t>> read;  // RunHooks::read: raw bytes after the last frame
+};
+
+// Error attribution's access to a technique run (harness/attribution/): graph overrides in
+// place from the first frame (Executor::add_override), and resources whose raw bytes are read
+// after the last frame (Executor::read_bytes). A hooked run renders no timing frames.
+struct RunHooks {
+  std::vector<ResourceOverride> overrides;
+  std::vector<std::string> read;
 };
 
 // `progress` (may be empty) is called after each frame with (frames done, frames in all).
@@ -49,6 +59,8 @@ using FrameProgress = std::function<void(uint32_t done, uint32_t total)>;
 CaseRender render_case(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::string& preset,
                        uint32_t seed_offset = 0, uint32_t at_frame = 0, bool scan = false,
                        const FrameProgress& progress = {});
+CaseRender render_case_hooked(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::string& preset,
+                              uint32_t seed_offset, const RunHooks& hooks);
 // The committed path-traced reference: technique "reference", preset ultra, the case's
 // reference_spp and reference_seed (seed_offset shifts it: the noise floor renders twice);
 // at_frame (1-based) renders the scene as it is at that frame of a technique run (a per-frame

@@ -4,6 +4,7 @@
 
 #include <exception>
 
+#include "harness/attribution/attribute_command.h"
 #include "harness/compare.h"
 #include "perf/cli.h"
 #include "harness/render.h"
@@ -133,6 +134,20 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1u, 1048576u));
   references->add_flag("--dry-run", dry_run, "print each case's size, target floor, start spp and cache key; render nothing");
 
+  gib::AttributeOptions attr;
+  auto* attribute = app.add_subcommand(
+      "attribute", "error attribution of one case row: each stage's Shapley share of the error, oracles in its place");
+  add_suite_options(attribute, attr.suite);
+  attribute->add_option("--technique", attr.technique, "technique (required)")->required();
+  attribute->add_option("--label", attr.label, "the case run's label (default: the unlabelled run)");
+  attribute->add_option("--preset", attr.preset, "preset (default: the run's first)");
+  attribute->add_option("--seeds", attr.seeds, "renders per subset of oracles (default 2)")->check(CLI::Range(1u, 64u));
+  attribute->add_option("--oracle-seeds", attr.oracle_seeds, "renders the seed-mean oracles average (default 4)")
+      ->check(CLI::Range(1u, 64u));
+  attribute->add_option("--noise-spp", attr.noise_spp,
+                        "spp of the two reference renders the noise floor is scaled from (default 16)")
+      ->check(CLI::Range(1u, 65536u));
+
   std::string report_dir = "out";
   auto* check_report = app.add_subcommand(
       "check-report", "open DIR/index.html in headless Chromium; exit 1 on an error banner or console output");
@@ -177,6 +192,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("sweep")) return gib::cmd_sweep(sweep_opts);
     if (app.got_subcommand("references")) return gib::cmd_references(refs_opts, refresh, dry_run, max_spp);
     if (app.got_subcommand("timing")) return gib::cmd_timing(timing_opts);
+    if (app.got_subcommand("attribute")) return gib::cmd_attribute(attr);
     if (app.got_subcommand("check-report")) return gib::cmd_check_report(report_dir);
     if (app.got_subcommand("merge")) return gib::cmd_merge(mo);
     if (app.got_subcommand("compare")) {

@@ -47,6 +47,7 @@ class DispatchLogCmd final : public Cmd {
   void update(const Buffer& buffer, const void* data, uint32_t bytes) override { inner_.update(buffer, data, bytes); }
   void clear(const Image& image, const float value[4]) override { inner_.clear(image, value); }
   void copy(const Image& src, const Image& dst) override { inner_.copy(src, dst); }
+  void copy(const Buffer& src, const Buffer& dst) override { inner_.copy(src, dst); }
   void timestamp(uint32_t query) override { inner_.timestamp(query); }
   void begin_label(const std::string& name) override { inner_.begin_label(name); }
   void end_label() override { inner_.end_label(); }

@@ -149,6 +149,58 @@ void Executor::zero_persistent() {
   gpu_.submit(std::move(cmd));
 }
 
+// ---------------------------------------------------------------- overrides
+void Executor::add_override(const ResourceOverride& o) {
+  auto running = plan_.running();
+  size_t index = running.size();
+  for (size_t i = 0; i < running.size(); ++i)
+    if (running[i]->name == o.after_pass) index = i;
+  if (index == running.size())
+    throw GraphError(fmt::format("override of '{}': expected a running pass, got '{}'", o.resource, o.after_pass));
+  bool writes = false;
+  for (const Slot& s : decls_[running[index]->decl_index].slots)
+    writes |= s.name == o.resource && (s.access == Access::write || s.access == Access::read_write);
+  if (!writes)
+    throw GraphError(fmt::format("override after pass '{}': expected a resource it writes, got '{}'", o.after_pass,
+                                 o.resource));
+  const ResolvedResource* r = plan_.find(o.resource);
+  const bool buffer = r->desc.format == Format::buffer;
+  const uint64_t expected =
+      buffer ? r->bytes_per_copy : uint64_t(r->width) * r->height * format_bytes_per_texel(r->desc.format);
+  if (o.data.size() != expected)
+    throw GraphError(fmt::format("override of '{}': expected {} bytes ({}), got {}", o.resource, expected,
+                                 buffer ? "the buffer" : fmt::format("{}x{} {}", r->width, r->height,
+                                                                     format_name(r->desc.format)),
+                                 o.data.size()));
+  Override ov;
+  ov.running_index = index;
+  ov.resource = o.resource;
+  if (buffer) {
+    ov.buffer = gpu_.create_buffer(expected, BufferUsage::storage, o.resource + "_override");
+    gpu_.upload(*ov.buffer, o.data.data(), expected);
+  } else {
+    ov.image = gpu_.create_image(r->desc.format, r->width, r->height, o.resource + "_override");
+    gpu_.upload(*ov.image, o.data.data(), expected);
+  }
+  overrides_.push_back(std::move(ov));
+}
+
+void Executor::record_overrides(Cmd& cmd, size_t running_index) {
+  bool any = false;
+  for (const Override& ov : overrides_) {
+    if (ov.running_index != running_index) continue;
+    if (!any) cmd.barrier(kStageCompute | kStageGraphics | kStageTransfer, kStageTransfer);
+    any = true;
+    auto& a = allocations_.at(ov.resource);
+    const int cur = a.ping_pong ? int(frame_ & 1) : 0;  // the copy this frame's passes write
+    if (ov.buffer)
+      cmd.copy(*ov.buffer, *a.buffer[cur]);
+    else
+      cmd.copy(*ov.image, *a.image[cur]);
+  }
+  if (any) cmd.barrier(kStageTransfer, kStageCompute | kStageGraphics | kStageTransfer);
+}
+
 // ---------------------------------------------------------------- stability scan
 struct Executor::ScanTarget {
   std::string resource;
@@ -536,6 +588,7 @@ FrameResult Executor::run_frame() {
     pass_end_query[i] = q;
     cmd->timestamp(q++);
     cmd->end_label();
+    record_overrides(*cmd, i);
     if (per_pass_submit) {
       auto t0 = std::chrono::steady_clock::now();
       gpu_.submit(std::move(cmd));
@@ -616,6 +669,14 @@ std::vector<uint8_t> Executor::read_buffer(const std::string& name) {
   std::vector<uint8_t> out(buf.size());
   if (!out.empty()) gpu_.download(buf, out.data(), out.size());
   return out;
+}
+
+std::vector<uint8_t> Executor::read_bytes(const std::string& name) {
+  auto it = allocations_.find(name);
+  if (it == allocations_.end()) throw GraphError(fmt::format("read_bytes: '{}' is not a resource of the plan", name));
+  if (it->second.buffer[0]) return read_buffer(name);
+  auto& a = it->second;
+  return gpu_.download(*a.image[a.ping_pong ? int((frame_ + 1) & 1) : 0]);
 }
 
 }  // namespace gib

@@ -40,6 +40,18 @@ struct FrameResult {
   uint32_t scan_dispatches = 0;    // stability scan dispatches this frame
 };
 
+// A graph-level override of a named resource: each frame, right after `after_pass` records,
+// `resource` (a resource that pass writes) is overwritten with `data`: an image's tightly
+// packed texels in its own format, or a buffer's bytes (one copy). Error attribution puts a
+// stage's oracle in its output this way, so no technique code changes; the graph stays
+// technique-agnostic (any pass, any written resource). Stability scans after the pass see the
+// override; on a CPU device the copy counts to the pass's host time.
+struct ResourceOverride {
+  std::string after_pass;
+  std::string resource;
+  std::vector<uint8_t> data;
+};
+
 class Executor {
  public:
   Executor(Gpu& gpu, const Scene& scene, Settings settings, std::vector<std::unique_ptr<Pass>> passes,
@@ -66,11 +78,17 @@ class Executor {
   void enable_dispatch_profile(bool on = true) { profile_dispatches_ = on; }
   bool stability_scan_enabled() const { return scan_enabled_; }
   const StabilityReport& stability() const { return stability_; }
+  // Adds an override (above); throws GraphError naming the pass, the resource and what was
+  // expected when the pass does not run, does not write the resource, or the size differs.
+  void add_override(const ResourceOverride& o);
   // Any image resource of the plan as float texels (ids and packed formats decoded to floats).
   FloatImage read(const std::string& name);
   std::vector<std::string> image_names() const;
   // Raw bytes of a buffer resource of the plan (the copy written most recently).
   std::vector<uint8_t> read_buffer(const std::string& name);
+  // Raw bytes of any resource of the plan: a buffer's, or an image's tightly packed texels in
+  // its own format (ids and packed encodings as stored: what add_override takes).
+  std::vector<uint8_t> read_bytes(const std::string& name);
 
  private:
   std::map<std::string, ResolvedSlot> bind_slots(const PassDecl& decl);
@@ -104,6 +122,14 @@ class Executor {
   bool scene_uploaded_ = false;
   bool scan_enabled_ = false;
   bool profile_dispatches_ = false;
+  struct Override {
+    size_t running_index = 0;
+    std::string resource;
+    std::shared_ptr<Image> image;
+    std::shared_ptr<Buffer> buffer;
+  };
+  std::vector<Override> overrides_;
+  void record_overrides(Cmd& cmd, size_t running_index);
   std::vector<ScanTarget> scan_targets_;       // execution order, slot order
   std::vector<std::vector<size_t>> scan_of_pass_;  // per running pass: indices into scan_targets_
   std::shared_ptr<Buffer> scan_results_;

@@ -80,6 +80,32 @@ struct TechniquePrintout {
   std::function<std::string(const std::vector<uint8_t>& bytes, uint32_t width, uint32_t height)> print;
 };
 
+// What a stage's oracle is made from (error attribution, harness/attribution/): renders of the
+// technique as it is with other seeds (each listed resource's raw bytes after the last frame;
+// images as tightly packed texels) and the case's path-traced reference AOVs.
+struct OracleInputs {
+  uint32_t width = 0, height = 0;                                  // render size
+  std::vector<std::map<std::string, std::vector<uint8_t>>> seeds;  // per seed: resource -> bytes
+  std::map<std::string, Format> formats;                           // resource -> its format
+  std::map<std::string, std::pair<uint32_t, uint32_t>> extents;    // image resource -> its size
+  std::map<std::string, FloatImage> reference;                     // contract AOV -> reference
+};
+
+// A stage for error attribution: consecutive passes grouped by what they compute, and its
+// oracle, what the stage should output, written over its outputs after `after_pass` each frame
+// (a graph override: no pass changes). A stage whose `make` is empty has no oracle yet and
+// stays out of the game.
+struct TechniqueStage {
+  std::string name;
+  std::vector<std::string> passes;
+  std::string oracle;                        // what the oracle is, in words
+  std::string after_pass;                    // writes every resource `make` returns
+  std::vector<std::string> seed_reads;       // resources the oracle reads from the seed renders
+  std::vector<std::string> reference_aovs;   // reference AOVs it reads
+  // Resource -> the bytes that replace it (its format; a buffer's one copy).
+  std::function<std::map<std::string, std::vector<uint8_t>>(const OracleInputs&)> make;
+};
+
 struct Technique {
   std::string name;
   std::string description;
@@ -98,6 +124,7 @@ struct Technique {
   std::vector<TechniqueStat> stats;      // GPU counters reported per row
   std::vector<TechniqueView> views;      // debug views drawn from its buffers
   std::vector<TechniquePrintout> printouts;  // debug text printed from its buffers
+  std::vector<TechniqueStage> stages;        // error attribution's stages, in pass order (3-6)
   // The technique's settings struct with its defaults, and the preset table applied to it
   // (row `level` of `presets`). Made by define_settings<T>().
   std::function<std::unique_ptr<TechniqueSettings>()> make_settings;

@@ -223,6 +223,14 @@ void VkCmd::copy(const Image& src_, const Image& dst_) {
   vkCmdCopyImage(cb, src.handle, VK_IMAGE_LAYOUT_GENERAL, dst.handle, VK_IMAGE_LAYOUT_GENERAL, 1, &r);
 }
 
+void VkCmd::copy(const Buffer& src_, const Buffer& dst_) {
+  auto& src = static_cast<const VkBufferObj&>(src_);
+  auto& dst = static_cast<const VkBufferObj&>(dst_);
+  if (src.size() != dst.size()) throw GpuError("copy: buffers differ in size");
+  VkBufferCopy r{0, 0, src.size()};
+  vkCmdCopyBuffer(cb, src.handle, dst.handle, 1, &r);
+}
+
 void VkCmd::timestamp(uint32_t query) {
   if (query >= query_count) throw GpuError(fmt::format("timestamp: query {} out of range ({})", query, query_count));
   vkCmdWriteTimestamp2(cb, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries, query);

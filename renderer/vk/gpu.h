@@ -155,6 +155,7 @@ class Cmd {
   virtual void update(const Buffer& buffer, const void* data, uint32_t bytes) = 0;
   virtual void clear(const Image& image, const float value[4]) = 0;  // float or uint formats
   virtual void copy(const Image& src, const Image& dst) = 0;         // same format and extent
+  virtual void copy(const Buffer& src, const Buffer& dst) = 0;       // same size
   virtual void timestamp(uint32_t query) = 0;                        // bottom-of-pipe
   virtual void begin_label(const std::string& name) = 0;
   virtual void end_label() = 0;

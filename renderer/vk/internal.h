@@ -155,6 +155,7 @@ class VkCmd final : public Cmd {
   void update(const Buffer& buffer, const void* data, uint32_t bytes) override;
   void clear(const Image& image, const float value[4]) override;
   void copy(const Image& src, const Image& dst) override;
+  void copy(const Buffer& src, const Buffer& dst) override;
   void timestamp(uint32_t query) override;
   void begin_label(const std::string& name) override;
   void end_label() override;

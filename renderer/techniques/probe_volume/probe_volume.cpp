@@ -22,6 +22,7 @@
 #include "renderer/techniques/probe_volume/probe_relight/probe_relight.h"
 #include "renderer/techniques/probe_volume/probe_relocate/probe_relocate.h"
 #include "renderer/techniques/probe_volume/probe_select/probe_select.h"
+#include "renderer/techniques/probe_volume/probe_volume_stages.h"
 #include "renderer/techniques/probe_volume/screen_trace/screen_trace.h"
 #include "renderer/techniques/probe_volume/world_trace/world_trace.h"
 #include "renderer/techniques/technique.h"
@@ -192,6 +193,7 @@ Technique probe_volume_technique() {
   };
   t.printouts = {{"probes", "the probes after the last frame per cascade: valid, disabled, indoor, moved; mean luminance and sky visibility by class",
                   "probe_state", print_probes}};
+  t.stages = probe_volume_stages();
   define_settings<ProbeVolumeSettings>(t, kPresets, apply_preset_row);
   t.options = with_common_options(own_options(), {0, 1});
   return t;
