@@ -267,8 +267,8 @@ SeedTable ac_shadows_table(const ojson& j, const std::string& file, const std::s
 // captions' two views (PCF and contact hardening each; columns shot_1, shot_2) and the
 // reflections' profiler capture (column rt_cubemaps). Our reflections_rt_cubemap traces and
 // combines in one pass, so it is compared with the sum of the seed's BVH trace and combine;
-// ssdo and ssgi with the seed's combined SSR + SSDO + SSGI pass (we have no SSR: the screen
-// trace is inside reflections_rt_cubemap). Ray binning has no pass of ours; cubemap_capture is
+// ssdo_ssgi (or, with ss_combined 0, ssdo and ssgi) with the seed's combined SSR + SSDO + SSGI
+// pass (we have no SSR there: the screen trace is inside reflections_rt_cubemap). Ray binning has no pass of ours; cubemap_capture is
 // baked offline in the game (no row).
 SeedTable gow_table(const ojson& j, const std::string& file) {
   SeedTable t;
@@ -278,6 +278,7 @@ SeedTable gow_table(const ojson& j, const std::string& file) {
                 {"shadows_contact_hardening", "contact_hardening"},
                 {"reflections_rt_cubemap", "bvh_trace_plus_combine_half_res"},
                 {"reflections_resolve", "resolve_full_res"},
+                {"ssdo_ssgi", "ssr_ssdo_ssgi"},
                 {"ssdo", "ssr_ssdo_ssgi"},
                 {"ssgi", "ssr_ssdo_ssgi"}};
   t.own_workload = true;

@@ -2,7 +2,9 @@
 // pattern's CPU mirror (screen_space_pattern.h) against known answers and against the GLSL
 // (tests/gow_ss_test.comp); known answers of ssdo and ssgi on the GPU (an open floor is
 // unoccluded and lit exactly as the inverse-square law says; a box darkens the floor behind it
-// only with ssdo on; nothing on screen to bounce from gives no indirect light); culling.
+// only with ssdo on; nothing on screen to bounce from gives no indirect light), each in both
+// forms (ssdo_ssgi, the combined pass, and the separate ssdo and ssgi: option ss_combined);
+// culling.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -145,25 +147,28 @@ using test::render_gow;
 TEST_F(GowSsGpu, OpenFloorIsUnoccluded) {
   const Vec3 light{0.3f, 1.0f, -0.2f};
   Scene scene = room_scene(light);
-  for (double on : {1.0, 0.0}) {
-    auto img = render_gow(gpu(), scene, ss_settings({{"ssdo", on}}), {"ssdo_cone", "ssdo_local_light", "gbuffer_position"});
-    double worst = 0, lo = 1;
-    uint32_t floor_px = 0;
-    for (uint32_t y = 0; y < kH; ++y)
-      for (uint32_t x = 0; x < kW; ++x) {
-        if (img["gbuffer_position"].at(x, y, 3) == 0.0f) continue;
-        const Vec3 p{img["gbuffer_position"].at(x, y, 0), img["gbuffer_position"].at(x, y, 1),
-                     img["gbuffer_position"].at(x, y, 2)};
-        const Vec3 d = light - p;
-        const double d2 = dot(d, d), c = d.y / std::sqrt(d2);
-        const double expect = 0.5 * c / kPi * 2.0 / d2;
-        worst = std::max(worst, std::fabs(img["ssdo_local_light"].at(x, y, 0) - expect) / expect);
-        lo = std::min(lo, double(img["ssdo_cone"].at(x, y, 3)));
-        ++floor_px;
-      }
-    EXPECT_GT(floor_px, kW * kH / 2);
-    EXPECT_EQ(lo, 1.0) << "ssdo " << on;
-    EXPECT_LT(worst, 1e-3) << "ssdo " << on;
+  for (double combined : {1.0, 0.0}) {
+    for (double on : {1.0, 0.0}) {
+      auto img = render_gow(gpu(), scene, ss_settings({{"ssdo", on}, {"ss_combined", combined}}),
+                            {"ssdo_cone", "ssdo_local_light", "gbuffer_position"});
+      double worst = 0, lo = 1;
+      uint32_t floor_px = 0;
+      for (uint32_t y = 0; y < kH; ++y)
+        for (uint32_t x = 0; x < kW; ++x) {
+          if (img["gbuffer_position"].at(x, y, 3) == 0.0f) continue;
+          const Vec3 p{img["gbuffer_position"].at(x, y, 0), img["gbuffer_position"].at(x, y, 1),
+                       img["gbuffer_position"].at(x, y, 2)};
+          const Vec3 d = light - p;
+          const double d2 = dot(d, d), c = d.y / std::sqrt(d2);
+          const double expect = 0.5 * c / kPi * 2.0 / d2;
+          worst = std::max(worst, std::fabs(img["ssdo_local_light"].at(x, y, 0) - expect) / expect);
+          lo = std::min(lo, double(img["ssdo_cone"].at(x, y, 3)));
+          ++floor_px;
+        }
+      EXPECT_GT(floor_px, kW * kH / 2);
+      EXPECT_EQ(lo, 1.0) << "ssdo " << on << " combined " << combined;
+      EXPECT_LT(worst, 1e-3) << "ssdo " << on << " combined " << combined;
+    }
   }
 }
 
@@ -178,33 +183,36 @@ TEST_F(GowSsGpu, BoxOccludesTheFloorBehindIt) {
   // Light low behind the box, away from the camera: the floor on the camera's side is behind
   // the box as the light sees it.
   Scene scene = room_scene({0.0f, 0.6f, -1.5f}, json::array({box}));
-  double behind[2] = {0, 0}, open[2] = {0, 0};
-  for (int on : {0, 1}) {
-    auto img = render_gow(gpu(), scene, ss_settings({{"ssdo", on}}), {"ssdo_local_light", "gbuffer_position"});
-    uint32_t nb = 0, no = 0;
-    for (uint32_t y = 0; y < kH; ++y)
-      for (uint32_t x = 0; x < kW; ++x) {
-        const FloatImage& pos = img["gbuffer_position"];
-        if (pos.at(x, y, 3) == 0.0f || pos.at(x, y, 1) > 0.01f) continue;  // floor only
-        const float px = pos.at(x, y, 0), pz = pos.at(x, y, 2);
-        const float v = img["ssdo_local_light"].at(x, y, 0);
-        if (std::fabs(px) < 0.4f && pz > 0.35f && pz < 0.6f) {
-          behind[on] += v;
-          ++nb;
-        } else if (std::fabs(px) > 3.0f) {
-          open[on] += v;
-          ++no;
+  for (double combined : {1.0, 0.0}) {
+    double behind[2] = {0, 0}, open[2] = {0, 0};
+    for (int on : {0, 1}) {
+      auto img = render_gow(gpu(), scene, ss_settings({{"ssdo", on}, {"ss_combined", combined}}),
+                            {"ssdo_local_light", "gbuffer_position"});
+      uint32_t nb = 0, no = 0;
+      for (uint32_t y = 0; y < kH; ++y)
+        for (uint32_t x = 0; x < kW; ++x) {
+          const FloatImage& pos = img["gbuffer_position"];
+          if (pos.at(x, y, 3) == 0.0f || pos.at(x, y, 1) > 0.01f) continue;  // floor only
+          const float px = pos.at(x, y, 0), pz = pos.at(x, y, 2);
+          const float v = img["ssdo_local_light"].at(x, y, 0);
+          if (std::fabs(px) < 0.4f && pz > 0.35f && pz < 0.6f) {
+            behind[on] += v;
+            ++nb;
+          } else if (std::fabs(px) > 3.0f) {
+            open[on] += v;
+            ++no;
+          }
         }
-      }
-    ASSERT_GT(nb, 4u);
-    ASSERT_GT(no, 4u);
-    behind[on] /= nb;
-    open[on] /= no;
+      ASSERT_GT(nb, 4u);
+      ASSERT_GT(no, 4u);
+      behind[on] /= nb;
+      open[on] /= no;
+    }
+    std::printf("ss_combined %g: floor behind the box: ssdo off %.4g, on %.4g; open floor off %.4g, on %.4g\n",
+                combined, behind[0], behind[1], open[0], open[1]);
+    EXPECT_LT(behind[1], 0.5 * behind[0]);
+    EXPECT_NEAR(open[1], open[0], 1e-3 * open[0]);
   }
-  std::printf("floor behind the box: ssdo off %.4g, on %.4g; open floor off %.4g, on %.4g\n", behind[0], behind[1],
-              open[0], open[1]);
-  EXPECT_LT(behind[1], 0.5 * behind[0]);
-  EXPECT_NEAR(open[1], open[0], 1e-3 * open[0]);
 }
 
 // Nothing on screen to bounce from (an open floor under a constant sky): no indirect light,
@@ -217,20 +225,24 @@ TEST_F(GowSsGpu, SsgiFindsNothingOnAnOpenFloor) {
               {"sky", {{"type", "constant"}, {"radiance", {1, 1, 1}}}},
               {"camera", {{"position", {0, 2.5, 3}}, {"target", {0, 0, 0}}, {"fov_y_deg", 60}}}};
   Scene scene = parse_scene(doc, "ssgi-open");
-  auto img = render_gow(gpu(), scene, ss_settings(), {"ssgi_indirect", "gow_direct", "gow_radiance"});
-  double hi = 0, diff = 0;
-  for (uint32_t y = 0; y < kH; ++y)
-    for (uint32_t x = 0; x < kW; ++x)
-      for (uint32_t c = 0; c < 3; ++c) {
-        hi = std::max(hi, double(img["ssgi_indirect"].at(x, y, c)));
-        diff = std::max(diff, double(std::fabs(img["gow_radiance"].at(x, y, c) - img["gow_direct"].at(x, y, c))));
-      }
-  EXPECT_EQ(hi, 0.0);
-  EXPECT_EQ(diff, 0.0);
+  for (double combined : {1.0, 0.0}) {
+    auto img = render_gow(gpu(), scene, ss_settings({{"ss_combined", combined}}),
+                          {"ssgi_indirect", "gow_direct", "gow_radiance"});
+    double hi = 0, diff = 0;
+    for (uint32_t y = 0; y < kH; ++y)
+      for (uint32_t x = 0; x < kW; ++x)
+        for (uint32_t c = 0; c < 3; ++c) {
+          hi = std::max(hi, double(img["ssgi_indirect"].at(x, y, c)));
+          diff = std::max(diff, double(std::fabs(img["gow_radiance"].at(x, y, c) - img["gow_direct"].at(x, y, c))));
+        }
+    EXPECT_EQ(hi, 0.0) << "combined " << combined;
+    EXPECT_EQ(diff, 0.0) << "combined " << combined;
+  }
 }
 
 // ssdo runs only where it has work: a scene without local lights culls it (and ssgi reads no
-// local light), and so does local_shadows 1 (direct_lighting shadows them by rays).
+// local light), and so does local_shadows 1 (direct_lighting shadows them by rays). One form
+// runs: ss_combined 1 (the default) culls ssdo and ssgi, 0 culls ssdo_ssgi.
 TEST(GowSsGraph, SsdoCulledWithoutUnshadowedLocalLights) {
   const Technique& t = find_technique("gow-ragnarok");
   auto plan_of = [&](const Scene& scene, const Settings& s) {
@@ -250,10 +262,17 @@ TEST(GowSsGraph, SsdoCulledWithoutUnshadowedLocalLights) {
     return false;
   };
   Scene lit = room_scene({0, 1, 0});
-  const Settings s = apply_preset(t, "low", Settings{});
+  const Settings combined = apply_preset(t, "low", Settings{});
+  std::string why;
+  EXPECT_TRUE(runs(plan_of(lit, combined), "ssdo_ssgi"));
+  for (const char* separate : {"ssdo", "ssgi"}) {
+    EXPECT_FALSE(runs(plan_of(lit, combined), separate, &why)) << separate;
+    EXPECT_EQ(why, "outputs unused") << separate;
+  }
+  const Settings s = apply_options(t, combined, {{"ss_combined", 0}});
+  EXPECT_FALSE(runs(plan_of(lit, s), "ssdo_ssgi"));
   EXPECT_TRUE(runs(plan_of(lit, s), "ssdo"));
   EXPECT_TRUE(runs(plan_of(lit, s), "ssgi"));
-  std::string why;
   EXPECT_FALSE(runs(plan_of(lit, apply_options(t, s, {{"local_shadows", 1}})), "ssdo", &why));
   EXPECT_EQ(why, "outputs unused");
   json doc = {{"materials", {{"grey", {{"albedo", {0.5, 0.5, 0.5}}}}}},

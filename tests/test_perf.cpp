@@ -443,6 +443,7 @@ TEST(PerfProfiles, RepoDataLoads) {
   EXPECT_NEAR(refl->ms.at("bvh_trace_plus_combine_half_res"), 1.33 + 0.68, 1e-12);  // one pass of ours does both
   EXPECT_DOUBLE_EQ(refl->ms.at("resolve_full_res"), 1.36);
   EXPECT_DOUBLE_EQ(refl->ms.at("ssr_ssdo_ssgi"), 4.23);
+  EXPECT_EQ(gow.pass_row.at("ssdo_ssgi"), "ssr_ssdo_ssgi");
   EXPECT_EQ(gow.pass_row.at("ssdo"), "ssr_ssdo_ssgi");
   EXPECT_EQ(gow.pass_row.at("ssgi"), "ssr_ssdo_ssgi");
   EXPECT_EQ(gow.pass_row.count("cubemap_capture"), 0u);  // baked offline in the game

@@ -20,6 +20,7 @@
 #include "renderer/techniques/gow_ragnarok/shadows_pcf/shadows_pcf.h"
 #include "renderer/techniques/gow_ragnarok/include/gow_screen_space_shared.h"
 #include "renderer/techniques/gow_ragnarok/ssdo/ssdo.h"
+#include "renderer/techniques/gow_ragnarok/ssdo_ssgi/ssdo_ssgi.h"
 #include "renderer/techniques/gow_ragnarok/ssgi/ssgi.h"
 #include "renderer/techniques/technique.h"
 
@@ -56,6 +57,10 @@ void apply_row(GowRagnarokSettings& s, const Preset& p) {
 
 }  // namespace
 
+bool gow_unshadowed_local_lights(const Scene& scene, const Settings& s) {
+  return scene.features().has(Feature::local_lights) && !s.params<GowRagnarokSettings>().local_lights;
+}
+
 Technique gow_ragnarok_technique() {
   Technique t;
   t.name = "gow-ragnarok";
@@ -71,6 +76,7 @@ Technique gow_ragnarok_technique() {
               {"direct_lighting", make_direct_lighting_pass},
               {"ssdo", make_ssdo_pass},
               {"ssgi", make_ssgi_pass},
+              {"ssdo_ssgi", make_ssdo_ssgi_pass},
               {"cubemap_capture", make_cubemap_capture_pass},
               {"reflections_rt_cubemap", make_reflections_rt_cubemap_pass},
               {"reflections_resolve", make_reflections_resolve_pass}};
@@ -138,6 +144,12 @@ Technique gow_ragnarok_technique() {
                  &G::minmax_early_out),
           option("local_shadows", "local lights: 1 shadow rays (direct_lighting), 0 no shadow maps (ssdo occludes them)",
                  0, 1, &DirectLightingParams::local_lights),
+          option("ss_combined",
+                 "SSDO and SSGI: 1 one pass sharing G-buffer reads and marches (ssdo_ssgi, as shipped), 0 the separate "
+                 "ssdo and ssgi passes",
+                 0, 1, &G::ss_combined),
+          option("ss_history", "frames ssdo_ssgi's temporal accumulation averages at most (1: this frame alone)", 1, 4096,
+                 &G::ss_history),
           option("ssdo", "screen-space directional occlusion of the unshadowed local lights (0: they leak)", 0, 1,
                  &G::ssdo),
           option("ssdo_radius", "metres ssdo marches per direction", 0.01, 100, &G::ssdo_radius),

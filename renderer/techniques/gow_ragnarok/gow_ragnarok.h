@@ -6,6 +6,8 @@
 
 namespace gib {
 
+struct Scene;
+
 enum class ShadowFilter : uint32_t { pcf = 0, contact_hardening = 1 };
 
 struct GowRagnarokSettings : TechniqueSettingsOf<GowRagnarokSettings>, DirectLightingParams, GowReflectionParams {
@@ -26,6 +28,8 @@ struct GowRagnarokSettings : TechniqueSettingsOf<GowRagnarokSettings>, DirectLig
   // Screen-space terms (ssdo/, ssgi/; gow_ragnarok.md "SSDO and SSGI"). Local lights have no
   // shadow maps (DirectLightingParams::local_lights false, option local_shadows 0): ssdo lights
   // them through its directional occlusion.
+  bool ss_combined = true;           // ssdo_ssgi (one pass, as shipped); false: the separate ssdo and ssgi passes
+  uint32_t ss_history = 16;          // ssdo_ssgi: frames its temporal accumulation averages at most (1: none)
   bool ssdo = true;                  // off: unshadowed local lights light everything in reach (the leak)
   float ssdo_radius = 1.0f;          // m marched per direction
   float ssdo_thickness = 1.0f;       // m: a depth-buffer surface nearer than this in front of the march blocks it
@@ -41,5 +45,9 @@ struct GowRagnarokSettings : TechniqueSettingsOf<GowRagnarokSettings>, DirectLig
     local_lights = false;                         // unshadowed: ssdo lights them
   }
 };
+
+// The scene has local lights and direct_lighting leaves them to SSDO (local_shadows 0): ssdo
+// (or ssdo_ssgi) lights them.
+bool gow_unshadowed_local_lights(const Scene& scene, const Settings& s);
 
 }  // namespace gib

@@ -1,6 +1,7 @@
 // Screen-space marching shared by ssdo and ssgi (gow_ragnarok.md, "SSDO and SSGI"); the
 // sampling pattern is gow_ss_pattern.glsl.
-// The includer includes frame.glsl, hash.glsl, sampling.glsl and binds gb_position (rgba32f).
+// The includer includes frame.glsl, hash.glsl, sampling.glsl, finite.glsl and binds gb_position
+// (rgba32f) and gb_normal (rgba16f).
 #ifndef GOW_SCREEN_SPACE_GLSL
 #define GOW_SCREEN_SPACE_GLSL
 
@@ -28,29 +29,67 @@ float gow_ss_surface_distance(vec3 q, vec3 hp, vec3 hn) {
   return t > 0.0 ? t : own;
 }
 
+// The depth-buffer surface at march point q: sets h to the pixel q projects to and returns how
+// far that pixel's surface lies in front of q along the camera ray (gow_ss_surface_distance),
+// or a negative value where nothing can block there (off screen: `off` set; behind the camera:
+// `off` set; sky). The includer binds gb_normal (rgba16f) too.
+float gow_ss_gap(vec3 q, out ivec2 h, out bool off) {
+  ivec2 size = ivec2(gib_render_size());
+  vec3 sp = gow_ss_project(q);
+  h = ivec2(floor(sp.xy));
+  off = sp.z <= 0.0 || any(lessThan(h, ivec2(0))) || any(greaterThanEqual(h, size));
+  if (off) return -1.0;
+  vec4 hp = imageLoad(gb_position, h);
+  if (hp.w == 0.0) return -1.0;  // sky: nothing in front of the march point
+  float dq = length(q - gib_frame.camera_pos.xyz);
+  float gap = dq - gow_ss_surface_distance(q, hp.xyz, imageLoad(gb_normal, h).xyz);
+  // In front by more than a relative epsilon (the surface the march starts on is never its own
+  // blocker).
+  return gap > 1e-3 * dq ? gap : -1.0;
+}
+
 // Marches from x along d to `radius` in `steps` equal steps (the first at `jitter` of a step):
 // returns the pixel of the first depth-buffer surface in front of the march point by at most
 // `thickness` (a blocker), or ivec2(-1) where the march leaves the screen or finds none.
-// The includer binds gb_normal (rgba16f) too.
 ivec2 gow_ss_march(vec3 x, vec3 d, float radius, uint steps, float thickness, float jitter) {
-  ivec2 size = ivec2(gib_render_size());
-  vec3 cam = gib_frame.camera_pos.xyz;
   for (uint s = 0u; s < steps; ++s) {
-    float t = radius * (float(s) + jitter) / float(steps);
-    vec3 q = x + d * t;
-    vec3 sp = gow_ss_project(q);
-    if (sp.z <= 0.0) return ivec2(-1);
-    ivec2 h = ivec2(floor(sp.xy));
-    if (any(lessThan(h, ivec2(0))) || any(greaterThanEqual(h, size))) return ivec2(-1);
-    vec4 hp = imageLoad(gb_position, h);
-    if (hp.w == 0.0) continue;  // sky: nothing in front of the march point
-    float dq = length(q - cam);
-    // In front by more than a relative epsilon (the surface the march starts on is never its
-    // own blocker), and by less than the thickness.
-    float gap = dq - gow_ss_surface_distance(q, hp.xyz, imageLoad(gb_normal, h).xyz);
-    if (gap > 1e-3 * dq && gap < thickness) return h;
+    ivec2 h;
+    bool off;
+    float gap = gow_ss_gap(x + d * (radius * (float(s) + jitter) / float(steps)), h, off);
+    if (off) return ivec2(-1);
+    if (gap > 0.0 && gap < thickness) return h;
   }
   return ivec2(-1);
+}
+
+// The G-buffer normal at p, unit; a broken one (NaN texel) faces the camera when `guard` is set
+// (as direct_lighting's guard), else it stays and poisons the output, as the lighting's would.
+vec3 gow_ss_normal(ivec2 p, bool guard) {
+  vec3 n = imageLoad(gb_normal, p).xyz;
+  if (guard && !(gib_finite(n) && dot(n, n) > 0.25)) {
+    vec3 o, d;
+    gib_camera_ray(vec2(p) + 0.5, o, d);
+    n = -d;
+  }
+  return normalize(n);
+}
+
+// Visibility towards wi from the marched directions `known` (bit i: direction i of `dirs`, turned
+// by `turn` around n): their open (1) / blocked (0) results weighted by a lobe around wi,
+// exp((cos - 1) / kSsLobe) (0.03 at 45 degrees, 4e-6 at 90), so a light above a table top reads
+// the blocked directions near it, not a mean of the hemisphere (a bent cone misreads such a ring
+// of open directions round a blocked top). Where no direction is near wi (a light at the
+// horizon), the open fraction.
+const float kSsLobe = 0.08;
+float gow_ss_visibility(uint open_bits, uint known, uint dirs, float turn, vec3 n, vec3 wi, float open_fraction) {
+  float num = 0.0, den = 0.0;
+  for (uint i = 0u; i < dirs; ++i) {
+    if ((known & (1u << i)) == 0u) continue;
+    float w = exp((dot(gow_ss_direction(i, dirs, turn, n), wi) - 1.0) / kSsLobe);
+    den += w;
+    if ((open_bits & (1u << i)) != 0u) num += w;
+  }
+  return den > 1e-3 ? num / den : open_fraction;
 }
 
 #endif

@@ -139,22 +139,27 @@ float gow_filter_radius(ShadowCascadePush p) {
 }
 
 #ifdef GOW_SHADOW_MAP_BOUND
-// Filtered comparison at (u, v) of cascade `cascade` against depth z: the four nearest texels
-// compared (1: lit, the stored surface is no nearer the sun than z) and bilinearly weighted;
-// texels are clamped to the cascade's own square.
-float gow_shadow_tap(uint cascade, vec2 uv, float z, float res) {
+// Filtered comparisons at (u, v) of cascade `cascade` against two depths z.x and z.y from one
+// read of the four nearest texels: each texel compared (1: lit, the stored surface is no nearer
+// the sun than z) and bilinearly weighted; texels are clamped to the cascade's own square.
+vec2 gow_shadow_tap2(uint cascade, vec2 uv, vec2 z, float res) {
   vec2 t = uv * res - 0.5;
   vec2 i0 = floor(t);
   vec2 f = t - i0;
   ivec2 a = ivec2(clamp(i0, vec2(0.0), vec2(res - 1.0)));
   ivec2 b = ivec2(clamp(i0 + 1.0, vec2(0.0), vec2(res - 1.0)));
   int x0 = int(cascade) * int(res);
-  float l00 = imageLoad(shadow_map, ivec2(x0 + a.x, a.y)).x >= z ? 1.0 : 0.0;
-  float l10 = imageLoad(shadow_map, ivec2(x0 + b.x, a.y)).x >= z ? 1.0 : 0.0;
-  float l01 = imageLoad(shadow_map, ivec2(x0 + a.x, b.y)).x >= z ? 1.0 : 0.0;
-  float l11 = imageLoad(shadow_map, ivec2(x0 + b.x, b.y)).x >= z ? 1.0 : 0.0;
+  float d00 = imageLoad(shadow_map, ivec2(x0 + a.x, a.y)).x;
+  float d10 = imageLoad(shadow_map, ivec2(x0 + b.x, a.y)).x;
+  float d01 = imageLoad(shadow_map, ivec2(x0 + a.x, b.y)).x;
+  float d11 = imageLoad(shadow_map, ivec2(x0 + b.x, b.y)).x;
+  vec2 l00 = vec2(greaterThanEqual(vec2(d00), z)), l10 = vec2(greaterThanEqual(vec2(d10), z));
+  vec2 l01 = vec2(greaterThanEqual(vec2(d01), z)), l11 = vec2(greaterThanEqual(vec2(d11), z));
   return mix(mix(l00, l10, f.x), mix(l01, l11, f.x), f.y);
 }
+
+// One filtered comparison (gow_shadow_tap2 with one depth).
+float gow_shadow_tap(uint cascade, vec2 uv, float z, float res) { return gow_shadow_tap2(cascade, uv, vec2(z), res).x; }
 #endif
 
 #endif

@@ -17,22 +17,7 @@ layout(set = 0, binding = kSsdoBindLight, rgba32f) uniform writeonly image2D out
 layout(set = 0, binding = kSsdoBindCone, rgba16f) uniform writeonly image2D out_cone;
 layout(push_constant) uniform Push { ScreenSpacePush push; };
 #include "renderer/techniques/gow_ragnarok/include/gow_screen_space.glsl"
-
-// Visibility towards wi from the marched directions: their open (1) / blocked (0) results
-// weighted by a lobe around wi, exp((cos - 1) / kLobe) (0.03 at 45 degrees, 4e-6 at 90), so a
-// light above a table top reads the blocked directions near it, not a mean of the hemisphere
-// (a bent cone misreads such a ring of open directions round a blocked top). Where no direction
-// is near wi (a light at the horizon), the open fraction.
-const float kLobe = 0.08;
-float directional_visibility(uint open_bits, uint dirs, float turn, vec3 n, vec3 wi, float open_fraction) {
-  float num = 0.0, den = 0.0;
-  for (uint i = 0u; i < dirs; ++i) {
-    float w = exp((dot(gow_ss_direction(i, dirs, turn, n), wi) - 1.0) / kLobe);
-    den += w;
-    if ((open_bits & (1u << i)) != 0u) num += w;
-  }
-  return den > 1e-3 ? num / den : open_fraction;
-}
+#include "renderer/techniques/gow_ragnarok/include/gow_ss_lights.glsl"
 
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -44,17 +29,7 @@ void main() {
     return;
   }
   vec3 x = pos.xyz;
-  vec3 n = imageLoad(gb_normal, p).xyz;
-  if (!(gib_finite(n) && dot(n, n) > 0.25)) {
-    // A broken normal (NaN texel) faces the camera when guarded (as direct_lighting), else it
-    // stays and poisons the output, as the lighting's would.
-    if (push.counts.w != 0u) {
-      vec3 o, d;
-      gib_camera_ray(vec2(p) + 0.5, o, d);
-      n = -d;
-    }
-  }
-  n = normalize(n);
+  vec3 n = gow_ss_normal(p, push.counts.w != 0u);
   // Open directions: bit i for direction i (kSsMaxDirections <= 32); the bent normal and
   // open fraction (ssdo_cone: ambient occlusion, a debug view).
   vec4 cone = vec4(n, 1.0);
@@ -74,17 +49,7 @@ void main() {
     float v = float(bitCount(open_bits)) / float(dirs);
     cone = vec4(dot(bent, bent) > 0.0 ? normalize(bent) : n, v);
   }
-  vec3 albedo = imageLoad(gb_albedo, p).rgb;
-  vec3 result = vec3(0.0);
-  for (uint i = 0u; i < gib_light_count(); ++i) {
-    vec3 wi;
-    float dist;
-    vec3 e = gib_local_light(gib_lights[i], x, wi, dist);
-    float c = dot(n, wi);
-    if (c <= 0.0 || all(equal(e, vec3(0.0)))) continue;
-    float vis = cone.w >= 1.0 ? 1.0 : directional_visibility(open_bits, dirs, rj.x, n, wi, cone.w);
-    result += albedo * (c / GIB_PI) * e * vis;
-  }
+  vec3 result = gow_ss_local_light(x, n, imageLoad(gb_albedo, p).rgb, open_bits, 0xffffffffu, dirs, rj.x, cone.w);
   imageStore(out_light, p, vec4(result, 1.0));
   imageStore(out_cone, p, cone);
 }

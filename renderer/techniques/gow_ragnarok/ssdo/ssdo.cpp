@@ -12,6 +12,7 @@ class SsdoPass final : public Pass {
     const auto& g = s.params<GowRagnarokSettings>();
     PassDecl d;
     d.name = "ssdo";
+    if (g.ss_combined) return d;  // ssdo_ssgi runs: nothing to write, culled
     d.needs = Feature::local_lights;
     d.slots = {{"gbuffer_position", Access::read},
                {"gbuffer_normal", Access::read},

@@ -34,13 +34,7 @@ void main() {
   vec3 indirect = vec3(0.0);
   vec4 pos = imageLoad(gb_position, p);
   if (pos.w != 0.0 && push.counts.z != 0u) {
-    vec3 n = imageLoad(gb_normal, p).xyz;
-    if (push.counts.w != 0u && !(gib_finite(n) && dot(n, n) > 0.25)) {
-      vec3 o, d;
-      gib_camera_ray(vec2(p) + 0.5, o, d);
-      n = -d;  // as direct_lighting's guard
-    }
-    n = normalize(n);
+    vec3 n = gow_ss_normal(p, push.counts.w != 0u);
     vec2 rj = gow_ss_rotation(gib_seed(), gib_frame_index(), uvec2(p), kSsStreamSsgi);
     uint dirs = push.counts.x;
     vec3 gathered = vec3(0.0);

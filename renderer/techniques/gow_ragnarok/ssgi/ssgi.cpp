@@ -6,11 +6,6 @@
 namespace gib {
 namespace {
 
-// ssdo lights the local lights (it runs): the scene has some and direct_lighting leaves them.
-bool reads_ssdo(const Scene& scene, const Settings& s) {
-  return scene.features().has(Feature::local_lights) && !s.params<GowRagnarokSettings>().local_lights;
-}
-
 class SsgiPass final : public Pass {
  public:
   PassDecl declare(const Scene& scene, const Settings& s) const override {
@@ -18,11 +13,12 @@ class SsgiPass final : public Pass {
     const ResourceDesc out = ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values());
     PassDecl d;
     d.name = "ssgi";
+    if (g.ss_combined) return d;  // ssdo_ssgi runs: nothing to write, culled
     d.slots = {{"gbuffer_position", Access::read}, {"gbuffer_normal", Access::read},
                {"gbuffer_albedo", Access::read},   {"gbuffer_emissive", Access::read},
                {"direct_light", Access::read},     {"gow_direct", Access::write, out},
                {"ssgi_indirect", Access::write, out}, {"gow_radiance", Access::write, out}};
-    if (reads_ssdo(scene, s)) d.slots.push_back({"ssdo_local_light", Access::read});
+    if (gow_unshadowed_local_lights(scene, s)) d.slots.push_back({"ssdo_local_light", Access::read});
     const double px = double(s.width) * s.height;
     d.work = {{"march_steps", g.ssgi ? px * g.ssgi_directions * g.ssgi_steps : 0.0}};
     return d;
@@ -31,7 +27,7 @@ class SsgiPass final : public Pass {
   void record(RecordContext& ctx) override {
     using namespace glsl;
     const auto& g = ctx.settings.params<GowRagnarokSettings>();
-    const bool local = reads_ssdo(ctx.scene, ctx.settings);
+    const bool local = gow_unshadowed_local_lights(ctx.scene, ctx.settings);
     ScreenSpacePush push{{g.ssgi_radius, g.ssgi_thickness, 0.0f, 0.0f},
                          {g.ssgi_directions, g.ssgi_steps, g.ssgi ? 1u : 0u, ctx.settings.nan_guards ? 1u : 0u}};
     record_compute(ctx, {.shader = "ssgi.comp",

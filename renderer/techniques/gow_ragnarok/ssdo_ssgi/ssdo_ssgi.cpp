@@ -1,0 +1,89 @@
+#include "renderer/techniques/gow_ragnarok/ssdo_ssgi/ssdo_ssgi.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "renderer/techniques/gow_ragnarok/gow_ragnarok.h"
+#include "renderer/techniques/gow_ragnarok/ssdo_ssgi/ssdo_ssgi_shared.h"
+
+namespace gib {
+namespace {
+
+// The combined march: the shorter of the two terms' step lengths, out to the longer radius.
+struct CombinedMarch {
+  uint32_t directions, steps;
+  float step;
+};
+CombinedMarch combined_march(const GowRagnarokSettings& g) {
+  const float step = std::min(g.ssdo_radius / float(g.ssdo_steps), g.ssgi_radius / float(g.ssgi_steps));
+  const float reach = std::max(g.ssdo ? g.ssdo_radius : 0.0f, g.ssgi ? g.ssgi_radius : 0.0f);
+  const auto steps = uint32_t(std::ceil(reach / step - 1e-4f));
+  return {std::max(g.ssdo_directions, g.ssgi_directions), std::min(steps, 4 * glsl::kSsMaxSteps), step};
+}
+
+class SsdoSsgiPass final : public Pass {
+ public:
+  PassDecl declare(const Scene& scene, const Settings& s) const override {
+    const auto& g = s.params<GowRagnarokSettings>();
+    PassDecl d;
+    d.name = "ssdo_ssgi";
+    if (!g.ss_combined) return d;  // the separate passes run: nothing to write, culled
+    const ResourceDesc out = ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values());
+    d.slots = {{"gbuffer_position", Access::read}, {"gbuffer_normal", Access::read},
+               {"gbuffer_albedo", Access::read},   {"gbuffer_emissive", Access::read},
+               {"direct_light", Access::read},     {"gow_direct", Access::write, out},
+               {"gow_radiance", Access::write, out}};
+    ResourceDesc history = out;
+    history.persistent = true;  // the temporal accumulation's history
+    d.slots.push_back({"ssgi_indirect", Access::write, history});
+    d.slots.push_back({"ssgi_indirect", Access::read_prev});
+    if (gow_unshadowed_local_lights(scene, s)) {
+      // Last frame's: the bounce's local light and the accumulation's history.
+      d.slots.push_back({"ssdo_local_light", Access::write, history});
+      d.slots.push_back({"ssdo_local_light", Access::read_prev});
+      d.slots.push_back({"ssdo_cone", Access::write,
+                         ResourceDesc{Format::rgba16_float, SizeRule::render}.with(finite_values())});
+    }
+    const CombinedMarch m = combined_march(g);
+    const double blocks = std::ceil(s.width / 2.0) * std::ceil(s.height / 2.0);
+    d.work = {{"march_steps", g.ssdo || g.ssgi ? blocks * m.directions / 4.0 * m.steps : 0.0}};
+    return d;
+  }
+
+  void record(RecordContext& ctx) override {
+    using namespace glsl;
+    const auto& g = ctx.settings.params<GowRagnarokSettings>();
+    const bool local = gow_unshadowed_local_lights(ctx.scene, ctx.settings);
+    const CombinedMarch m = combined_march(g);
+    SsCombinedPush push{{g.ssdo_radius, g.ssgi_radius, m.step, 0.0f},
+                        {g.ssdo_thickness, g.ssgi_thickness, 0.0f, 0.0f},
+                        {m.directions, m.steps, (g.ssdo ? 1u : 0u) | (g.ssgi ? 2u : 0u),
+                         ctx.settings.nan_guards ? 1u : 0u},
+                        {ctx.frame > 0 ? 1u : 0u, g.ss_history, 0u, 0u}};
+    // Without local lights the local bindings hold images the pass reads or writes anyway, unused.
+    record_compute(ctx, {.shader = "ssdo_ssgi.comp",
+                         .images = {{kSsCombinedBindPosition, "gbuffer_position"},
+                                    {kSsCombinedBindNormal, "gbuffer_normal"},
+                                    {kSsCombinedBindAlbedo, "gbuffer_albedo"},
+                                    {kSsCombinedBindEmissive, "gbuffer_emissive"},
+                                    {kSsCombinedBindDirect, "direct_light"},
+                                    {kSsCombinedBindLocalPrev, local ? "ssdo_local_light" : "direct_light", local},
+                                    {kSsCombinedBindLocal, local ? "ssdo_local_light" : "gow_direct"},
+                                    {kSsCombinedBindCone, local ? "ssdo_cone" : "gow_direct"},
+                                    {kSsCombinedBindOutDirect, "gow_direct"},
+                                    {kSsCombinedBindOutIndirect, "ssgi_indirect"},
+                                    {kSsCombinedBindOutRadiance, "gow_radiance"},
+                                    {kSsCombinedBindIndirectPrev, "ssgi_indirect", true}},
+                         .groups_x = div_up(div_up(ctx.width("gow_radiance"), kSsCombinedBlock), kSsGroup),
+                         .groups_y = div_up(div_up(ctx.height("gow_radiance"), kSsCombinedBlock), kSsGroup),
+                         .push = &push,
+                         .push_bytes = sizeof(push),
+                         .spec_constants = {{kSsCombinedSpecLocal, local}}});
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Pass> make_ssdo_ssgi_pass() { return std::make_unique<SsdoSsgiPass>(); }
+
+}  // namespace gib
