@@ -139,11 +139,13 @@ TEST(CaseLoad, WhiteFurnace) {
   EXPECT_EQ(*c.analytic_value, 1.0);
   // The reference's row, then voxel-clipmap's (per-pixel sky rays, and sky through its clipmap),
   // which converge over frames: held to the analytic value in both ROIs; then gow-ragnarok's
-  // (one frame: SSGI must add no energy), held to the same band.
-  ASSERT_EQ(c.techniques.size(), 4u);
+  // (one frame: SSGI must add no energy), held to the same band; then voxel-clipmap's
+  // geometry-light row, held to it too.
+  ASSERT_EQ(c.techniques.size(), 5u);
   EXPECT_EQ(c.techniques[3].technique, "gow-ragnarok");
   EXPECT_EQ(c.techniques[3].thresholds[0].against, "analytic");
-  for (size_t i : {1u, 2u}) {
+  EXPECT_EQ(c.techniques[4].options.at("geometry_light"), 1.0);
+  for (size_t i : {1u, 2u, 4u}) {
     EXPECT_EQ(c.techniques[i].technique, "voxel-clipmap");
     EXPECT_EQ(c.techniques[i].frames, 256u);
     ASSERT_GE(c.techniques[i].thresholds.size(), 2u);

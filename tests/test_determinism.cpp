@@ -73,6 +73,19 @@ TEST_F(Determinism, EveryTechniqueIsBitIdenticalRunToRun) {
   }
 }
 
+// voxel-clipmap with geometry_light (off by default, so the test above does not run it):
+// scene_voxel_light's lit voxels, the out-of-view cells and the wall test of the cube lookups.
+TEST_F(Determinism, VoxelClipmapGeometryLightIsBitIdenticalRunToRun) {
+  const Config cfg{"voxel-clipmap", "medium", {{"geometry_light", 1}}};
+  Scene scene = load_scene(std::string(GIB_SOURCE_DIR) + "/cases/scenes/thin_wall_005.json");
+  std::vector<FloatImage> a = render(gpu(), scene, cfg, 6), b = render(gpu(), scene, cfg, 6);
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a[i].pixels.size(), b[i].pixels.size());
+    EXPECT_EQ(differing_floats(a[i], b[i]), 0u) << "output " << i << " of " << a[i].pixels.size() << " floats";
+  }
+}
+
 // A glossy floor: the reference's reflection AOV and gow-ragnarok's reflection passes (the cube
 // map's capture accumulates, the resolve reads history) in both reflection modes.
 TEST_F(Determinism, GlossyReflectionsAreBitIdenticalRunToRun) {

@@ -87,6 +87,40 @@ TEST(VoxelClipmapCpu, TriangleBoxOverlapKnownAnswers) {
   EXPECT_EQ(vc_opacity_byte(1.5f), 255u);
 }
 
+TEST(VoxelClipmapCpu, FillKeyKnownAnswers) {
+  EXPECT_EQ(vc_fill_key(255, true, 0), 0xff800001u);
+  EXPECT_EQ(vc_fill_key(1, false, 41), 0x0100002au);
+  // Past 2^23 - 2 triangles no source triangle is kept (the voxel keeps its opacity).
+  EXPECT_EQ(vc_fill_key(7, false, 0x7fffffu), 0x07000000u);
+  // atomicMax order: opacity first, then facing the camera, then the larger triangle id.
+  EXPECT_GT(vc_fill_key(200, false, 1), vc_fill_key(199, true, 5000000));
+  EXPECT_GT(vc_fill_key(200, true, 1), vc_fill_key(200, false, 5000000));
+}
+
+TEST(VoxelClipmapCpu, ClosestPointOnTriangleKnownAnswers) {
+  const Float3 a{0, 0, 0}, b{2, 0, 0}, c{0, 2, 0};
+  // Above the interior: the projection.
+  Bary r = vc_closest_on_triangle({0.5f, 0.5f, 3}, a, b, c);
+  EXPECT_NEAR(r.u, 0.25f, 1e-6f);
+  EXPECT_NEAR(r.v, 0.25f, 1e-6f);
+  // Beyond the hypotenuse: its midpoint (1, 1).
+  r = vc_closest_on_triangle({2, 2, -1}, a, b, c);
+  EXPECT_NEAR(r.u, 0.5f, 1e-6f);
+  EXPECT_NEAR(r.v, 0.5f, 1e-6f);
+  // Beyond vertex b along x: b itself.
+  r = vc_closest_on_triangle({5, -1, 0}, a, b, c);
+  EXPECT_NEAR(r.u, 1.0f, 1e-6f);
+  EXPECT_NEAR(r.v, 0.0f, 1e-6f);
+  // Below edge a-b: the foot on it.
+  r = vc_closest_on_triangle({0.5f, -3, 0}, a, b, c);
+  EXPECT_NEAR(r.u, 0.25f, 1e-6f);
+  EXPECT_NEAR(r.v, 0.0f, 1e-6f);
+  // Degenerate (collinear): the first vertex.
+  r = vc_closest_on_triangle({1, 1, 1}, a, b, {4, 0, 0});
+  EXPECT_EQ(r.u, 0.0f);
+  EXPECT_EQ(r.v, 0.0f);
+}
+
 // ---------------------------------------------------------------- GPU agrees with the CPU
 class VoxelClipmapGpu : public test::GpuTest {
  protected:
@@ -261,6 +295,34 @@ TEST_F(VoxelClipmapGpu, VoxelizationAndOpacityMatchCpu) {
   EXPECT_LE(differ, 2u);
   EXPECT_GT(hits, 500u);
   EXPECT_GT(misses, 500u);
+}
+
+TEST_F(VoxelClipmapGpu, FillKeyAndClosestPointMatchCpu) {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<float> u(-1.5f, 1.5f);
+  std::uniform_int_distribution<int32_t> byte(1, 255), id(0, 0x800010);
+  std::vector<glsl::VcTestIn> in(4096);
+  for (auto& t : in) {
+    t.a = {byte(rng), byte(rng) & 1, id(rng), 0};
+    t.p0 = {u(rng), u(rng), u(rng), 0};
+    t.p1 = {u(rng), u(rng), u(rng), 0};
+    t.p2 = {u(rng), u(rng), u(rng), 0};
+    t.p3 = {u(rng), u(rng), u(rng), 0};
+  }
+  const auto key = run(in, glsl::kVcTestFillKey);
+  const auto closest = run(in, glsl::kVcTestClosest);
+  uint32_t inside = 0, differ = 0;
+  for (size_t i = 0; i < in.size(); ++i) {
+    const auto& t = in[i];
+    ASSERT_EQ(key[i].u.x, vc_fill_key(uint32_t(t.a.x), t.a.y != 0, uint32_t(t.a.z))) << i;
+    const Bary cpu = vc_closest_on_triangle({t.p3.x, t.p3.y, t.p3.z}, {t.p0.x, t.p0.y, t.p0.z},
+                                            {t.p1.x, t.p1.y, t.p1.z}, {t.p2.x, t.p2.y, t.p2.z});
+    // Nearly degenerate random triangles are ill-conditioned in float; count any that differ.
+    differ += std::abs(closest[i].f0.x - cpu.u) > 1e-3f || std::abs(closest[i].f0.y - cpu.v) > 1e-3f;
+    inside += cpu.u > 0.0f && cpu.v > 0.0f && cpu.u + cpu.v < 1.0f;
+  }
+  EXPECT_LE(differ, 2u);
+  EXPECT_GT(inside, 200u);  // both branches (interior and edges) are exercised
 }
 
 }  // namespace

@@ -44,6 +44,10 @@ void main() {
     r.f1 = vec4(s, 0.0);
   } else if (mode.x == kVcTestOverlap) {
     r.u.x = vc_triangle_box_overlap(t.p0.xyz, t.p1.xyz, t.p2.xyz, t.p3.xyz, vec3(t.p3.w)) ? 1u : 0u;
+  } else if (mode.x == kVcTestFillKey) {
+    r.u.x = vc_fill_key(uint(t.a.x), t.a.y != 0, uint(t.a.z));
+  } else if (mode.x == kVcTestClosest) {
+    r.f0 = vec4(vc_closest_on_triangle(t.p3.xyz, t.p0.xyz, t.p1.xyz, t.p2.xyz), 0.0, 0.0);
   } else {
     r.u.x = vc_opacity_byte(t.p0.w);
   }

@@ -17,6 +17,8 @@ GIB_CONST(uint, kVcTestLevel, 1)       // in.p0: point xyz
 GIB_CONST(uint, kVcTestCube, 2)        // in.a.x: cell, in.p0: normal
 GIB_CONST(uint, kVcTestOverlap, 3)     // in.p0-p2: triangle, in.p3: box centre xyz, half extent w
 GIB_CONST(uint, kVcTestOpacity, 4)     // in.p0.w: opacity
+GIB_CONST(uint, kVcTestFillKey, 5)     // in.a: opacity byte, facing, triangle
+GIB_CONST(uint, kVcTestClosest, 6)     // in.p0-p2: triangle, in.p3: point
 struct VcTestIn {
   ivec4 a;
   vec4 p0, p1, p2, p3;

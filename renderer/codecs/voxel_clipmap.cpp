@@ -84,4 +84,37 @@ bool vc_triangle_box_overlap(Float3 a, Float3 b, Float3 c, Float3 centre, Float3
   return true;
 }
 
+uint32_t vc_fill_key(uint32_t op8, bool facing, uint32_t triangle) {
+  const uint32_t mask = 0x7fffffu;
+  const uint32_t id = triangle < mask ? triangle + 1u : 0u;
+  return (op8 << 24) | (facing ? 0x800000u : 0u) | id;
+}
+
+Bary vc_closest_on_triangle(Float3 p, Float3 a, Float3 b, Float3 c) {
+  const Float3 e1 = sub(b, a), e2 = sub(c, a), q = sub(p, a);
+  const float d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2);
+  const float det = d11 * d22 - d12 * d12;
+  if (!(det > 1e-20f * d11 * d22) || d11 <= 0.0f || d22 <= 0.0f) return {};
+  const float q1 = dot(q, e1), q2 = dot(q, e2);
+  const Bary inside{(d22 * q1 - d12 * q2) / det, (d11 * q2 - d12 * q1) / det};
+  if (inside.u >= 0.0f && inside.v >= 0.0f && inside.u + inside.v <= 1.0f) return inside;
+  // The nearest point of each edge (a-b, a-c, b-c), then the nearest of the three.
+  const float tab = std::clamp(q1 / d11, 0.0f, 1.0f), tac = std::clamp(q2 / d22, 0.0f, 1.0f);
+  const Float3 ebc = sub(c, b);
+  const float tbc = std::clamp(dot(sub(p, b), ebc) / std::max(dot(ebc, ebc), 1e-30f), 0.0f, 1.0f);
+  const Bary cand[3] = {{tab, 0.0f}, {0.0f, tac}, {1.0f - tbc, tbc}};
+  Bary best = cand[0];
+  float best_d = 3.4e38f;
+  for (const Bary& k : cand) {
+    const Float3 x{a.x + e1.x * k.u + e2.x * k.v - p.x, a.y + e1.y * k.u + e2.y * k.v - p.y,
+                   a.z + e1.z * k.u + e2.z * k.v - p.z};
+    const float d = dot(x, x);
+    if (d < best_d) {
+      best_d = d;
+      best = k;
+    }
+  }
+  return best;
+}
+
 }  // namespace gib::codecs

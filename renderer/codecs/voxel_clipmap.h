@@ -1,6 +1,7 @@
 // The voxel-clipmap technique's GPU encodings on the CPU: toroidal addressing of its clipmap
-// levels, level selection, the ambient-cube evaluation, the voxel opacity byte and the
-// triangle/box overlap that voxelises geometry. Mirrors
+// levels, level selection, the ambient-cube evaluation, the voxel opacity byte, the
+// triangle/box overlap that voxelises geometry, the fill key and the nearest point of a
+// triangle that scene_voxel_light lights a voxel at. Mirrors
 // renderer/techniques/voxel_clipmap/include/vc_common.glsl and vc_voxelize.glsl;
 // tests/test_voxel_clipmap.cpp checks that the two agree.
 #pragma once
@@ -46,5 +47,16 @@ uint32_t vc_opacity_byte(float opacity);
 // Triangle a, b, c against the box of centre c and half extent h (separating axis theorem;
 // touching counts as overlap).
 bool vc_triangle_box_overlap(Float3 a, Float3 b, Float3 c, Float3 centre, Float3 h);
+
+// scene_voxel_fill's per-voxel key (voxel_clipmap_shared.h): opacity byte in bits 24-31, bit 23
+// the triangle faces the camera, triangle + 1 in bits 0-22 (0 when the id does not fit).
+uint32_t vc_fill_key(uint32_t op8, bool facing, uint32_t triangle);
+
+// Barycentrics (u, v) of the point of triangle a, b, c nearest p (a (1 - u - v) + b u + c v);
+// a degenerate triangle gives (0, 0).
+struct Bary {
+  float u = 0, v = 0;
+};
+Bary vc_closest_on_triangle(Float3 p, Float3 a, Float3 b, Float3 c);
 
 }  // namespace gib::codecs

@@ -16,6 +16,7 @@
 #include "renderer/techniques/voxel_clipmap/scene_voxel_feed/scene_voxel_feed.h"
 #include "renderer/techniques/voxel_clipmap/scene_voxel_fill/scene_voxel_fill.h"
 #include "renderer/techniques/voxel_clipmap/scene_voxel_invalidate/scene_voxel_invalidate.h"
+#include "renderer/techniques/voxel_clipmap/scene_voxel_light/scene_voxel_light.h"
 #include "renderer/techniques/voxel_clipmap/scene_voxels/scene_voxels.h"
 
 namespace gib {
@@ -29,6 +30,8 @@ struct Preset {
   const char* name;
   uint32_t levels, grid, feed_pixels, queue_a, queue_a_new, queue_b, rays_per_cell, sky_rays;
 };
+// scene_voxel_light visits one level's voxels a frame (grid^3), so each voxel every `levels`
+// frames (the seed refreshes one clipmap level a frame).
 constexpr Preset kPresets[] = {{"low", 3, 32, 8192, 512, 64, 64, 32, 1},
                                {"medium", 4, 32, 32768, 1024, 128, 128, 64, 4},
                                {"high", 4, 64, 32768, 1024, 128, 128, 128, 16},
@@ -42,6 +45,7 @@ void apply_preset_row(VoxelClipmapSettings& s, const Preset& p) {
   s.queue_b = p.queue_b;
   s.rays_per_cell = p.rays_per_cell;
   s.sky_rays = p.sky_rays;
+  s.lit_voxels = p.grid * p.grid * p.grid;
 }
 
 using S = VoxelClipmapSettings;
@@ -66,6 +70,14 @@ std::vector<TechniqueOption> own_options() {
              "fed pixels add albedo x the irradiance clipmap's bounce light (0: voxels hold direct light only, one "
              "bounce: the control)",
              0, 1, &S::multi_bounce),
+      option("geometry_light",
+             "voxels no pixel has fed are lit at their triangle (direct light, emission, albedo x the irradiance "
+             "clipmap), cells with geometry out of view take queue A's spare capacity, cube lookups skip cells behind "
+             "another wall (0, the default until its goldens are re-recorded: unfed voxels keep a coarser voxel's "
+             "radiance or stay black)",
+             0, 1, &S::geometry_light),
+      option("lit_voxels", "voxels scene_voxel_light visits per frame (a window moving over the clipmap atlas)", 1,
+             16777216, &S::lit_voxels),
       option("queue_a", "irradiance cells with geometry relit per frame at most (queue A, A' included)", 0, 65536,
              &S::queue_a),
       option("queue_a_new", "cells with geometry never relit, relit first (queue A')", 0, 65536, &S::queue_a_new),
@@ -102,6 +114,7 @@ Technique voxel_clipmap_technique() {
               {"irradiance_select", make_irradiance_select_pass},
               {"irradiance_relight", make_irradiance_relight_pass},
               {"scene_voxel_feed", make_scene_voxel_feed_pass},
+              {"scene_voxel_light", make_scene_voxel_light_pass},
               {"irradiance_shade", make_irradiance_shade_pass},
               {"composite", make_composite_pass}};
   t.output = "final_color";

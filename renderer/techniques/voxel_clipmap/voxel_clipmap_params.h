@@ -3,6 +3,7 @@
 #pragma once
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdint>
 
 #include "renderer/graph/pass.h"
@@ -19,6 +20,10 @@ inline uint64_t vc_voxel_count(const VoxelClipmapSettings& p) { return uint64_t(
 inline uint64_t vc_cell_count(const VoxelClipmapSettings& p) {
   const uint64_t m = p.grid / 2;
   return uint64_t(p.levels) * m * m * m;
+}
+// Voxels scene_voxel_light visits a frame (0 when geometry_light is off).
+inline uint32_t vc_lit_visits(const VoxelClipmapSettings& p) {
+  return p.geometry_light ? uint32_t(std::min<uint64_t>(p.lit_voxels, vc_voxel_count(p))) : 0u;
 }
 inline uint32_t vc_queue_capacity(const VoxelClipmapSettings& p) { return p.queue_a + p.queue_b; }
 
@@ -42,12 +47,13 @@ inline glsl::VcParams make_vc_params(const Settings& s, uint32_t frame) {
   const uint32_t flags = (s.nan_guards ? kVcFlagNanGuards : 0) | (p.convex_offset ? kVcFlagConvexOffset : 0) |
                          (p.geometry_fill ? kVcFlagGeometryFill : 0) | (p.semi_transparent ? kVcFlagSemiTransparent : 0) |
                          (p.sky_rays == 0 ? kVcFlagSkyFromCubes : 0) | (p.invalidate ? kVcFlagInvalidate : 0) |
-                         (p.multi_bounce ? kVcFlagMultiBounce : 0) | (p.select_per_queue ? kVcFlagSelectPerQueue : 0);
+                         (p.multi_bounce ? kVcFlagMultiBounce : 0) | (p.select_per_queue ? kVcFlagSelectPerQueue : 0) |
+                         (p.geometry_light ? kVcFlagGeometryLight : 0);
   VcParams r{};
   r.grid = {p.grid, p.levels, frame, flags};
   r.sizes = {p.voxel_size, p.feed_weight, p.history_frames, 0};
   r.budget = {p.feed_pixels, p.queue_a, p.queue_a_new, p.queue_b};
-  r.rays = {p.rays_per_cell, p.march_steps, s.seed, 0};
+  r.rays = {p.rays_per_cell, p.march_steps, s.seed, vc_lit_visits(p)};
   return r;
 }
 

@@ -79,14 +79,16 @@ vec3 vc_march(vec3 o, vec3 d, bool semi, out vec3 emitted, out float transmittan
     ivec3 g = ivec3(floor(p / s));
     uvec4 v = vc_voxels[vc_voxel_index(l, g)];
     float a = vc_opacity(v, semi);
-    // A voxel with geometry opacity that no pixel has fed yet takes the radiance of the first
-    // fed coarser voxel holding the point (the seed fills finer levels from coarser ones):
-    // pixels seen at a grazing angle leave gaps between fed voxels that would read black.
-    for (uint c = l + 1u; a > 0.0 && (v.y & kVcVoxelFed) == 0u && c < vc_levels(); ++c) {
+    // A voxel with geometry opacity that neither a pixel nor its triangle has lit yet takes the
+    // radiance of a coarser voxel holding the point that was (the coarsest such: the loop goes
+    // on; the seed fills finer levels from coarser ones): pixels seen at a grazing angle leave
+    // gaps that would read black.
+    const uint lit = kVcVoxelFed | kVcVoxelLit;
+    for (uint c = l + 1u; a > 0.0 && (v.y & lit) == 0u && c < vc_levels(); ++c) {
       ivec3 gc = ivec3(floor(p / vc_voxel_size(c)));
       if (!vc_in_box(gc, vc_voxel_origin(c), vc_n())) break;
       uvec4 cv = vc_voxels[vc_voxel_index(c, gc)];
-      if ((cv.y & kVcVoxelFed) != 0u) v = uvec4(cv.x, v.y, cv.z, 0u);
+      if ((cv.y & lit) != 0u) v = uvec4(cv.x, v.y, cv.z, 0u);
     }
     if (a > 0.0) {
       sum += T * a * gib_unpack_rgb9e5(v.x);
@@ -120,10 +122,26 @@ void vc_cube_eval(uint cell, vec3 n, out vec3 bounce, out vec3 sky) {
         w.z * vec3(vc_cube_z[oz + 6u], vc_cube_z[oz + 7u], vc_cube_z[oz + 8u]);
 }
 
+#ifdef VC_CONVEX_VOXELS
+// Whether the level-l voxel halfway between q and the centre of cell k holds geometry: a wall
+// lies between them. q is 1.5 voxels off the surface: a surface on a voxel boundary is
+// voxelised into the voxels on both sides, so a point one voxel off it lies in a voxel that
+// touches it. Needs the voxel buffer (VC_VOXEL_BUFFER).
+bool vc_cell_behind_wall(uint l, vec3 q, ivec3 k) {
+  vec3 mid = 0.5 * (q + (vec3(k) + 0.5) * vc_cell_size(l));
+  ivec3 g = ivec3(floor(mid / vc_voxel_size(l)));
+  return vc_in_box(g, vc_voxel_origin(l), vc_n()) && (vc_voxels[vc_voxel_index(l, g)].y & kVcOpacityMask) != 0u;
+}
+#endif
+
 // Trilinear ambient cubes of level l at x for normal n; cells never relit get no weight. With
 // convex offset filtering the lookup moves half a cell along the normal and corner cells whose
 // centres lie behind the surface's plane (more than a quarter cell) get no weight: the filter
-// footprint stays on the lit side of a wall. Returns the weight found (0: nothing usable).
+// footprint stays on the lit side of a wall; where the includer defines VC_CONVEX_VOXELS and
+// geometry_light is on, corner cells behind another wall (a voxel with geometry halfway) get
+// none either, so a surface near
+// a room's corner does not blend in the cells outside it. Returns the weight found (0: nothing
+// usable).
 float vc_cubes_trilinear(uint l, vec3 x, vec3 n, bool convex, out vec3 bounce, out vec3 sky) {
   float c = vc_cell_size(l);
   vec3 q = convex ? x + n * (0.5 * c) : x;
@@ -140,6 +158,9 @@ float vc_cubes_trilinear(uint l, vec3 x, vec3 n, bool convex, out vec3 bounce, o
     uint cell = vc_cell_index(l, k);
     if ((vc_cell_state[cell] & kVcCellUpdated) == 0u) continue;
     if (convex && dot((vec3(k) + 0.5) * c - x, n) < -0.25 * c) continue;
+#ifdef VC_CONVEX_VOXELS
+    if (convex && vc_flag(kVcFlagGeometryLight) && vc_cell_behind_wall(l, x + n * (0.75 * c), k)) continue;
+#endif
     vec3 t = mix(1.0 - f, f, vec3(o));
     float w = t.x * t.y * t.z;
     if (w <= 0.0) continue;

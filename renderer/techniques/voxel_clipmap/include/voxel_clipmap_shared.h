@@ -13,12 +13,21 @@ GIB_CONST(uint, kVcMaxRays, 256)  // rays per irradiance cell: one thread each, 
 // Scene voxels (buffer scene_voxel_data): level l holds N^3 voxels of size voxel_size x 2^l,
 // voxel (world grid coordinate g) at slot g mod N (toroidal), index l N^3 + (s.z N + s.y) N + s.x.
 // A voxel is a uvec4: x reflected radiance RGB9E5 (outgoing, lit, without emission), y opacity
-// unorm8 (bits 0-7) | flags, z emitted radiance RGB9E5, w unused.
+// unorm8 (bits 0-7) | flags, z emitted radiance RGB9E5, w the triangle scene_voxel_light lights
+// it from (scene_voxel_fill's key, kVcFillTriangleMask bits: triangle + 1; 0: none).
 GIB_CONST(uint, kVcOpacityMask, 0xff)
 GIB_CONST(uint, kVcVoxelFed, 0x100)       // lit from the G-buffer at least once (else: written without averaging)
 GIB_CONST(uint, kVcVoxelGeometry, 0x200)  // opacity from voxelising scene triangles (scene_voxel_fill)
 GIB_CONST(uint, kVcVoxelNew, 0x400)       // entered the clipmap (or was invalidated) this frame
 GIB_CONST(uint, kVcVoxelOpaqueFed, 0x800) // an opaque pixel fed it: semi-transparent pixels keep its opacity
+GIB_CONST(uint, kVcVoxelLit, 0x1000)      // lit from its triangle at least once (scene_voxel_light)
+
+// scene_voxel_fill's per-voxel key, merged with atomicMax: opacity byte (bits 24-31), whether the
+// triangle faces the camera (bit 23), triangle + 1 (bits 0-22; 0 past 2^23 - 2 triangles). The
+// largest opacity wins, then a triangle facing the camera (the side rays from the viewer's cells
+// meet), then the largest triangle id (a fixed choice, whatever the thread order).
+GIB_CONST(uint, kVcFillFacing, 0x800000)
+GIB_CONST(uint, kVcFillTriangleMask, 0x7fffff)
 
 // Irradiance cells (buffers irradiance_x / _y / _z, irradiance_cell_state): level l holds M^3
 // cells, M = N / 2, of size 2 x voxel size; toroidal like the voxels. Each axis buffer holds
@@ -43,12 +52,13 @@ GIB_CONST(uint, kVcFlagSkyFromCubes, 16)   // direct_lighting traces no sky rays
 GIB_CONST(uint, kVcFlagInvalidate, 32)
 GIB_CONST(uint, kVcFlagMultiBounce, 64)    // the feed adds albedo x the clipmap's bounce (0: one bounce, a control)
 GIB_CONST(uint, kVcFlagSelectPerQueue, 128)  // irradiance_select keeps one P for cells with geometry, one for empty cells
+GIB_CONST(uint, kVcFlagGeometryLight, 256)   // scene_voxel_light lights voxels no pixel fed from their triangle
 
 struct VcParams {
   uvec4 grid;    // x: N voxels per axis per level, y: levels, z: frame, w: kVcFlag*
   vec4 sizes;    // x: level-0 voxel size (m), y: feed weight (exponential average), z: relight history frames, w: unused
   uvec4 budget;  // x: feed pixels per frame (K), y: queue A capacity, z: queue A' capacity, w: queue B capacity
-  uvec4 rays;    // x: rays per cell, y: max march steps, z: seed, w: unused
+  uvec4 rays;    // x: rays per cell, y: max march steps, z: seed, w: voxels scene_voxel_light visits per frame
 };
 
 // Per level origins: the minimum-corner world grid coordinate of the level's box (voxels or

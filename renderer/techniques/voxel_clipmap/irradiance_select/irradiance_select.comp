@@ -20,16 +20,17 @@ layout(std430, set = 0, binding = kIrrSelectBindQueue) buffer QueueBuffer {
 layout(local_size_x = kIrrSelectGroup) in;
 
 shared uint s_subgroup[kIrrSelectGroup];
-shared uint s_count[3];  // candidates so far: A', A, B
+shared uint s_count[4];  // candidates so far: A', A, B, A out of view
 shared uint s_passed;
 shared uint s_passed_geometry;  // of them, cells with geometry
 
 uint cap_total() { return vc.budget.y + vc.budget.w; }
-// Scratch list q (0: A', 1: A, 2: B) after the final list.
+// Scratch list q (0: A', 1: A, 2: B, 3: A out of view) after the final list.
 uint scratch_base(uint q) {
-  return cap_total() + (q == 0u ? 0u : (q == 1u ? vc.budget.z : vc.budget.z + vc.budget.y));
+  uint z = vc.budget.z, y = vc.budget.y, w = vc.budget.w;
+  return cap_total() + (q == 0u ? 0u : (q == 1u ? z : (q == 2u ? z + y : z + y + w)));
 }
-uint scratch_cap(uint q) { return q == 0u ? vc.budget.z : (q == 1u ? vc.budget.y : vc.budget.w); }
+uint scratch_cap(uint q) { return q == 0u ? vc.budget.z : (q == 1u || q == 3u ? vc.budget.y : vc.budget.w); }
 
 // Appends `value` to scratch list q where `pred` (every thread calls it): thread order.
 void append(bool pred, uint q, uint value) {
@@ -71,11 +72,14 @@ bool visible(vec3 x, float r) {
 
 void main() {
   uint tid = gl_LocalInvocationIndex;
-  if (tid < 3u) s_count[tid] = 0u;
+  if (tid < 4u) s_count[tid] = 0u;
   if (tid == 0u) s_passed = 0u;
   if (tid == 0u) s_passed_geometry = 0u;
   barrier();
   const bool per_queue = vc_flag(kVcFlagSelectPerQueue);
+  // Cells with geometry out of view light the voxels scene_voxel_light keeps lit there (walls
+  // behind the camera): they take what queue A's capacity the visible cells leave.
+  const bool unseen = vc_flag(kVcFlagGeometryLight);
   float P = vc_state.select.x;
   float P_empty = per_queue ? vc_state.select.z : P;
   uint cells = vc_levels() * vc_cells_per_level();
@@ -83,7 +87,7 @@ void main() {
   for (uint base = 0u; base < cells; base += kIrrSelectGroup) {
     uint cell = base + tid;
     bool real = cell < cells;
-    bool qa_new = false, qa = false, qb = false;
+    bool qa_new = false, qa = false, qb = false, qa_out = false;
     if (real) {
       uint l = cell / vc_cells_per_level(), slot = cell % vc_cells_per_level();
       ivec3 s = ivec3(int(slot) % m, (int(slot) / m) % m, int(slot) / (m * m));
@@ -97,7 +101,9 @@ void main() {
            (vis ? kVcCellVisible : 0u);
       cell_state[cell] = st;
       GibRng rng = gib_rng(vc.rays.z, vc_frame(), uvec2(cell, 7u), 11u);
-      bool pass = vis && float(age) * gib_next(rng) > (geometry ? P : P_empty);
+      bool chance = float(age) * gib_next(rng) > (geometry ? P : P_empty);
+      bool pass = vis && chance;
+      qa_out = unseen && !vis && geometry && ((st & kVcCellRelit) == 0u || chance);
       qa_new = vis && geometry && (st & kVcCellRelit) == 0u;
       qa = pass && geometry && !qa_new;
       qb = pass && !geometry;
@@ -107,18 +113,23 @@ void main() {
     append(qa_new, 0u, cell);
     append(qa, 1u, cell);
     append(qb, 2u, cell);
+    append(qa_out, 3u, cell);
   }
   barrier();
   uint n_new = min(s_count[0], vc.budget.z);
   uint n_a = min(s_count[1], vc.budget.y - n_new);
   uint n_b = min(s_count[2], vc.budget.w);
-  for (uint i = tid; i < n_new + n_a + n_b; i += kIrrSelectGroup) {
-    uint src = i < n_new ? scratch_base(0u) + i
-                         : (i < n_new + n_a ? scratch_base(1u) + (i - n_new) : scratch_base(2u) + (i - n_new - n_a));
+  uint n_out = min(s_count[3], vc.budget.y - n_new - n_a);
+  uint n = n_new + n_a + n_b + n_out;
+  for (uint i = tid; i < n; i += kIrrSelectGroup) {
+    uint src = i < n_new                     ? scratch_base(0u) + i
+               : i < n_new + n_a             ? scratch_base(1u) + (i - n_new)
+               : i < n_new + n_a + n_b       ? scratch_base(2u) + (i - n_new - n_a)
+                                             : scratch_base(3u) + (i - n_new - n_a - n_b);
     entries[i] = entries[src];
   }
   if (tid == 0u) {
-    queue.args = uvec4(n_new + n_a + n_b, 1u, 1u, 0u);
+    queue.args = uvec4(n, 1u, 1u, 0u);
     queue.counts = uvec4(n_new, n_a, n_b, s_passed);
     // P for the next frame: towards passing about the queues' capacity (the seed's "chosen
     // based on the previous frame cells passed count").

@@ -10,8 +10,8 @@ class IrradianceSelectPass final : public Pass {
  public:
   PassDecl declare(const Scene&, const Settings& s) const override {
     const VoxelClipmapSettings& p = s.params<VoxelClipmapSettings>();
-    // The list (queue_a + queue_b entries), then scratch lists A', A and B.
-    const uint64_t entries = 2ull * vc_queue_capacity(p) + p.queue_a_new;
+    // The list (queue_a + queue_b entries), then scratch lists A', A, B and A out of view.
+    const uint64_t entries = 2ull * vc_queue_capacity(p) + p.queue_a_new + p.queue_a;
     PassDecl d;
     d.name = "irradiance_select";
     d.slots = {{"voxel_clip_state", Access::read_write, vc_state_desc()},

@@ -4,8 +4,11 @@
 // doubled towards the queues' total capacity). Queues: A' (cells whose box holds voxels with
 // opacity and that were never relit: taken whether they pass or not), A (cells with geometry
 // that passed; A' and A together at most queue_a: "first N cells in QueueA, where N is
-// capacity(QueueA) - occupied(QueueA')"), B (empty cells that passed, at most queue_b). The
-// result is one list, A' then A then B, and the indirect arguments of irradiance_relight (one
+// capacity(QueueA) - occupied(QueueA')"), B (empty cells that passed, at most queue_b). With
+// geometry_light, cells with geometry out of view (never relit, or passing) take what capacity
+// of queue A the visible cells leave: they light the voxels scene_voxel_light keeps lit behind
+// the camera (the seed relights visible cells only; its unseen walls are never lit). The
+// result is one list, A' then A then B then A out of view, and the indirect arguments of irradiance_relight (one
 // workgroup per cell). One workgroup appends in cell order with subgroup ballots, so the
 // selection is the same on every run. select_per_queue 1 keeps two thresholds, P for cells
 // with geometry (towards queue A's capacity less A') and P for empty cells (towards queue B's).

@@ -8,12 +8,14 @@
 layout(push_constant) uniform Push { VcParams vc; };
 VC_STATE_BUFFER(kIrrShadeBindState, readonly)
 VC_CUBE_BUFFERS(kIrrShadeBindX, kIrrShadeBindY, kIrrShadeBindZ, kIrrShadeBindCells, readonly)
+VC_VOXEL_BUFFER(kIrrShadeBindVoxels, readonly)
 layout(set = 0, binding = kIrrShadeBindNormal, rgba16f) uniform readonly image2D gb_normal;
 layout(set = 0, binding = kIrrShadeBindPosition, rgba32f) uniform readonly image2D gb_position;
 layout(set = 0, binding = kIrrShadeBindBounce, rgba32f) uniform writeonly image2D out_bounce;
 layout(set = 0, binding = kIrrShadeBindSky, rgba32f) uniform writeonly image2D out_sky;
 #define VC_HAS_STATE
 #define VC_HAS_CUBES
+#define VC_CONVEX_VOXELS
 #include "renderer/techniques/voxel_clipmap/include/vc_common.glsl"
 layout(local_size_x = kIrrShadeGroup, local_size_y = kIrrShadeGroup) in;
 

@@ -36,7 +36,8 @@ class IrradianceShadePass final : public Pass {
                                      {kIrrShadeBindX, "irradiance_x"},
                                      {kIrrShadeBindY, "irradiance_y"},
                                      {kIrrShadeBindZ, "irradiance_z"},
-                                     {kIrrShadeBindCells, "irradiance_cell_state"}}});
+                                     {kIrrShadeBindCells, "irradiance_cell_state"},
+                                     {kIrrShadeBindVoxels, "scene_voxel_data"}}});
   }
 };
 

@@ -14,6 +14,7 @@ GIB_CONST(uint, kIrrShadeBindNormal, 13)
 GIB_CONST(uint, kIrrShadeBindPosition, 14)
 GIB_CONST(uint, kIrrShadeBindBounce, 15)   // gi_irradiance (rgba32f, irradiance / pi)
 GIB_CONST(uint, kIrrShadeBindSky, 16)      // gi_direct_irradiance (rgba32f, irradiance / pi)
+GIB_CONST(uint, kIrrShadeBindVoxels, 17)   // scene_voxel_data (read: walls between a pixel and a cell)
 struct IrrShadePush {
   VcParams vc;
 };

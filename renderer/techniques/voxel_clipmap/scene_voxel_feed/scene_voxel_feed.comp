@@ -76,6 +76,8 @@ void main() {
   vec3 direct = max(imageLoad(direct_light, p).rgb - emitted, vec3(0.0));
   if (vc_flag(kVcFlagNanGuards) && !gib_finite(direct)) return;
   vec3 bounce, sky;
+  // Without the wall test of VC_CONVEX_VOXELS: this kernel writes voxel opacities that another
+  // thread's test would read (a race, and the result must not depend on thread timing).
   vc_irradiance(x, n, vc_flag(kVcFlagConvexOffset), bounce, sky);
   if (!vc_flag(kVcFlagMultiBounce)) bounce = vec3(0.0);
   vec3 radiance = direct + albedo * (bounce + (vc_flag(kVcFlagSkyFromCubes) ? sky : vec3(0.0)));
@@ -98,7 +100,7 @@ void main() {
     float op = (!opaque && (v.y & kVcVoxelOpaqueFed) != 0u) ? old_op : mix(old_op, opacity, a);
     uint op8 = vc_opacity_byte(op);
     uint flags = (v.y & (kVcVoxelGeometry | kVcVoxelNew | kVcVoxelOpaqueFed)) | kVcVoxelFed | (opaque ? kVcVoxelOpaqueFed : 0u);
-    vc_voxels[idx] = uvec4(gib_pack_rgb9e5(rad), flags | op8, gib_pack_rgb9e5(em), 0u);
+    vc_voxels[idx] = uvec4(gib_pack_rgb9e5(rad), flags | op8, gib_pack_rgb9e5(em), v.w);
     atomicAdd(vc_state.stats.y, 1u);
   }
 }

@@ -1,6 +1,7 @@
 // scene_voxel_fill: geometry opacity and coarser-level radiance for the voxels that entered the
 // clipmap (see scene_voxel_fill.h); two kernels chosen by the specialisation constant kKernel.
-// Opacities merge with atomicMax, so the result does not depend on thread order.
+// Opacities and source triangles merge with atomicMax of one key (vc_fill_key), so the result
+// does not depend on thread order.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "renderer/techniques/voxel_clipmap/scene_voxel_fill/scene_voxel_fill_shared.h"
@@ -31,7 +32,8 @@ void voxelize(uint tid) {
   if (all(equal(cross(b - a, c - a), vec3(0.0)))) return;
   GpuMaterial m = gib_materials[gib_instances[t.instance].material];
   float opacity = (m.alpha != GIB_ALPHA_NONE && vc_flag(kVcFlagSemiTransparent)) ? m.avg_opacity : 1.0;
-  uint op8 = vc_opacity_byte(opacity);
+  // The key keeps the triangle scene_voxel_light lights the voxel from (voxel_clipmap_shared.h).
+  uint key = vc_fill_key(vc_opacity_byte(opacity), dot(cross(b - a, c - a), gib_frame.camera_pos.xyz - a) > 0.0, tri);
   float s = vc_voxel_size(l);
   int n = vc_n();
   ivec3 lo = max(ivec3(floor(min(a, min(b, c)) / s)), o.xyz);
@@ -43,7 +45,7 @@ void voxelize(uint tid) {
         ivec3 g = ivec3(x, y, z);
         uint idx = vc_voxel_index(l, g);
         if ((vc_voxels[idx].y & kVcVoxelNew) == 0u) continue;
-        if (vc_triangle_box_overlap(a, b, c, (vec3(g) + 0.5) * s, h)) atomicMax(geometry[idx], op8);
+        if (vc_triangle_box_overlap(a, b, c, (vec3(g) + 0.5) * s, h)) atomicMax(geometry[idx], key);
       }
 }
 
@@ -61,19 +63,19 @@ void merge(uint tid) {
     ivec3 gc = ivec3(floor((vec3(g) + 0.5) * 0.5));
     if (vc_in_box(gc, vc_state.voxel_origin[l + 1u].xyz, n)) {
       uvec4 cv = vc_voxels[vc_voxel_index(l + 1u, gc)];
-      if ((cv.y & kVcVoxelFed) != 0u) {
+      if ((cv.y & (kVcVoxelFed | kVcVoxelLit)) != 0u) {
         radiance = cv.x;
         emitted = cv.z;
       }
     }
   }
-  uint op8 = geometry[tid];
+  uint key = geometry[tid];
   uint y = kVcVoxelNew;
-  if (op8 != 0u) {
-    y |= kVcVoxelGeometry | op8;
+  if (key != 0u) {
+    y |= kVcVoxelGeometry | (key >> 24);
     atomicAdd(vc_state.stats.z, 1u);
   }
-  vc_voxels[tid] = uvec4(radiance, y, emitted, 0u);
+  vc_voxels[tid] = uvec4(radiance, y, emitted, key & kVcFillTriangleMask);
 }
 
 void main() {

@@ -4,8 +4,8 @@
 // starts empty), and their opacity from the scene geometry: every triangle is voxelised into
 // the entered voxels of each level it overlaps (the talk's "collision models" fill-in, here the
 // render triangles themselves), so rays do not pass through walls the camera has not seen.
-// A voxel filled from geometry only is dark until the feed sees it (the seed: "over darkening
-// is preferred over light bleeding"). Alpha-tested materials give their baked mean opacity
+// Each geometry voxel keeps the triangle it was filled from (the one facing the camera first),
+// from which scene_voxel_light lights it while no pixel has fed it. Alpha-tested materials give their baked mean opacity
 // when semi_transparent is on. geometry_fill 0 (the control) leaves entered voxels empty.
 // Slots: read_write voxel_clip_state, scene_voxel_data; writes voxel_geometry (transient).
 // Limits: triangles are tested against each level's whole box when any of its voxels entered
