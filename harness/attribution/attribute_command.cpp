@@ -11,7 +11,7 @@
 #include "harness/attribution/attribution_report.h"
 #include "harness/case_render.h"
 #include "harness/goldens.h"
-#include "harness/tier.h"
+#include "harness/references.h"
 #include "renderer/techniques/technique.h"
 
 namespace gib {
