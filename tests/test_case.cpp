@@ -441,7 +441,7 @@ TEST(CaseErrors, Scenes) {
   expect_error(dir, d, "/scene/objects/0/material", "got \"whit\"");
   d = valid_case();
   d["scene"] = json::object();
-  expect_error(dir, d, "/scene/materials");
+  expect_error(dir, d, "/scene/objects");
   d = valid_case();
   d["scene"]["sky"]["radiance"] = {1, 1};
   expect_error(dir, d, "/scene/sky/radiance");
