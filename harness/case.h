@@ -143,7 +143,7 @@ struct Case {
   Scene scene;              // inline, or loaded from "scene": "scenes/cornell.json" (relative to the case file)
   std::string scene_file;   // "" when inline
   // What the scene was read from: the scene file's bytes, or the inline scene's JSON (the GPU
-  // tier's reference cache key, harness/tier.h).
+  // tier's reference cache key, harness/references.h).
   std::string scene_text;
   // The CI tier's size (lavapipe, CI: small), and the GPU tier's (harness/tier.h: chosen on GPU
   // devices; 640x360 by default, the size Falcor's image tests use).

@@ -8,7 +8,7 @@ namespace gib {
 
 // Bump when the CPU side of what the path tracer renders changes (scene flattening, sampling
 // setup, the spp split): with the SPIR-V of its passes and its ultra preset it keys the GPU
-// tier's reference cache (harness/tier.h path_tracer_revision), so cached references re-render.
+// tier's reference cache (harness/references.h path_tracer_revision), so cached references re-render.
 inline constexpr uint32_t kPathTracerCpuRevision = 1;
 
 struct ReferenceSettings : TechniqueSettingsOf<ReferenceSettings> {
