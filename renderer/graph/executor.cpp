@@ -192,7 +192,7 @@ void Executor::record_overrides(Cmd& cmd, size_t running_index) {
     if (!any) cmd.barrier(kStageCompute | kStageGraphics | kStageTransfer, kStageTransfer);
     any = true;
     auto& a = allocations_.at(ov.resource);
-    const int cur = a.ping_pong ? int(frame_ & 1) : 0;  // the copy this frame's passes write
+    const int cur = written_copy(a);
     if (ov.buffer)
       cmd.copy(*ov.buffer, *a.buffer[cur]);
     else
@@ -318,7 +318,7 @@ uint32_t Executor::record_scans(Cmd& cmd, size_t running_index, bool& reset) {
   for (size_t ti : targets) {
     const ScanTarget& t = scan_targets_[ti];
     auto& a = allocations_.at(t.resource);
-    const int cur = a.ping_pong ? int(frame_ & 1) : 0;  // the copy this frame's passes write
+    const int cur = written_copy(a);
     ComputePipelineDesc desc;
     desc.shader = t.shader;
     desc.bindings = {{glsl::kStabilityScanBindResults, DescriptorKind::storage_buffer},
@@ -475,7 +475,7 @@ std::map<std::string, ResolvedSlot> Executor::bind_slots(const PassDecl& decl) {
     rs.resource = plan_.find(s.name);
     rs.access = s.access;
     auto& a = allocations_.at(s.name);
-    int cur = a.ping_pong ? int(frame_ & 1) : 0;
+    int cur = written_copy(a);
     rs.image = a.image[cur];
     rs.buffer = a.buffer[cur];
     if (a.ping_pong) {
@@ -654,7 +654,7 @@ FloatImage Executor::read(const std::string& name) {
   auto& a = it->second;
   if (!a.image[0]) throw GraphError(fmt::format("--dump '{}': a buffer, not an image", name));
   // The copy written most recently: frame_ was already advanced by run_frame.
-  int cur = a.ping_pong ? int((frame_ + 1) & 1) : 0;
+  int cur = latest_copy(a);
   const Image& img = *a.image[cur];
   return decode_texels(img.format(), img.width(), img.height(), gpu_.download(img));
 }
@@ -664,7 +664,7 @@ std::vector<uint8_t> Executor::read_buffer(const std::string& name) {
   if (it == allocations_.end() || !it->second.buffer[0])
     throw GraphError(fmt::format("read_buffer: '{}' is not a buffer resource of the plan", name));
   auto& a = it->second;
-  int cur = a.ping_pong ? int((frame_ + 1) & 1) : 0;
+  int cur = latest_copy(a);
   const Buffer& buf = *a.buffer[cur];
   std::vector<uint8_t> out(buf.size());
   if (!out.empty()) gpu_.download(buf, out.data(), out.size());
@@ -676,7 +676,7 @@ std::vector<uint8_t> Executor::read_bytes(const std::string& name) {
   if (it == allocations_.end()) throw GraphError(fmt::format("read_bytes: '{}' is not a resource of the plan", name));
   if (it->second.buffer[0]) return read_buffer(name);
   auto& a = it->second;
-  return gpu_.download(*a.image[a.ping_pong ? int((frame_ + 1) & 1) : 0]);
+  return gpu_.download(*a.image[latest_copy(a)]);
 }
 
 }  // namespace gib

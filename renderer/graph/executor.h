@@ -117,6 +117,10 @@ class Executor {
     std::shared_ptr<Buffer> buffer[2];
     bool ping_pong = false;
   };
+  // Of a ping-pong resource's two copies: the one this frame's passes write, and the one
+  // written most recently once run_frame has advanced frame_ (0 for a single copy).
+  int written_copy(const Allocation& a) const { return a.ping_pong ? int(frame_ & 1) : 0; }
+  int latest_copy(const Allocation& a) const { return a.ping_pong ? int((frame_ + 1) & 1) : 0; }
   std::map<std::string, Allocation> allocations_;
   uint32_t frame_ = 0;
   bool scene_uploaded_ = false;
