@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 PKGS=(
   build-essential cmake pkg-config
   libvulkan-dev vulkan-tools mesa-vulkan-drivers vulkan-validationlayers glslang-tools
-  libopenimageio-dev openimageio-tools
+  libopenexr-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev
   libtinygltf-dev libstb-dev
   libgtest-dev libgmock-dev libbenchmark-dev

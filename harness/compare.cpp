@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <OpenImageIO/imageio.h>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -25,18 +24,8 @@ bool is_exr(const std::string& path) {
 // LDR inputs follow the reference tool: 8-bit sRGB decoded to linear and clamped.
 FloatImage load_for_flip(const std::string& path, bool hdr) {
   if (hdr) return read_image(path);
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw std::runtime_error(fmt::format("{}: cannot read image: {}", path, OIIO::geterror()));
-  const auto& spec = in->spec();
-  if (spec.nchannels < 3 && spec.nchannels != 1)
-    throw std::runtime_error(fmt::format("{}: expected an RGB image, got {} channels", path, spec.nchannels));
-  std::vector<uint8_t> all(size_t(spec.width) * spec.height * spec.nchannels);
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, all.data()))
-    throw std::runtime_error(fmt::format("{}: corrupt or unreadable image: {}", path, in->geterror()));
-  std::vector<uint8_t> rgb(size_t(spec.width) * spec.height * 3);
-  for (size_t i = 0; i < size_t(spec.width) * spec.height; ++i)
-    for (int c = 0; c < 3; ++c) rgb[i * 3 + c] = all[i * spec.nchannels + std::min(c, spec.nchannels - 1)];
-  return srgb8_to_linear(rgb, uint32_t(spec.width), uint32_t(spec.height));
+  const Rgb8Image in = read_rgb8(path);
+  return srgb8_to_linear(in.rgb, in.width, in.height);
 }
 
 }  // namespace

@@ -1,6 +1,9 @@
-// Image files through OpenImageIO: EXR for linear data, PNG for a tone-mapped preview.
+// Image files: EXR for linear data (OpenEXR, libopenexr-dev), PNG for a tone-mapped preview and
+// 8-bit inputs (stb_image / stb_image_write, libstb-dev).
 #pragma once
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "renderer/graph/executor.h"
 
@@ -18,7 +21,15 @@ bool fits_half(const FloatImage& image);
 FloatImage round_to_half(const FloatImage& image);
 // Preview: exposure 1, clamp, sRGB encode, 8-bit PNG. Same atomic write.
 void write_png_preview(const std::string& path, const FloatImage& image);
-// EXR or PNG, as float RGBA/RGB; *half (if given): the file stores half floats.
+// EXR (told by its magic number; channels R, G, B, A as present, else its one channel as grey)
+// or an 8-bit image stb_image decodes (PNG, JPEG, ...: values / 255, no transfer function), as
+// float; *half (if given): the EXR stores half floats. Throws naming the path.
 FloatImage read_image(const std::string& path, bool* half = nullptr);
+// An 8-bit image (PNG, JPEG, BMP, TGA) as RGB bytes (grey replicated, alpha dropped).
+struct Rgb8Image {
+  uint32_t width = 0, height = 0;
+  std::vector<uint8_t> rgb;
+};
+Rgb8Image read_rgb8(const std::string& path);
 
 }  // namespace gib

@@ -1,6 +1,6 @@
 // Image metrics other than FLIP: PSNR, relative MSE, ROI luminance, absolute errors, NaN/Inf
 // counts, chromaticity shift, banding and flicker. CPU only and free of image I/O, so the
-// benchmarks can use them on a GPU machine without OpenImageIO.
+// benchmarks can use them on a GPU machine without an image library.
 //
 // Conventions shared by every function here:
 // - Channels: a FloatImage has 1 to 4 channels. 3 or 4 channels: the first three are linear

@@ -1,5 +1,5 @@
 // CLI wiring of `bench` and `perf-diff`, shared by gibench (harness/main.cpp) and gibench-perf
-// (perf/main.cpp, no OpenImageIO) so both take the same options.
+// (perf/main.cpp, no image library) so both take the same options.
 #pragma once
 #include <CLI/CLI.hpp>
 

@@ -1,5 +1,5 @@
-// gibench-perf: `bench` and `perf-diff` alone, linked without OpenImageIO so that the binary
-// and its few shared libraries can be carried to a GPU machine (ci/pack_gpu.sh).
+// gibench-perf: `bench` and `perf-diff` alone, linked without the harness (no image files), so
+// that the binary and its few shared libraries can be carried to a GPU machine (ci/pack_gpu.sh).
 #include <fmt/format.h>
 
 #include <exception>

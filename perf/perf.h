@@ -1,5 +1,5 @@
 // `gibench bench` and `gibench perf-diff` (also built into gibench-perf, which links no
-// OpenImageIO so it can be carried to a GPU machine; see bench/README.md).
+// image libraries so it can be carried to a GPU machine; see bench/README.md).
 //
 // bench: runs every technique's passes at each console profile's workload, times them
 // (median of frames after warm-up, repeated), splits each pass into memory and compute time

@@ -2,7 +2,6 @@
 // pair), plus known-answer and sanity tests, and the magma colour map.
 #include <gtest/gtest.h>
 
-#include <OpenImageIO/imageio.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/image_io.h"
 #include "metrics/colormap.h"
 #include "metrics/flip.h"
 
@@ -30,21 +30,16 @@ const std::string kVectorDir = std::string(GIB_SOURCE_DIR) + "/data/flip-vectors
 
 // PNG: 8-bit, first three channels, decoded as the tool does. EXR: float, first three.
 FloatImage load_image(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw std::runtime_error("cannot open " + path + ": " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  const int w = spec.width, h = spec.height, nch = spec.nchannels;
-  if (nch < 3) throw std::runtime_error(path + ": fewer than 3 channels");
   const bool exr = std::filesystem::path(path).extension() == ".exr";
   if (!exr) {
-    std::vector<uint8_t> rgb(size_t(w) * h * 3);
-    if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, rgb.data()))
-      throw std::runtime_error(path + ": " + in->geterror());
-    return srgb8_to_linear(rgb, uint32_t(w), uint32_t(h));
+    const Rgb8Image in = read_rgb8(path);
+    return srgb8_to_linear(in.rgb, in.width, in.height);
   }
-  FloatImage img(uint32_t(w), uint32_t(h), 3);
-  if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, img.pixels.data()))
-    throw std::runtime_error(path + ": " + in->geterror());
+  FloatImage all = read_image(path);
+  if (all.channels < 3) throw std::runtime_error(path + ": fewer than 3 channels");
+  FloatImage img(all.width, all.height, 3);
+  for (size_t i = 0; i < size_t(all.width) * all.height; ++i)
+    for (uint32_t c = 0; c < 3; ++c) img.pixels[i * 3 + c] = all.pixels[i * all.channels + c];
   return img;
 }
 
