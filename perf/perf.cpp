@@ -933,9 +933,10 @@ int cmd_bench(const BenchOptions& o) {
                    {"device_ms_full", full_total}, {"scaled_ms", scaled_total},
                    {"includes_aov_only_passes", !r.aov_only.empty()},
                    {"aov_only_sum_of_pass_medians_ms", aov_only_meas}, {"aov_only_scaled_ms", aov_only_scaled}};
-    // The seed's budget tree per profile that has budgets (GoW Ragnarok: PS4).
+    // The budget tree per profile: categories with the seed's budgets where the profile has them
+    // (GoW Ragnarok: PS4), without ("-") elsewhere, so every profile's frame reads by category.
     for (auto* p : w.profiles) {
-      if (!budgets || !budgets->profiles.count(p->name) || !w.seed_table.empty()) continue;
+      if (!budgets || !w.seed_table.empty()) continue;
       BudgetTree tree = budget_tree(*budgets, p->name, pass_order[p->name]);
       fmt::print("\n-- {} budgets @ {} (console-scaled) --\n{}", r.name, p->name, format_budget_tree(tree));
       jr["budgets"].push_back(to_json(tree));

@@ -10,6 +10,6 @@ layout(set = 0, binding = kShadowBindPosition, rgba32f) uniform readonly image2D
 layout(set = 0, binding = kShadowBindNormal, rgba16f) uniform readonly image2D gb_normal;
 layout(set = 0, binding = kShadowBindOut, r32f) uniform writeonly image2D out_visibility;
 layout(push_constant) uniform Push { ShadowCascadePush push; };
-#define GOW_SHADOW_MAP_BOUND 1
-#include "renderer/techniques/gow_ragnarok/include/gow_shadow.glsl"
-#include "renderer/techniques/gow_ragnarok/include/gow_receiver.glsl"
+#define CSM_SHADOW_MAP_BOUND 1
+#include "shadow_cascades.glsl"
+#include "shadow_receiver.glsl"
