@@ -103,6 +103,27 @@ Calibration calibrate(Gpu& gpu, uint32_t repeats) {
     c.fma_scalar_gflops = c.fma_flops / (median_of(c.fma_scalar_ms) * 1e-3) * 1e-9;
     c.throughput.fp32_gflops = std::max(c.fma_gflops, c.fma_scalar_gflops);
   }
+  if (!cpu) {  // dispatch latency: a chain of empty one-group dispatches, each behind a barrier
+    auto out = gpu.create_buffer(4, BufferUsage::storage, "calib_dispatch_out");
+    std::vector<Bind> binds{{glsl::kCalibBindOut, out.get(), nullptr}};
+    auto pipe = gpu.compute_pipeline(ComputePipelineDesc{
+        "calibrate_dispatch.comp", {{glsl::kCalibBindOut, DescriptorKind::storage_buffer}}, sizeof(glsl::CalibFmaPush)});
+    const glsl::CalibFmaPush push{0xffffffffu, 1.0f, 0.0f, 0};
+    auto chain = [&] {
+      auto cmd = gpu.begin(2);
+      cmd->bind(*pipe, binds, &push, sizeof(push));
+      cmd->timestamp(0);
+      for (uint32_t i = 0; i < glsl::kCalibDispatchChain; ++i) {
+        cmd->barrier(kStageCompute, kStageCompute);
+        cmd->dispatch(1);
+      }
+      cmd->timestamp(1);
+      return submit_timed(gpu, std::move(cmd));
+    };
+    chain();  // lazy compile
+    for (uint32_t r = 0; r < c.repeats; ++r) c.dispatch_chain_ms.push_back(chain());
+    c.dispatch_latency_ms = median_of(c.dispatch_chain_ms) / glsl::kCalibDispatchChain;
+  }
   {  // copy bandwidth: buffers far larger than any last-level cache
     const uint64_t bytes = cpu ? (128ull << 20) : (1ull << 30);
     const uint32_t count = uint32_t(bytes / 16);
@@ -156,6 +177,8 @@ nlohmann::json Calibration::to_json() const {
                    {"gflops", fma_gflops}}},
           {"fma_scalar", {{"ms", fma_scalar_ms}, {"gflops", fma_scalar_gflops}}},
           {"copy", {{"bytes", copy_bytes}, {"ms", copy_ms}}},
+          {"dispatch_latency_ms", dispatch_latency_ms},
+          {"dispatch_chain", {{"dispatches", glsl::kCalibDispatchChain}, {"ms", dispatch_chain_ms}}},
           {"fill_gpix", throughput.fill_gpix},
           {"raster", {{"width", raster_width}, {"height", raster_height}, {"layers", raster_layers}, {"ms", raster_ms}}}};
 }
@@ -184,6 +207,8 @@ Calibration Calibration::from_json(const nlohmann::json& j) {
     c.raster_layers = j["raster"].value("layers", 0u);
     c.raster_ms = j["raster"].value("ms", std::vector<double>{});
   }
+  c.dispatch_latency_ms = j.value("dispatch_latency_ms", 0.0);  // absent in baselines before it was calibrated
+  if (j.contains("dispatch_chain")) c.dispatch_chain_ms = j["dispatch_chain"].value("ms", std::vector<double>{});
   if (j.contains("copy")) {
     c.copy_bytes = j["copy"].value("bytes", uint64_t(0));
     c.copy_ms = j["copy"].value("ms", std::vector<double>{});

@@ -1,6 +1,6 @@
 // Calibration micro-kernels (perf/calibrate_fma.comp, calibrate_fma_scalar.comp, calibrate_copy.comp,
-// calibrate_raster.vert/.frag): the measuring device's achieved FP32 FMA rate, copy bandwidth
-// and raster fill rate (pixels written through depth test), median of repeats. Every
+// calibrate_dispatch.comp, calibrate_raster.vert/.frag): the measuring device's achieved FP32 FMA
+// rate, copy bandwidth, dispatch latency and raster fill rate (pixels written through depth test), median of repeats. Every
 // `gibench bench` run records them, since the console-scaling model divides by them.
 #pragma once
 #include <cstdint>
@@ -22,6 +22,12 @@ struct Calibration {
   std::vector<double> fma_ms;   // every repeat (calibrate_fma.comp: vec4 chains)
   std::vector<double> fma_scalar_ms;  // every repeat, interleaved (calibrate_fma_scalar.comp: scalar chains)
   double fma_gflops = 0, fma_scalar_gflops = 0;  // each kernel's median rate; fp32_gflops is the larger
+  // Dispatch latency (calibrate_dispatch.comp): a chain of kCalibDispatchChain one-group
+  // dispatches that do nothing, each behind a compute -> compute barrier; chain_ms per repeat,
+  // dispatch_latency_ms = median / chain length. What every dispatch of a pass costs before its
+  // work (launch, the barrier's drain, the ramp). GPU only (0: not measured).
+  std::vector<double> dispatch_chain_ms;
+  double dispatch_latency_ms = 0;
   uint64_t copy_bytes = 0;      // per dispatch (read + write)
   std::vector<double> copy_ms;
   // Raster fill rate (calibrate_raster.vert/.frag): `raster_layers` full-screen triangles over a

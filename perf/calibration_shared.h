@@ -1,5 +1,5 @@
 // Shared by the calibration kernels (perf/calibrate_fma.comp, calibrate_fma_scalar.comp,
-// calibrate_copy.comp, calibrate_raster.vert/.frag) and perf/calibration.cpp: the device's
+// calibrate_copy.comp, calibrate_dispatch.comp, calibrate_raster.vert/.frag) and perf/calibration.cpp: the device's
 // achieved FP32 FMA rate, copy bandwidth and raster fill rate, which the console-scaling model
 // divides pass costs by (bench/README.md).
 #ifndef GIB_CALIBRATION_SHARED_H
@@ -10,6 +10,7 @@ GIB_CONST(uint, kCalibGroup, 256)
 GIB_CONST(uint, kCalibFmaChains, 8)   // independent vec4 FMA chains per thread (latency hiding)
 GIB_CONST(uint, kCalibScalarChains, 32)  // calibrate_fma_scalar: independent scalar chains (same 32 FMAs a step)
 GIB_CONST(uint, kCalibScalarGroup, 128)
+GIB_CONST(uint, kCalibDispatchChain, 64)  // calibrate_dispatch: dispatches timed in one chain
 GIB_CONST(uint, kCalibBindOut, 0)     // fma: one float per thread (keeps the chains live)
 GIB_CONST(uint, kCalibBindSrc, 0)     // copy: source vec4 buffer
 GIB_CONST(uint, kCalibBindDst, 1)     // copy: destination vec4 buffer

@@ -18,11 +18,15 @@ double occupancy_factor(double threads, double resident_dev, double resident_pro
   return occupancy_fill(threads, resident_dev) / occupancy_fill(threads, resident_profile);
 }
 
-double pass_occupancy_factor(const std::vector<DispatchShare>& dispatches, double resident_dev, double resident_profile) {
+double pass_occupancy_factor(const std::vector<DispatchShare>& dispatches, double resident_dev, double resident_profile,
+                             double latency_ms, double pass_ms) {
   if (dispatches.empty()) return 1;
+  const double idle = occupancy_factor(0, resident_dev, resident_profile);
   double f = 0, total = 0;
   for (const DispatchShare& d : dispatches) {
-    f += d.fraction * occupancy_factor(d.threads, resident_dev, resident_profile);
+    const double ms = d.fraction * pass_ms;
+    const double latency = latency_ms > 0 && ms > 0 ? std::min(1.0, latency_ms / ms) : 0.0;
+    f += d.fraction * (latency * idle + (1 - latency) * occupancy_factor(d.threads, resident_dev, resident_profile));
     total += d.fraction;
   }
   return total > 0 ? f / total : 1;

@@ -34,7 +34,16 @@ struct DispatchShare {
 
 // Sum over the dispatches of fraction x occupancy_factor: what multiplies the FLOP ratio of the
 // pass's compute time. 1 when there are no dispatches (a pass of copies or draws).
-double pass_occupancy_factor(const std::vector<DispatchShare>& dispatches, double resident_dev, double resident_profile);
+//
+// Dispatch latency (latency_ms > 0, the device's calibrated cost of an empty dispatch behind a
+// barrier; pass_ms the pass's measured time): every dispatch spends that long launching and
+// draining whatever its size, time in which no thread works. That part of a dispatch,
+// min(1, latency_ms / (fraction x pass_ms)), scales as a dispatch that fills neither GPU
+// (occupancy_factor of 0 threads: the clock ratio), the rest by its threads' fill. Without it a
+// pass of several short dispatches on a wide GPU had its launches scaled by the FLOP ratio, as if
+// a console launched a dispatch 16x slower than an H100 because it has 1/16 of its lanes.
+double pass_occupancy_factor(const std::vector<DispatchShare>& dispatches, double resident_dev, double resident_profile,
+                             double latency_ms = 0, double pass_ms = 0);
 
 // Per-dispatch samples (ms and threads from several profiled frames) folded into shares: the
 // median ms and median threads of each dispatch, in record order. Empty when the frames do not

@@ -19,6 +19,7 @@
 #include <sstream>
 
 #include "perf/calibration.h"
+#include "perf/calibration_shared.h"
 #include "perf/frame_timing.h"
 #include "perf/occupancy.h"
 #include "perf/pipeline_stats.h"
@@ -253,10 +254,11 @@ std::string seed_column(const SeedTable& table, const TechniqueRun& r) {
 }
 
 // Seed comparison of one run: per table row, our scaled cost of the passes that make it up.
-// `flop_by_pass`: the same scaled costs without the occupancy term (the FLOP split alone).
-void add_seed_rows(const SeedTable& table, const TechniqueRun& r,
-                   const std::map<std::string, std::map<std::string, double>>& scaled_by_pass,
-                   const std::map<std::string, std::map<std::string, double>>& flop_by_pass, nlohmann::json& jseed) {
+// `flop_by_pass`: the same scaled costs without the occupancy term (the FLOP split alone);
+// `nolat_by_pass`: with the occupancy term but without its dispatch latency (perf/occupancy.h).
+using CostByPass = std::map<std::string, std::map<std::string, double>>;  // profile -> pass -> ms
+void add_seed_rows(const SeedTable& table, const TechniqueRun& r, const CostByPass& scaled_by_pass,
+                   const CostByPass& flop_by_pass, const CostByPass& nolat_by_pass, nlohmann::json& jseed) {
   const std::string selected = seed_column(table, r);
   for (const ConsoleProfile* p : r.workload.profiles)
     for (const SeedPlatform& platform : table.platforms) {
@@ -269,14 +271,16 @@ void add_seed_rows(const SeedTable& table, const TechniqueRun& r,
       const std::string& column = platform.column;
       auto mine = scaled_by_pass.find(p->name);
       if (mine == scaled_by_pass.end()) continue;
-      std::map<std::string, double> ours, ours_flop;
+      std::map<std::string, double> ours, ours_flop, ours_nolat;
       std::map<std::string, std::vector<std::string>> passes;
       std::map<std::string, bool> walks;  // a pass of the row walks the BVH in software
       const auto& flop = flop_by_pass.at(p->name);
+      const auto& nolat = nolat_by_pass.at(p->name);
       for (auto& [pass, ms] : mine->second)
         if (auto k = table.pass_row.find(pass); k != table.pass_row.end()) {
           ours[k->second] += ms;
           ours_flop[k->second] += flop.at(pass);
+          ours_nolat[k->second] += nolat.at(pass);
           passes[k->second].push_back(pass);
           for (const PassRun& pr : r.passes)
             if (pr.name == pass && pr.traces_rays) walks[k->second] = true;
@@ -289,6 +293,8 @@ void add_seed_rows(const SeedTable& table, const TechniqueRun& r,
                          {"ours_ms", ms}, {"seed_ms", it->second}, {"ratio", it->second > 0 ? ms / it->second : 0.0},
                          {"ours_ms_flop_split", ours_flop[row]},
                          {"ratio_flop_split", it->second > 0 ? ours_flop[row] / it->second : 0.0},
+                         {"ours_ms_no_dispatch_latency", ours_nolat[row]},
+                         {"ratio_no_dispatch_latency", it->second > 0 ? ours_nolat[row] / it->second : 0.0},
                          {"resolution", {r.workload.width, r.workload.height}},
                          {"seed_resolution", {sp->width, sp->height}},
                          {"software_bvh_walk", walks[row]}});
@@ -315,20 +321,22 @@ void print_seed_comparison(const std::vector<SeedTable>& seeds, const std::vecto
                  ran ? "no run at a profile the table has" : "not run", fmt::join(profiles, ", "));
       continue;
     }
-    // "flop only": the ratio the FLOP / bandwidth split gives without the occupancy term.
-    fmt::print("{:<22} {:<14} {:<12} {:<32} {:>10} {:>10} {:>8} {:>10}  {}\n", "technique", "profile", "column", "seed row",
-               "ours ms", "seed ms", "ratio", "flop only", "our passes");
+    // "flop only": the ratio the FLOP / bandwidth split gives without the occupancy term; "no
+    // latency": with the occupancy term but every dispatch's launch scaled by the FLOP ratio too.
+    fmt::print("{:<22} {:<14} {:<12} {:<32} {:>10} {:>10} {:>8} {:>10} {:>10}  {}\n", "technique", "profile", "column",
+               "seed row", "ours ms", "seed ms", "ratio", "flop only", "no latency", "our passes");
     struct Sum {
-      double ours = 0, seed = 0, flop = 0;
+      double ours = 0, seed = 0, flop = 0, nolat = 0;
     };
     std::map<std::tuple<std::string, std::string, std::string>, Sum> sums;
     bool walk_rows = false;
     for (auto* e : rows) {
       const std::string column = (*e)["column"];
-      fmt::print("{:<22} {:<14} {:<12} {:<32} {:>10} {:>10} {:>7.2f}x {:>9.2f}x  {}{}\n", (*e)["technique"].get<std::string>(),
-                 (*e)["profile"].get<std::string>(), column.empty() ? "-" : column,
+      fmt::print("{:<22} {:<14} {:<12} {:<32} {:>10} {:>10} {:>7.2f}x {:>9.2f}x {:>9.2f}x  {}{}\n",
+                 (*e)["technique"].get<std::string>(), (*e)["profile"].get<std::string>(), column.empty() ? "-" : column,
                  (*e)["seed_key"].get<std::string>(), fmt_ms((*e)["ours_ms"]), fmt_ms((*e)["seed_ms"]),
                  (*e)["ratio"].get<double>(), (*e)["ratio_flop_split"].get<double>(),
+                 e->value("ratio_no_dispatch_latency", (*e)["ratio"].get<double>()),
                  fmt::join((*e)["passes"].get<std::vector<std::string>>(), "+"),
                  e->value("software_bvh_walk", false) ? " [software BVH walk]" : "");
       walk_rows |= e->value("software_bvh_walk", false);
@@ -336,13 +344,15 @@ void print_seed_comparison(const std::vector<SeedTable>& seeds, const std::vecto
       s.ours += (*e)["ours_ms"].get<double>();
       s.seed += (*e)["seed_ms"].get<double>();
       s.flop += (*e)["ours_ms_flop_split"].get<double>();
+      s.nolat += e->value("ours_ms_no_dispatch_latency", (*e)["ours_ms"].get<double>());
     }
     for (auto& [k, s] : sums) {
       const SeedPlatform* sp = table.find(std::get<1>(k), std::get<2>(k));
       const bool total = sp && !table.total_row.empty() && sp->ms.count(table.total_row);
-      fmt::print("{:<22} {:<14} {:<12} {:<32} {:>10} {:>10} {:>7.2f}x {:>9.2f}x  (seed {} {} ms)\n", std::get<0>(k),
-                 std::get<1>(k), std::get<2>(k).empty() ? "-" : std::get<2>(k), "sum of matched rows", fmt_ms(s.ours),
-                 fmt_ms(s.seed), s.seed > 0 ? s.ours / s.seed : 0.0, s.seed > 0 ? s.flop / s.seed : 0.0,
+      fmt::print("{:<22} {:<14} {:<12} {:<32} {:>10} {:>10} {:>7.2f}x {:>9.2f}x {:>9.2f}x  (seed {} {} ms)\n",
+                 std::get<0>(k), std::get<1>(k), std::get<2>(k).empty() ? "-" : std::get<2>(k), "sum of matched rows",
+                 fmt_ms(s.ours), fmt_ms(s.seed), s.seed > 0 ? s.ours / s.seed : 0.0, s.seed > 0 ? s.flop / s.seed : 0.0,
+                 s.seed > 0 ? s.nolat / s.seed : 0.0,
                  table.total_row.empty() ? "total" : table.total_row,
                  total ? fmt_ms(sp->ms.at(table.total_row)) : "-");
     }
@@ -474,6 +484,10 @@ int cmd_bench(const BenchOptions& o) {
              thr.fp32_gflops, cal.timing, cal.fma_gflops, cal.fma_scalar_gflops,
              cal.fma_scalar_gflops > 0 ? cal.fma_gflops / cal.fma_scalar_gflops : 0.0, thr.bandwidth_gbs,
              cal.copy_bytes / 1048576.0);
+  if (cal.dispatch_latency_ms > 0)
+    fmt::print("calibration: dispatch latency {:.2f} us (an empty one-group dispatch behind a barrier, chains of {}; "
+               "scaled as a dispatch that fills neither GPU, perf/occupancy.h)\n",
+               cal.dispatch_latency_ms * 1e3, glsl::kCalibDispatchChain);
   fmt::print("calibration: raster fill {:.2f} Gpixel/s ({} full-screen layers at {}x{}, D32 test + rg32_uint write)\n",
              thr.fill_gpix, cal.raster_layers, cal.raster_width, cal.raster_height);
 
@@ -752,8 +766,9 @@ int cmd_bench(const BenchOptions& o) {
     std::map<std::string, double> scaled_total, aov_only_scaled;
     double aov_only_meas = 0;
     double meas_total = 0, full_total = 0, bytes_total = 0, mem_total = 0, comp_total = 0;
-    std::map<std::string, std::map<std::string, double>> scaled_by_pass;  // profile -> pass -> ms
-    std::map<std::string, std::map<std::string, double>> flop_by_pass;    // the same without the occupancy term
+    CostByPass scaled_by_pass;  // profile -> pass -> ms
+    CostByPass flop_by_pass;    // the same without the occupancy term
+    CostByPass nolat_by_pass;   // the same with the occupancy term but no dispatch latency
     std::map<std::string, std::vector<std::pair<std::string, double>>> pass_order;  // the same, in run order
     for (auto& pr : r.passes) {
       Summary s = summarize_samples(pr.samples);
@@ -779,15 +794,22 @@ int cmd_bench(const BenchOptions& o) {
       for (auto* p : w.profiles) {
         std::optional<double> raster = pr.raster ? scale_raster_to_profile(full_ms, thr, *p) : std::nullopt;
         if (pr.raster && !raster) raster_fallback.push_back(p->name);
-        double occ = 1;
-        if (!shares.empty() && p->resident_threads)
-          occ = pass_occupancy_factor(shares, double(thr.resident_threads), double(p->resident_threads));
-        if (!shares.empty()) jocc["factor"][p->name] = occ;
+        double occ = 1, occ_nolat = 1;
+        if (!shares.empty() && p->resident_threads) {
+          occ = pass_occupancy_factor(shares, double(thr.resident_threads), double(p->resident_threads),
+                                      cal.dispatch_latency_ms, full_ms);
+          occ_nolat = pass_occupancy_factor(shares, double(thr.resident_threads), double(p->resident_threads));
+        }
+        if (!shares.empty()) {
+          jocc["factor"][p->name] = occ;
+          jocc["factor_no_dispatch_latency"][p->name] = occ_nolat;
+        }
         if (std::fabs(occ - 1) > 0.005) occ_line += fmt::format(" x{:.3f} @ {}", occ, p->name);
         const bool by_fill = raster.has_value();
         const double fill_ms = raster.value_or(0.0);
         const double ms = by_fill ? fill_ms : scale_to_profile(split, thr, *p, occ);
         const double flop_ms = by_fill ? fill_ms : scale_to_profile(split, thr, *p);
+        nolat_by_pass[p->name][pr.name] += by_fill ? fill_ms : scale_to_profile(split, thr, *p, occ_nolat);
         scaled_flop[p->name] = flop_ms;
         scaled[p->name] = ms;
         scaled_total[p->name] += ms;
@@ -945,7 +967,7 @@ int cmd_bench(const BenchOptions& o) {
     jruns.push_back(jr);
 
     for (const SeedTable& table : seeds)
-      if (table.technique == r.technique->name) add_seed_rows(table, r, scaled_by_pass, flop_by_pass, jseed);
+      if (table.technique == r.technique->name) add_seed_rows(table, r, scaled_by_pass, flop_by_pass, nolat_by_pass, jseed);
   }
   print_seed_comparison(seeds, techs, jseed);
   if (!o.budget_html.empty()) {

@@ -73,6 +73,22 @@ TEST(Occupancy, PassFactorWeighsDispatchesByTheirTime) {
   EXPECT_NEAR(scale_to_profile(s, dev, p), 2.0 * 4 + 1.0 * kFlopRatio, 1e-9);
 }
 
+TEST(Occupancy, DispatchLatencyScalesByTheClockRatio) {
+  // Two dispatches of a 0.06 ms pass, each filling both GPUs: without latency the FLOP ratio.
+  const std::vector<DispatchShare> d = {{0.5, 1e6}, {0.5, 1e6}};
+  EXPECT_DOUBLE_EQ(pass_occupancy_factor(d, kH100Resident, kSeriesSResident), 1.0);
+  // With 0.005 ms of latency per dispatch, 0.005 / 0.03 of each scales as a dispatch that fills
+  // neither (kSeriesSResident / kH100Resident), the rest as before.
+  const double lat = 0.005 / 0.03, idle = kSeriesSResident / kH100Resident;
+  EXPECT_NEAR(pass_occupancy_factor(d, kH100Resident, kSeriesSResident, 0.005, 0.06), lat * idle + (1 - lat), 1e-12);
+  // A dispatch no longer than the latency is all latency: the clock ratio.
+  EXPECT_NEAR(kFlopRatio * pass_occupancy_factor({{1.0, 1e6}}, kH100Resident, kSeriesSResident, 0.01, 0.004),
+              1.98 / 1.565, 1e-12);
+  // No latency calibrated, or no pass time: unchanged.
+  EXPECT_DOUBLE_EQ(pass_occupancy_factor(d, kH100Resident, kSeriesSResident, 0.0, 0.06), 1.0);
+  EXPECT_DOUBLE_EQ(pass_occupancy_factor(d, kH100Resident, kSeriesSResident, 0.005, 0.0), 1.0);
+}
+
 TEST(Occupancy, SharesAreMediansNormalised) {
   DispatchSamples s;
   s.frames = 3;

@@ -781,6 +781,17 @@ TEST_F(PerfCalibration, BothFmaKernelsAreTimedAndTheFasterCounts) {
   EXPECT_EQ(back.throughput.fill_gpix, c.throughput.fill_gpix);
   EXPECT_EQ(back.raster_layers, c.raster_layers);
   EXPECT_EQ(back.fill_gpix_of(back.raster_ms), c.throughput.fill_gpix);
+  // Dispatch latency: GPUs only (a CPU device's host clock around one submission says nothing
+  // about one dispatch); it survives the JSON either way.
+  if (gpu().info().is_software()) {
+    EXPECT_EQ(c.dispatch_latency_ms, 0.0);
+    EXPECT_TRUE(c.dispatch_chain_ms.empty());
+  } else {
+    EXPECT_EQ(c.dispatch_chain_ms.size(), 2u);
+    EXPECT_GT(c.dispatch_latency_ms, 0.0);
+  }
+  EXPECT_EQ(back.dispatch_latency_ms, c.dispatch_latency_ms);
+  EXPECT_EQ(back.dispatch_chain_ms, c.dispatch_chain_ms);
 }
 
 // The fill rate counts layers x width x height pixels per draw: true only if every layer's

@@ -70,7 +70,7 @@ void record_compute(RecordContext& ctx, const ComputeDispatch& d) {
   std::vector<Bind> binds;
   if (d.scene) binds = ctx.scene_gpu.binds();
   for (auto& ib : d.images) {
-    desc.bindings.push_back({ib.binding, DescriptorKind::storage_image});
+    desc.bindings.push_back({ib.binding, ib.sampled ? DescriptorKind::sampled_image : DescriptorKind::storage_image});
     binds.push_back({ib.binding, nullptr, ib.prev ? &ctx.prev_image(ib.slot) : &ctx.image(ib.slot)});
   }
   for (auto& bb : d.buffers) {

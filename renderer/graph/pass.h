@@ -80,10 +80,13 @@ std::vector<BindingDecl> scene_bindings();
 // The common shape of a compute pass: the scene bundle plus storage images bound by slot name,
 // one dispatch. Push constants and specialization constants optional.
 // prev: bind last frame's copy of a ping-pong resource (the slot declares read_prev).
+// sampled: bind it as a combined image sampler (nearest, clamp to edge: the Vulkan layer's one
+// sampler) instead of a storage image, for texelFetch and textureGather (four texels a load).
 struct ImageBinding {
   uint32_t binding;
   const char* slot;
   bool prev = false;
+  bool sampled = false;
 };
 struct BufferBinding {  // a storage buffer slot
   uint32_t binding;

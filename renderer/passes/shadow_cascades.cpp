@@ -144,7 +144,7 @@ void record_shadow_filter(RecordContext& ctx, const char* shader, const char* ou
   using namespace glsl;
   ShadowCascadePush push = shadow_cascade_push(ctx.settings.params<SunShadowParams>(), ctx.scene.camera.near_plane);
   record_compute(ctx, {.shader = shader,
-                       .images = {{kShadowBindMap, "shadow_map"},
+                       .images = {{kShadowBindMap, "shadow_map", false, true},  // sampled: gathered
                                   {kShadowBindMinMax, "shadow_minmax"},
                                   {kShadowBindPosition, "gbuffer_position"},
                                   {kShadowBindNormal, "gbuffer_normal"},

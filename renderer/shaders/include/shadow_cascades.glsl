@@ -143,6 +143,11 @@ float csm_filter_radius(ShadowCascadePush p) {
 // Filtered comparisons at (u, v) of cascade `cascade` against two depths z.x and z.y from one
 // read of the four nearest texels: each texel compared (1: lit, the stored surface is no nearer
 // the sun than z) and bilinearly weighted; texels are clamped to the cascade's own square.
+// shadow_map is the atlas as a sampled image. Where the four texels lie inside the cascade (all
+// but its outermost texel ring) one textureGather at their shared corner reads them; the corner
+// sits half a texel from any texel centre, so the gather's own coordinate rounding cannot pick
+// another quad. Elsewhere four texelFetch read the clamped texels. Both return the stored
+// values unchanged, so the result is that of four separate loads bit for bit.
 vec2 csm_shadow_tap2(uint cascade, vec2 uv, vec2 z, float res) {
   vec2 t = uv * res - 0.5;
   vec2 i0 = floor(t);
@@ -150,10 +155,19 @@ vec2 csm_shadow_tap2(uint cascade, vec2 uv, vec2 z, float res) {
   ivec2 a = ivec2(clamp(i0, vec2(0.0), vec2(res - 1.0)));
   ivec2 b = ivec2(clamp(i0 + 1.0, vec2(0.0), vec2(res - 1.0)));
   int x0 = int(cascade) * int(res);
-  float d00 = imageLoad(shadow_map, ivec2(x0 + a.x, a.y)).x;
-  float d10 = imageLoad(shadow_map, ivec2(x0 + b.x, a.y)).x;
-  float d01 = imageLoad(shadow_map, ivec2(x0 + a.x, b.y)).x;
-  float d11 = imageLoad(shadow_map, ivec2(x0 + b.x, b.y)).x;
+  float d00, d10, d01, d11;
+  if (b == a + 1) {
+    vec4 g = textureGather(shadow_map, vec2(float(x0 + b.x), float(b.y)) / vec2(textureSize(shadow_map, 0)));
+    d01 = g.x;  // gather order: (i0, j1), (i1, j1), (i1, j0), (i0, j0)
+    d11 = g.y;
+    d10 = g.z;
+    d00 = g.w;
+  } else {
+    d00 = texelFetch(shadow_map, ivec2(x0 + a.x, a.y), 0).x;
+    d10 = texelFetch(shadow_map, ivec2(x0 + b.x, a.y), 0).x;
+    d01 = texelFetch(shadow_map, ivec2(x0 + a.x, b.y), 0).x;
+    d11 = texelFetch(shadow_map, ivec2(x0 + b.x, b.y), 0).x;
+  }
   vec2 l00 = vec2(greaterThanEqual(vec2(d00), z)), l10 = vec2(greaterThanEqual(vec2(d10), z));
   vec2 l01 = vec2(greaterThanEqual(vec2(d01), z)), l11 = vec2(greaterThanEqual(vec2(d11), z));
   return mix(mix(l00, l10, f.x), mix(l01, l11, f.x), f.y);

@@ -4,7 +4,8 @@
 #include "frame.glsl"
 #include "hash.glsl"
 layout(local_size_x = kShadowGroup, local_size_y = kShadowGroup) in;
-layout(set = 0, binding = kShadowBindMap, r32f) uniform readonly image2D shadow_map;
+// The atlas as a sampled image: csm_shadow_tap2 gathers a tap's four texels in one load.
+layout(set = 0, binding = kShadowBindMap) uniform sampler2D shadow_map;
 layout(set = 0, binding = kShadowBindMinMax, rg32f) uniform readonly image2D shadow_minmax;
 layout(set = 0, binding = kShadowBindPosition, rgba32f) uniform readonly image2D gb_position;
 layout(set = 0, binding = kShadowBindNormal, rgba16f) uniform readonly image2D gb_normal;
