@@ -544,6 +544,7 @@ int cmd_bench(const BenchOptions& o) {
   // Runs: each technique and workload, then its variants (base = the plain run's index);
   // timed repeat-major below, so the two halves of the noise floor are apart in time.
   std::vector<TechniqueRun> runs;
+  std::set<std::string> skipped_variants;  // "label/technique", noted once
   for (auto* t : techs) {
     const BenchOutputs outs = bench_outputs(*t, scene.features(), o.aovs);
     if (outs.aovs.empty()) {
@@ -554,6 +555,7 @@ int cmd_bench(const BenchOptions& o) {
                fmt::join(outs.left_out, ", "));
     for (auto& w : workloads) {
       if (!w.technique.empty() && w.technique != t->name) continue;
+      const int plain = int(runs.size());  // this workload's plain run, every variant's base
       for (size_t vi = 0; vi <= variants.size(); ++vi) {
         TechniqueRun r;
         r.technique = t;
@@ -563,13 +565,26 @@ int cmd_bench(const BenchOptions& o) {
         s = apply_preset(*t, o.preset, s);  // the reference: 1 sample per pixel per frame (its default)
         if (vi > 0) {
           const auto& [label, opts] = variants[vi - 1];
+          // A variant naming an option the technique does not have (the reference has no
+          // direct_light) is not run for it; a bad value of an option it has is an error.
+          std::vector<std::string> missing;
+          for (const auto& [name, value] : opts)
+            if (std::none_of(technique_options(*t).begin(), technique_options(*t).end(),
+                             [&](const TechniqueOption& to) { return to.name == name; }))
+              missing.push_back(name);
+          if (!missing.empty()) {
+            if (skipped_variants.insert(label + "/" + t->name).second)
+              fmt::print("--variant {}: not run for {} (it has no option {})\n", label, t->name,
+                         fmt::join(missing, ", "));
+            continue;
+          }
           try {
             s = apply_options(*t, s, opts);
           } catch (const std::invalid_argument& e) {
             throw PerfError(fmt::format("--variant {}: {}: {}", label, t->name, e.what()));
           }
           r.name = t->name + "+" + label;
-          r.base = int(runs.size() - vi);
+          r.base = plain;
           r.variant_options = opts;
         }
         r.settings_full = s;
@@ -955,9 +970,10 @@ int cmd_bench(const BenchOptions& o) {
                    {"device_ms_full", full_total}, {"scaled_ms", scaled_total},
                    {"includes_aov_only_passes", !r.aov_only.empty()},
                    {"aov_only_sum_of_pass_medians_ms", aov_only_meas}, {"aov_only_scaled_ms", aov_only_scaled}};
-    // The seed's budget tree per profile that has budgets (GoW Ragnarok: PS4).
+    // The budget tree per profile: categories with the seed's budgets where the profile has them
+    // (GoW Ragnarok: PS4), without ("-") elsewhere, so every profile's frame reads by category.
     for (auto* p : w.profiles) {
-      if (!budgets || !budgets->profiles.count(p->name) || !w.seed_table.empty()) continue;
+      if (!budgets || !w.seed_table.empty()) continue;
       BudgetTree tree = budget_tree(*budgets, p->name, pass_order[p->name]);
       fmt::print("\n-- {} budgets @ {} (console-scaled) --\n{}", r.name, p->name, format_budget_tree(tree));
       jr["budgets"].push_back(to_json(tree));

@@ -1,8 +1,8 @@
 // tests/gow_cascade_test.comp <-> tests/test_gow_shadows.cpp: the cascade selection and the seam
-// blend weight of gow_shadow.glsl on test points, for comparison with shadow_cascades.h.
+// blend weight of shadow_cascades.glsl on test points, for comparison with shadow_cascades.h.
 #ifndef GIB_GOW_CASCADE_TEST_SHARED_H
 #define GIB_GOW_CASCADE_TEST_SHARED_H
-#include "renderer/techniques/gow_ragnarok/include/gow_shadow_shared.h"
+#include "shadow_cascades_shared.h"
 GIB_SHARED_BEGIN
 GIB_CONST(uint, kGowCascadeTestGroup, 64)
 GIB_CONST(uint, kGowCascadeTestBindIn, 0)

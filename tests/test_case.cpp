@@ -16,6 +16,7 @@
 #include "harness/case.h"
 #include "tests/temp_dir.h"
 #include "harness/suite.h"
+#include "renderer/techniques/direct_light_modes.h"
 #include "renderer/techniques/technique.h"
 #include "tests/technique_settings.h"
 
@@ -569,7 +570,10 @@ TEST(CaseOptions, ApplyOptions) {
   EXPECT_EQ(technique_options(direct)[0].name, "sky_rays");
   EXPECT_EQ(technique_options(reference)[1].name, "spp_per_frame");
   EXPECT_EQ(technique_options(direct)[1].name, "nan_guards");
-  EXPECT_EQ(technique_options(direct).size() + 2, technique_options(reference).size());
+  // direct also has the direct-light modes' options (direct_light_modes.h), after the shared ones.
+  const size_t modes = direct_light_options().size();
+  EXPECT_EQ(technique_options(direct)[technique_options(direct).size() - modes].name, "direct_light");
+  EXPECT_EQ(technique_options(direct).size() - modes + 2, technique_options(reference).size());
 }
 
 // ---------------------------------------------------------------- directories

@@ -1,5 +1,5 @@
 // gow-ragnarok's sun shadows (renderer/techniques/gow_ragnarok/): the CPU mirrors of
-// gow_shadow.glsl against known answers and against the GPU's shadow map; known answers of the
+// shadow_cascades.glsl against known answers and against the GPU's shadow map; known answers of the
 // shadow filters on the GPU (a plane fully lit, fully shadowed, the penumbra width under a
 // straight edge for a known sun angular radius and occluder height); the penumbra-width metric.
 #include <gtest/gtest.h>
@@ -14,7 +14,7 @@
 #include "renderer/graph/executor.h"
 #include "renderer/scene/scene_loader.h"
 #include "renderer/techniques/gow_ragnarok/gow_ragnarok.h"
-#include "renderer/techniques/gow_ragnarok/shadow_cascades.h"
+#include "renderer/passes/shadow_cascades.h"
 #include "renderer/techniques/technique.h"
 #include "tests/gow_cascade_test_shared.h"
 #include "tests/gow_render.h"
@@ -59,7 +59,7 @@ TEST(GowShadowCpu, SliceSphereHoldsTheSliceCorners) {
 
 glsl::ShadowCascadePush test_push(uint32_t cascades, uint32_t res, float distance) {
   GowRagnarokSettings s;
-  s.cascades = cascades;
+  s.shadow_cascades = cascades;
   s.shadow_resolution = res;
   s.shadow_distance = distance;
   return shadow_cascade_push(s, 0.05f);
@@ -216,7 +216,7 @@ const char* vis_slot(uint32_t filter) { return filter ? "shadow_contact_hardenin
 class GowShadowGpu : public GpuTest {};
 
 // The shadow map holds, per texel, the depth of the floor where the texel's centre projects
-// onto it (a sun 45 degrees up, so depth varies over the map): the GPU raster of gow_shadow.glsl
+// onto it (a sun 45 degrees up, so depth varies over the map): the GPU raster of shadow_cascades.glsl
 // against the CPU mirror's cascade and projection.
 TEST_F(GowShadowGpu, ShadowMapMatchesCpuProjection) {
   const Vec3 sun = normalize(Vec3{1.0f, 1.0f, 0.3f});
@@ -448,7 +448,7 @@ TEST(GowShadowCpu, SeamBlendWeightRisesToOneAtTheSeam) {
   }
 }
 
-// The GPU's selection and blend weight (gow_shadow.glsl, through tests/gow_cascade_test.comp)
+// The GPU's selection and blend weight (shadow_cascades.glsl, through tests/gow_cascade_test.comp)
 // agree with the CPU mirror on random points in and around four cascades.
 class GowCascadeGpu : public GpuTest {};
 TEST_F(GowCascadeGpu, SelectionAndSeamBlendMatchTheCpuMirror) {

@@ -7,7 +7,9 @@
 // brdf.glsl;
 // the G-buffer images gb_albedo, gb_normal, gb_position, gb_emissive (rgba16f / rgba32f as in
 // gbuffer_shared.h) and the visibility buffer `vbuffer`; booleans kHasSun, kHasSky, kHasLocal,
-// kHasEmissive (specialization constants: which lights the scene has). Optionally
+// kHasEmissive (specialization constants: which lights the scene has), kSkyUnoccluded (the
+// shadow_mapped mode, DirectLightingParams: the sky's light arrives along the same cosine
+// directions, unoccluded, without a ray; emissive surfaces are not sampled). Optionally
 // GIB_SUN_VISIBILITY(p): the sun's visibility at pixel p, replacing the sun's shadow ray.
 //
 // gib_direct_light(p, sky_rays, nan_guards, translucent_path, cloth_path):
@@ -65,6 +67,9 @@ vec3 gib_direct_light(ivec2 p, uint sky_rays, bool nan_guards, bool translucent_
 #ifdef GIB_SUN_VISIBILITY
     // The sun's visibility from a shadow pass of the technique: light from the sun's centre, scaled.
     vec3 wi = gib_frame.sun_dir.xyz;
+    // The traced mode's cone sample, drawn and dropped, so that the sky directions below are
+    // the traced mode's: the two modes then differ only in what occludes (the agreement test).
+    if (kSkyUnoccluded) gib_next2(rng);
 #else
     vec3 wi = gib_uniform_cone(gib_frame.sun_dir.xyz, gib_frame.sun_dir.w, gib_next2(rng));
 #endif
@@ -79,7 +84,27 @@ vec3 gib_direct_light(ivec2 p, uint sky_rays, bool nan_guards, bool translucent_
     }
 #endif
   }
-  if ((kHasSky || kHasEmissive) && sky_rays > 0u) {
+  if (kSkyUnoccluded && kHasSky && sky_rays > 0u) {
+    // shadow_mapped: the sky seen unoccluded along the cosine directions the rays would take.
+    vec3 ng = n;
+    uint ids = imageLoad(vbuffer, p).x;
+    if (ids != kVisibilityNone) {
+      vec3 o, d;
+      gib_camera_ray(vec2(p) + 0.5, o, d);
+      ng = gib_face_normal_facing(ids - 1u, d, n);
+    }
+    vec3 sky = vec3(0.0), sheen_sky = vec3(0.0);
+    for (uint i = 0u; i < sky_rays; ++i) {
+      bool back = translucency > 0.0 && gib_next(rng) < translucency;
+      vec3 side = back ? -n : n, side_g = back ? -ng : ng;
+      vec3 wi = gib_above_face(gib_cosine_hemisphere(side, gib_next2(rng)), side_g);
+      vec3 found = gib_sky_radiance(wi);
+      sky += found;
+      if (sheen > 0.0) sheen_sky += GIB_PI * gib_sheen_lobe(sheen, normal_rough.a, n, wi, wo) * found;
+    }
+    result += albedo * sky / float(sky_rays);
+    if (sheen > 0.0) result += sheen_sky / float(sky_rays);
+  } else if (!kSkyUnoccluded && (kHasSky || kHasEmissive) && sky_rays > 0u) {
     // Cosine-distributed rays: each carries albedo * the radiance it finds straight away, the
     // sky's where it escapes, an emissive surface's emission where it hits one (light that
     // reaches this surface with no further bounce: direct, by the AOV contract).

@@ -12,11 +12,12 @@ class DirectLightingPass final : public Pass {
   PassDecl declare(const Scene& scene, const Settings& s) const override {
     PassDecl d;
     d.name = "direct_lighting";
-    d.traces_rays = true;  // BVH walk in the shader (PassDecl::traces_rays)
     d.slots = direct_light_slots(ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values()));
-    const std::string_view vis = s.params<DirectLightingParams>().sun_visibility;
+    const DirectLightingParams& params = s.params<DirectLightingParams>();
+    d.traces_rays = walks_bvh(scene, params);  // BVH walk in the shader (PassDecl::traces_rays)
+    const std::string_view vis = sun_visibility_slot(params);
     if (!vis.empty() && scene.features().has(Feature::sun)) d.slots.push_back({std::string(vis), Access::read});
-    d.work = {{"sky_rays", double(s.width) * s.height * s.params<DirectLightingParams>().sky_rays}};
+    d.work = {{"sky_rays", sky_unoccluded(params) ? 0.0 : double(s.width) * s.height * params.sky_rays}};
     return d;
   }
 
@@ -32,7 +33,7 @@ class DirectLightingPass final : public Pass {
                                         {kDirectBindPosition, "gbuffer_position"},
                                         {kDirectBindEmissive, "gbuffer_emissive"},
                                         {kDirectBindOut, "direct_light"}};
-    const std::string vis(params.sun_visibility);
+    const std::string vis(sun_visibility_slot(params));
     const bool shadowed_by_slot = !vis.empty() && f.has(Feature::sun);
     if (shadowed_by_slot) images.push_back({kDirectBindSunVisibility, vis.c_str()});
     record_compute(ctx, {.shader = shadowed_by_slot ? "direct_lighting_sun_visibility.comp" : "direct_lighting.comp",
@@ -45,11 +46,23 @@ class DirectLightingPass final : public Pass {
                                             {kDirectSpecSky, f.has(Feature::sky)},
                                             {kDirectSpecLocal, f.has(Feature::local_lights) && params.local_lights},
                                             {kDirectSpecAlpha, f.has(Feature::alpha_tested)},
-                                            {kDirectSpecEmissive, f.has(Feature::emissive)}}});
+                                            {kDirectSpecEmissive, f.has(Feature::emissive)},
+                                            {kDirectSpecSkyUnoccluded, sky_unoccluded(params)}}});
   }
 };
 
 }  // namespace
+
+std::string_view sun_visibility_slot(const DirectLightingParams& p) {
+  if (!p.sun_visibility.empty()) return p.sun_visibility;
+  return p.direct_light == uint32_t(DirectLightMode::shadow_mapped) ? "shadow_pcf" : "";
+}
+
+bool walks_bvh(const Scene& scene, const DirectLightingParams& p) {
+  const SceneFeatures f = scene.features();
+  return !sky_unoccluded(p) || (f.has(Feature::local_lights) && p.local_lights) ||
+         (f.has(Feature::sun) && sun_visibility_slot(p).empty());
+}
 
 std::vector<Slot> direct_light_slots(const ResourceDesc& out) {
   return {{"vbuffer", Access::read},          {"gbuffer_albedo", Access::read},   {"gbuffer_normal", Access::read},

@@ -11,6 +11,7 @@ layout(constant_id = kDirectSpecSun) const bool kHasSun = true;
 layout(constant_id = kDirectSpecSky) const bool kHasSky = true;
 layout(constant_id = kDirectSpecLocal) const bool kHasLocal = true;
 layout(constant_id = kDirectSpecEmissive) const bool kHasEmissive = true;
+layout(constant_id = kDirectSpecSkyUnoccluded) const bool kSkyUnoccluded = false;
 #define GIB_ALPHA_SPEC kDirectSpecAlpha
 #include "bvh_alpha.glsl"
 #include "lights.glsl"

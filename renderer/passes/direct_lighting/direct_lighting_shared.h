@@ -17,6 +17,7 @@ GIB_CONST(uint, kDirectSpecSky, 1)
 GIB_CONST(uint, kDirectSpecLocal, 2)
 GIB_CONST(uint, kDirectSpecAlpha, 3)
 GIB_CONST(uint, kDirectSpecEmissive, 4)
+GIB_CONST(uint, kDirectSpecSkyUnoccluded, 5)  // the shadow_mapped mode's sky (DirectLightingParams)
 struct DirectPush {
   uint sky_rays;    // cosine rays per pixel: sky and emissive surfaces seen from the pixel
   uint nan_guards;  // 1: a non-finite G-buffer normal is replaced by the direction to the camera

@@ -14,6 +14,7 @@
 #include "renderer/techniques/deferred/material_classify/material_classify.h"
 #include "renderer/techniques/deferred/tile_classify/tile_classify.h"
 #include "renderer/techniques/deferred/vrcs_rate/vrcs_rate.h"
+#include "renderer/techniques/direct_light_modes.h"
 #include "renderer/techniques/technique.h"
 
 namespace gib {
@@ -193,6 +194,7 @@ Technique deferred_technique() {
                  &DeferredSettings::vrcs_force),
       },
       {0, 1});
+  add_direct_light_modes(t);  // option direct_light: traced or shadow_mapped
   return t;
 }
 

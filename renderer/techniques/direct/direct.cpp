@@ -4,6 +4,7 @@
 
 #include "renderer/passes/gbuffer/gbuffer.h"
 #include "renderer/passes/visibility/visibility.h"
+#include "renderer/techniques/direct_light_modes.h"
 #include "renderer/techniques/technique.h"
 
 namespace gib {
@@ -26,6 +27,7 @@ Technique direct_technique() {
                  &DirectLightingParams::sky_rays),
       },
       {0, 1});
+  add_direct_light_modes(t);  // option direct_light: traced or shadow_mapped
   return t;
 }
 

@@ -14,14 +14,15 @@
 #include "renderer/techniques/gow_ragnarok/reflections_resolve/reflections_resolve.h"
 #include "renderer/techniques/gow_ragnarok/reflections_rt_cubemap/reflections_rt_cubemap.h"
 #include "renderer/techniques/gow_ragnarok/reflections_rt_cubemap/reflections_rt_cubemap_shared.h"
-#include "renderer/techniques/gow_ragnarok/shadow_maps/shadow_maps.h"
-#include "renderer/techniques/gow_ragnarok/shadow_minmax/shadow_minmax.h"
+#include "renderer/passes/shadow_maps/shadow_maps.h"
+#include "renderer/passes/shadow_minmax/shadow_minmax.h"
 #include "renderer/techniques/gow_ragnarok/shadows_contact_hardening/shadows_contact_hardening.h"
-#include "renderer/techniques/gow_ragnarok/shadows_pcf/shadows_pcf.h"
+#include "renderer/passes/shadows_pcf/shadows_pcf.h"
 #include "renderer/techniques/gow_ragnarok/include/gow_screen_space_shared.h"
 #include "renderer/techniques/gow_ragnarok/ssdo/ssdo.h"
 #include "renderer/techniques/gow_ragnarok/ssdo_ssgi/ssdo_ssgi.h"
 #include "renderer/techniques/gow_ragnarok/ssgi/ssgi.h"
+#include "renderer/techniques/direct_light_modes.h"
 #include "renderer/techniques/technique.h"
 
 namespace gib {
@@ -43,10 +44,10 @@ std::string_view visibility_slot(uint32_t filter) {
 }
 
 void apply_row(GowRagnarokSettings& s, const Preset& p) {
-  s.cascades = p.cascades;
+  s.shadow_cascades = p.cascades;
   s.shadow_resolution = p.resolution;
-  s.taps = p.taps;
-  s.march_steps = p.march_steps;
+  s.shadow_taps = p.taps;
+  s.shadow_march_steps = p.march_steps;
   s.sky_rays = p.sky_rays;
   s.ssdo_directions = p.ssdo_directions;
   s.ssdo_steps = p.ssdo_steps;
@@ -122,26 +123,27 @@ Technique gow_ragnarok_technique() {
           option("sky_rays", "sky visibility rays per pixel (0: no sky light)", 0, 4294967295.0,
                  &DirectLightingParams::sky_rays),
           filter,
-          option("cascades", "shadow cascades", 1, 4, &G::cascades),
+          direct_light_option(),
+          option("cascades", "shadow cascades", 1, 4, &G::shadow_cascades),
           option("shadow_resolution", "texels per side of one cascade (rounded up to 8)", 64, 8192, &G::shadow_resolution),
           option("shadow_distance", "view distance (m) the last cascade ends at", 0.1, 1e5, &G::shadow_distance),
-          option("split_lambda", "cascade splits: 1 logarithmic, 0 uniform", 0, 1, &G::split_lambda),
-          option("caster_range", "metres towards the sun beyond a cascade that still cast", 0, 1e5, &G::caster_range),
+          option("split_lambda", "cascade splits: 1 logarithmic, 0 uniform", 0, 1, &G::shadow_split_lambda),
+          option("caster_range", "metres towards the sun beyond a cascade that still cast", 0, 1e5, &G::shadow_caster_range),
           option("filter_radius", "area-light radius (m); 0: the sun's angular radius seen from march_distance", 0, 100,
-                 &G::filter_radius),
+                 &G::shadow_filter_radius),
           option("march_distance", "distance (m) of the area light the rays march to (seed: 2)", 0.01, 100,
-                 &G::march_distance),
+                 &G::shadow_march_distance),
           option("shadow_bias", "depth bias (m) along the sun (too large: light leaks under objects)", 0, 100,
                  &G::shadow_bias),
-          option("normal_offset", "receiver offset along its normal (shadow-map texels)", 0, 16, &G::normal_offset),
-          option("taps", "PCF taps / contact-hardening rays per pixel", 1, 32, &G::taps),
-          option("march_steps", "contact-hardening steps over the march distance", 1, 256, &G::march_steps),
+          option("normal_offset", "receiver offset along its normal (shadow-map texels)", 0, 16, &G::shadow_normal_offset),
+          option("taps", "PCF taps / contact-hardening rays per pixel", 1, 32, &G::shadow_taps),
+          option("march_steps", "contact-hardening steps over the march distance", 1, 256, &G::shadow_march_steps),
           option("cascade_blend",
                  "seam band: within this fraction of a cascade's width from its edge, the shadow filters blend into "
                  "the next cascade (0: off, the hard seam)",
-                 0, 0.5, &G::cascade_blend),
+                 0, 0.5, &G::shadow_cascade_blend),
           option("minmax_early_out", "skip fully lit / shadowed pixels and shorten marches by the dilated min/max", 0, 1,
-                 &G::minmax_early_out),
+                 &G::shadow_minmax_early_out),
           option("local_shadows", "local lights: 1 shadow rays (direct_lighting), 0 no shadow maps (ssdo occludes them)",
                  0, 1, &DirectLightingParams::local_lights),
           option("ss_combined",

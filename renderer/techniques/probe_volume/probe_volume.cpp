@@ -25,6 +25,7 @@
 #include "renderer/techniques/probe_volume/probe_volume_stages.h"
 #include "renderer/techniques/probe_volume/screen_trace/screen_trace.h"
 #include "renderer/techniques/probe_volume/world_trace/world_trace.h"
+#include "renderer/techniques/direct_light_modes.h"
 #include "renderer/techniques/technique.h"
 
 namespace gib {
@@ -196,6 +197,7 @@ Technique probe_volume_technique() {
   t.stages = probe_volume_stages();
   define_settings<ProbeVolumeSettings>(t, kPresets, apply_preset_row);
   t.options = with_common_options(own_options(), {0, 1});
+  add_direct_light_modes(t);  // option direct_light: traced or shadow_mapped
   return t;
 }
 

@@ -15,6 +15,7 @@
 #include "renderer/techniques/radiance_cache/probe_trace/probe_trace.h"
 #include "renderer/techniques/radiance_cache/radiance_cache_shade/radiance_cache_shade.h"
 #include "renderer/techniques/radiance_cache/radiance_cache_update/radiance_cache_update.h"
+#include "renderer/techniques/direct_light_modes.h"
 #include "renderer/techniques/technique.h"
 
 namespace gib {
@@ -180,6 +181,7 @@ Technique radiance_cache_technique() {
             "gbuffer_normal",   "gbuffer_position"};
   define_settings<RadianceCacheSettings>(t, kPresets, apply_preset_row);
   t.options = with_common_options(own_options(), {0, 1, 2});
+  add_direct_light_modes(t);  // option direct_light: traced or shadow_mapped
   return t;
 }
 

@@ -8,6 +8,7 @@
 #include "renderer/passes/composite/composite.h"
 #include "renderer/passes/gbuffer/gbuffer.h"
 #include "renderer/passes/visibility/visibility.h"
+#include "renderer/techniques/direct_light_modes.h"
 #include "renderer/techniques/technique.h"
 #include "renderer/techniques/voxel_clipmap/irradiance_clipmap/irradiance_clipmap.h"
 #include "renderer/techniques/voxel_clipmap/irradiance_relight/irradiance_relight.h"
@@ -134,6 +135,7 @@ Technique voxel_clipmap_technique() {
   };
   define_settings<VoxelClipmapSettings>(t, kPresets, apply_preset_row);
   t.options = with_common_options(own_options(), {0, 1});
+  add_direct_light_modes(t);  // option direct_light: traced or shadow_mapped
   return t;
 }
 

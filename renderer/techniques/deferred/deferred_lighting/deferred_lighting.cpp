@@ -8,11 +8,11 @@ namespace {
 
 class DeferredLightingPass final : public Pass {
  public:
-  PassDecl declare(const Scene&, const Settings& s) const override {
+  PassDecl declare(const Scene& scene, const Settings& s) const override {
     PassDecl d;
     d.name = "deferred_lighting";
-    d.traces_rays = true;  // BVH walk in the shader (PassDecl::traces_rays)
     const DeferredSettings& ds = s.params<DeferredSettings>();
+    d.traces_rays = walks_bvh(scene, ds);  // BVH walk in the shader (PassDecl::traces_rays)
     d.slots = direct_light_slots(ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values()));
     const bool vrcs = ds.vrcs && ds.tile_classification;
     if (ds.tile_classification) d.slots.push_back({"tile_workloads", Access::read});
@@ -25,7 +25,9 @@ class DeferredLightingPass final : public Pass {
       d.slots.push_back({"vrcs_rates", Access::read_write});
       d.slots.push_back({"vrcs_luma", Access::write, luma});
     }
-    d.work = {{"sky_rays", double(s.width) * s.height * s.params<DeferredSettings>().sky_rays}};
+    const std::string_view vis = sun_visibility_slot(ds);
+    if (!vis.empty() && scene.features().has(Feature::sun)) d.slots.push_back({std::string(vis), Access::read});
+    d.work = {{"sky_rays", sky_unoccluded(ds) ? 0.0 : double(s.width) * s.height * ds.sky_rays}};
     return d;
   }
 
@@ -45,9 +47,17 @@ class DeferredLightingPass final : public Pass {
                                       {kLightSpecSky, f.has(Feature::sky)},
                                       {kLightSpecLocal, f.has(Feature::local_lights)},
                                       {kLightSpecAlpha, f.has(Feature::alpha_tested)},
-                                      {kLightSpecEmissive, f.has(Feature::emissive)}};
+                                      {kLightSpecEmissive, f.has(Feature::emissive)},
+                                      {kLightSpecSkyUnoccluded, sky_unoccluded(ds)}};
+    // The shadow_mapped mode (or a technique's own sun visibility) in a scene with a sun: the
+    // sun's visibility from its slot, by the kernels compiled with it (*_sun_visibility.comp).
+    const std::string vis(sun_visibility_slot(ds));
+    const bool by_slot = !vis.empty() && f.has(Feature::sun);
+    if (by_slot) images.push_back({kLightBindSunVisibility, vis.c_str()});
+    auto kernel = [by_slot](std::string stem) { return (by_slot ? stem + "_sun_visibility" : stem) + ".comp"; };
     if (!ds.tile_classification) {
-      record_compute(ctx, {.shader = "deferred_lighting_uber.comp",
+      const std::string uber = kernel("deferred_lighting_uber");
+      record_compute(ctx, {.shader = uber.c_str(),
                            .images = images,
                            .groups_x = div_up(w, kLightingGroup),
                            .groups_y = div_up(h, kLightingGroup),
@@ -62,11 +72,12 @@ class DeferredLightingPass final : public Pass {
       buffers.push_back({kLightBindRates, "vrcs_rates"});
       images.push_back({kLightBindLuma, "vrcs_luma"});
     }
+    const std::string shader = kernel(!ds.vrcs                               ? "deferred_lighting"
+                                      : ctx.gpu.info().subgroup_arithmetic ? "deferred_lighting_vrcs"
+                                                                           : "deferred_lighting_vrcs_plain");
     for (uint32_t workload = 0; workload < kWorkloadCount; ++workload) {
       spec.back().value = workload;
-      record_compute(ctx, {.shader = !ds.vrcs ? "deferred_lighting.comp"
-                                    : ctx.gpu.info().subgroup_arithmetic ? "deferred_lighting_vrcs.comp"
-                                                                         : "deferred_lighting_vrcs_plain.comp",
+      record_compute(ctx, {.shader = shader.c_str(),
                            .images = images,
                            .push = &push,
                            .push_bytes = sizeof(push),

@@ -15,6 +15,7 @@ layout(constant_id = kLightSpecSky) const bool kHasSky = true;
 layout(constant_id = kLightSpecLocal) const bool kHasLocal = true;
 layout(constant_id = kLightSpecEmissive) const bool kHasEmissive = true;
 layout(constant_id = kLightSpecWorkload) const uint kWorkload = kWorkloadTranslucent;
+layout(constant_id = kLightSpecSkyUnoccluded) const bool kSkyUnoccluded = false;
 #define GIB_ALPHA_SPEC kLightSpecAlpha
 #include "bvh_alpha.glsl"
 #include "lights.glsl"
@@ -37,6 +38,12 @@ layout(set = 0, binding = kLightBindLuma, r32f) uniform writeonly image2D out_lu
 #include "renderer/techniques/deferred/include/vrcs.glsl"
 #endif
 layout(push_constant) uniform Push { LightPush push; };
+#ifdef GIB_LIGHTING_SUN_VISIBILITY
+// The shadow_mapped mode in a scene with a sun: its visibility from shadows_pcf (or the slot
+// DirectLightingParams::sun_visibility names).
+layout(set = 0, binding = kLightBindSunVisibility, r32f) uniform readonly image2D sun_visibility;
+#define GIB_SUN_VISIBILITY(p) imageLoad(sun_visibility, p).x
+#endif
 
 #include "renderer/passes/direct_lighting/direct_light.glsl"
 

@@ -13,6 +13,7 @@ GIB_CONST(uint, kLightBindVbuffer, 13)
 GIB_CONST(uint, kLightBindWorkloads, 14) // tile_workloads (classified kernels only)
 GIB_CONST(uint, kLightBindRates, 15)     // vrcs_rates (VRCS kernels only)
 GIB_CONST(uint, kLightBindLuma, 16)      // vrcs_luma: r32f tone-mapped luminance for vrcs_rate (VRCS kernels only)
+GIB_CONST(uint, kLightBindSunVisibility, 17)  // r32f sun visibility (shadow_mapped kernels only)
 // Specialization constants: the scene's lights (as direct_lighting) and the workload.
 GIB_CONST(uint, kLightSpecSun, 0)
 GIB_CONST(uint, kLightSpecSky, 1)
@@ -20,6 +21,7 @@ GIB_CONST(uint, kLightSpecLocal, 2)
 GIB_CONST(uint, kLightSpecAlpha, 3)
 GIB_CONST(uint, kLightSpecEmissive, 4)
 GIB_CONST(uint, kLightSpecWorkload, 5)  // kWorkload* (classified kernel)
+GIB_CONST(uint, kLightSpecSkyUnoccluded, 6)  // the shadow_mapped mode's sky (DirectLightingParams)
 struct LightPush {
   uint sky_rays;
   uint nan_guards;

@@ -1,35 +1,26 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-#include "renderer/techniques/deferred/material_classify/material_classify_shared.h"
-#include "frame.glsl"
-#include "scene.glsl"
-GIB_SCENE_BUFFERS(0, kBindSceneFirst)
-#define GIB_SCAN_SIZE kMatScanSize
-#include "renderer/techniques/deferred/include/deferred_scan.glsl"
-
-// One workgroup. Segments in the order shader, tile, material; each padded to kDeferredWave.
-layout(local_size_x = kMatScanSize) in;
-layout(set = 0, binding = kMatBindVbuffer, rg32ui) uniform readonly uimage2D vbuffer;
-layout(std430, set = 0, binding = kMatBindSegments) buffer Segments { uint seg[]; };
-layout(push_constant) uniform Push { MatClassifyPush push; };
-
-uint shader_of(uint material) { return min(gib_materials[material].texture, kDeferredShaderCount - 1u); }
+// Scan, step 2 of 3, one workgroup: the blocks' sums in the order shader, block give each
+// block's first slot, each shader's first wave and its indirect dispatch args, and the
+// statistics. Blocks per shader: ceil(T M / kMatScanSize), 225 at 2560x1440 (3600 tiles) with
+// 16 materials: one iteration of the loop below.
+#include "renderer/techniques/deferred/material_classify/material_classify_scan_common.glsl"
 
 void main() {
-  uint entries = push.tiles * push.materials;
-  uint offsets = kSegHeader + entries;
   uint slot = 0u, pixels = 0u, segments = 0u;
   for (uint s = 0u; s < kDeferredShaderCount; ++s) {
     uint first = slot;
-    for (uint base = 0u; base < entries; base += kMatScanSize) {
-      uint e = base + gl_LocalInvocationIndex;
-      uint count = e < entries && shader_of(e % push.materials) == s ? seg[kSegHeader + e] : 0u;
-      uint padded = (count + kDeferredWave - 1u) / kDeferredWave * kDeferredWave;
+    for (uint base = 0u; base < push.blocks; base += kMatScanSize) {
+      uint b = base + gl_LocalInvocationIndex;
+      bool in_range = b < push.blocks;
+      uint padded = in_range ? blk[block_word(s, b) + 0u] : 0u;
+      uint count = in_range ? blk[block_word(s, b) + 1u] : 0u;
+      uint nonempty = in_range ? blk[block_word(s, b) + 2u] : 0u;
       uint total, ctotal, ntotal;
       uint before = gib_workgroup_exclusive_scan(padded, total);
       gib_workgroup_exclusive_scan(count, ctotal);
-      gib_workgroup_exclusive_scan(count > 0u ? 1u : 0u, ntotal);
-      if (count > 0u) seg[offsets + e] = slot + before;
+      gib_workgroup_exclusive_scan(nonempty, ntotal);
+      if (in_range) blk[block_word(s, b) + 3u] = slot + before;
       slot += total;
       pixels += ctotal;
       segments += ntotal;

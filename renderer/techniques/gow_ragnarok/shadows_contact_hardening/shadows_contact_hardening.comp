@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "renderer/techniques/gow_ragnarok/shadows_contact_hardening/shadows_contact_hardening_shared.h"
-#include "renderer/techniques/gow_ragnarok/include/gow_shadow_kernel.glsl"
+#include "shadow_filter_kernel.glsl"
 
 // Contact-hardening shadows by marching in shadow-map space (gow_ragnarok.md): `taps` rays from
 // the receiver towards an area light of the filter radius, march_distance metres away along the
@@ -20,10 +20,10 @@ float contact_hardening(ShadowReceiver r) {
     uint taps = push.counts.x, steps = push.counts.y;
     float results[kShadowMaxTaps];
     vec2 dirs[kShadowMaxTaps];
-    float own = gow_shadow_tap(r.cascade, r.uv, r.z, res);
+    float own = csm_shadow_tap(r.cascade, r.uv, r.z, res);
     for (uint k = 0u; k < taps; ++k) {
       results[k] = own;
-      dirs[k] = gow_disk_tap(k, taps, r.rotation);
+      dirs[k] = csm_disk_tap(k, taps, r.rotation);
     }
     uint live = taps >= 32u ? 0xffffffffu : ((1u << taps) - 1u);
     // The dilated min/max bounds the march: past t_max every ray sample is nearer the sun than
@@ -40,7 +40,7 @@ float contact_hardening(ShadowReceiver r) {
         vec2 d = dirs[k] * size;
         float disk_z = r.z + dot(r.slope, d);
         // The ray's and the disk's samples share their texels: one read, two comparisons.
-        vec2 vis2 = gow_shadow_tap2(r.cascade, r.uv + d, vec2(min(ray_z, disk_z), disk_z), res);
+        vec2 vis2 = csm_shadow_tap2(r.cascade, r.uv + d, vec2(min(ray_z, disk_z), disk_z), res);
         if (abs(vis2.x - vis2.y) > 0.99) live &= ~(1u << uint(k));
         else results[k] = vis2.y;
       }
@@ -55,8 +55,8 @@ float contact_hardening(ShadowReceiver r) {
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(p, imageSize(out_visibility)))) return;
-  ShadowReceiver r = gow_receiver(p, push);
+  ShadowReceiver r = csm_receiver(p, push);
   float vis = contact_hardening(r);
-  if (r.blend > 0.0) vis = mix(vis, contact_hardening(gow_receiver_in(p, push, r.cascade + 1u)), r.blend);
+  if (r.blend > 0.0) vis = mix(vis, contact_hardening(csm_receiver_in(p, push, r.cascade + 1u)), r.blend);
   imageStore(out_visibility, p, vec4(vis, 0.0, 0.0, 0.0));
 }

@@ -1,4 +1,4 @@
 #ifndef GIB_SHADOWS_CONTACT_HARDENING_SHARED_H
 #define GIB_SHADOWS_CONTACT_HARDENING_SHARED_H
-#include "renderer/techniques/gow_ragnarok/include/gow_shadow_shared.h"
+#include "shadow_cascades_shared.h"
 #endif

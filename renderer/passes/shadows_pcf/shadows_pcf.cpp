@@ -1,7 +1,7 @@
-#include "renderer/techniques/gow_ragnarok/shadows_pcf/shadows_pcf.h"
+#include "renderer/passes/shadows_pcf/shadows_pcf.h"
 
-#include "renderer/techniques/gow_ragnarok/shadows_pcf/shadows_pcf_shared.h"
-#include "renderer/techniques/gow_ragnarok/shadow_cascades.h"
+#include "renderer/passes/shadows_pcf/shadows_pcf_shared.h"
+#include "renderer/passes/shadow_cascades.h"
 
 namespace gib {
 namespace {
@@ -9,12 +9,12 @@ namespace {
 class ShadowsPcfPass final : public Pass {
  public:
   PassDecl declare(const Scene&, const Settings& s) const override {
-    const auto& g = s.params<GowRagnarokSettings>();
+    const auto& g = s.params<SunShadowParams>();
     PassDecl d;
     d.name = "shadows_pcf";
     d.needs = Feature::sun;
     d.slots = shadow_filter_slots("shadow_pcf");
-    d.work = {{"taps", double(s.width) * s.height * g.taps}};
+    d.work = {{"taps", double(s.width) * s.height * g.shadow_taps}};
     return d;
   }
   void record(RecordContext& ctx) override { record_shadow_filter(ctx, "shadows_pcf.comp", "shadow_pcf"); }

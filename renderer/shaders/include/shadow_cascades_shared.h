@@ -1,9 +1,9 @@
-// Shared by C++ and GLSL: the cascaded sun shadow map of gow-ragnarok (gow_ragnarok.md), its
+// Shared by C++ and GLSL: the cascaded sun shadow map (renderer/passes/shadow_maps/), its
 // push constants, bindings and limits. Every shadow pass derives the cascades from the frame
-// constants (camera, sun) and ShadowPush, through gow_shadow.glsl; shadow_cascades.h mirrors
+// constants (camera, sun) and ShadowPush, through shadow_cascades.glsl; shadow_cascades.h mirrors
 // that on the CPU.
-#ifndef GIB_GOW_SHADOW_SHARED_H
-#define GIB_GOW_SHADOW_SHARED_H
+#ifndef GIB_SHADOW_CASCADES_SHARED_H
+#define GIB_SHADOW_CASCADES_SHARED_H
 #include "frame_shared.h"
 GIB_SHARED_BEGIN
 GIB_CONST(uint, kShadowMaxCascades, 4)

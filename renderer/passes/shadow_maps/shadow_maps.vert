@@ -1,10 +1,10 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-#include "renderer/techniques/gow_ragnarok/shadow_maps/shadow_maps_shared.h"
+#include "renderer/passes/shadow_maps/shadow_maps_shared.h"
 #include "frame.glsl"
 #include "scene.glsl"
 GIB_SCENE_BUFFERS(0, kBindSceneFirst)
-#include "renderer/techniques/gow_ragnarok/include/gow_shadow.glsl"
+#include "shadow_cascades.glsl"
 layout(push_constant) uniform Push { ShadowCascadePush push; };
 
 layout(location = 0) flat out uint out_instance;
@@ -19,9 +19,9 @@ void main() {
   out_uv = vec2(v.u, v.v);
   vec3 cam, fwd;
   float tan_y, aspect;
-  gow_camera(cam, fwd, tan_y, aspect);
-  ShadowBasis b = gow_shadow_basis(gib_frame.sun_dir.xyz);
-  ShadowCascade c = gow_cascade(push.counts.z, cam, fwd, tan_y, aspect, b, push);
-  vec3 q = gow_shadow_project(c, b, v.position - cam);
+  csm_camera(cam, fwd, tan_y, aspect);
+  ShadowBasis b = csm_shadow_basis(gib_frame.sun_dir.xyz);
+  ShadowCascade c = csm_cascade(push.counts.z, cam, fwd, tan_y, aspect, b, push);
+  vec3 q = csm_shadow_project(c, b, v.position - cam);
   gl_Position = vec4(q.xy * 2.0 - 1.0, q.z, 1.0);
 }

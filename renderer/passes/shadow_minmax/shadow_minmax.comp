@@ -1,8 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-#include "renderer/techniques/gow_ragnarok/shadow_minmax/shadow_minmax_shared.h"
+#include "renderer/passes/shadow_minmax/shadow_minmax_shared.h"
 #include "frame.glsl"
-#include "renderer/techniques/gow_ragnarok/include/gow_shadow.glsl"
+#include "shadow_cascades.glsl"
 
 layout(local_size_x = kShadowGroup, local_size_y = kShadowGroup) in;
 layout(set = 0, binding = kMinMaxBindTiles, rg32f) uniform readonly image2D src;
@@ -21,10 +21,10 @@ void main() {
   int cascade = t.x / tiles;
   vec3 cam, fwd;
   float tan_y, aspect;
-  gow_camera(cam, fwd, tan_y, aspect);
-  ShadowBasis b = gow_shadow_basis(gib_frame.sun_dir.xyz);
-  ShadowCascade c = gow_cascade(uint(cascade), cam, fwd, tan_y, aspect, b, push);
-  float radius_tex = max(1.0, gow_filter_radius(push) / gow_texel_size(c, push));
+  csm_camera(cam, fwd, tan_y, aspect);
+  ShadowBasis b = csm_shadow_basis(gib_frame.sun_dir.xyz);
+  ShadowCascade c = csm_cascade(uint(cascade), cam, fwd, tan_y, aspect, b, push);
+  float radius_tex = max(1.0, csm_filter_radius(push) / csm_texel_size(c, push));
   int k = int(ceil((radius_tex + 1.0) / float(kShadowMinMaxTile)));
   ivec2 lo_t = ivec2(cascade * tiles, 0), hi_t = ivec2(cascade * tiles + tiles - 1, tiles - 1);
   ivec2 axis = push.counts.z != 0u ? ivec2(1, 0) : ivec2(0, 1);  // 1: along x

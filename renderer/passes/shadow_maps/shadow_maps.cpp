@@ -1,9 +1,9 @@
-#include "renderer/techniques/gow_ragnarok/shadow_maps/shadow_maps.h"
+#include "renderer/passes/shadow_maps/shadow_maps.h"
 
 #include <algorithm>
 
-#include "renderer/techniques/gow_ragnarok/shadow_cascades.h"
-#include "renderer/techniques/gow_ragnarok/shadow_maps/shadow_maps_shared.h"
+#include "renderer/passes/shadow_cascades.h"
+#include "renderer/passes/shadow_maps/shadow_maps_shared.h"
 
 namespace gib {
 namespace {
@@ -11,8 +11,8 @@ namespace {
 class ShadowMapsPass final : public Pass {
  public:
   PassDecl declare(const Scene&, const Settings& s) const override {
-    const auto& g = s.params<GowRagnarokSettings>();
-    const uint32_t res = shadow_map_resolution(g), n = std::clamp<uint32_t>(g.cascades, 1, glsl::kShadowMaxCascades);
+    const auto& g = s.params<SunShadowParams>();
+    const uint32_t res = shadow_map_resolution(g), n = std::clamp<uint32_t>(g.shadow_cascades, 1, glsl::kShadowMaxCascades);
     PassDecl d;
     d.name = "shadow_maps";
     d.kind = PassKind::graphics;
@@ -25,9 +25,9 @@ class ShadowMapsPass final : public Pass {
   }
 
   void record(RecordContext& ctx) override {
-    const auto& g = ctx.settings.params<GowRagnarokSettings>();
+    const auto& g = ctx.settings.params<SunShadowParams>();
     glsl::ShadowCascadePush push = shadow_cascade_push(g, ctx.scene.camera.near_plane);
-    static_assert(sizeof(push) == 80, "ShadowCascadePush must match gow_shadow_shared.h");
+    static_assert(sizeof(push) == 80, "ShadowCascadePush must match shadow_cascades_shared.h");
     GraphicsPipelineDesc desc;
     desc.vertex_shader = "shadow_maps.vert";
     desc.fragment_shader = "shadow_maps.frag";

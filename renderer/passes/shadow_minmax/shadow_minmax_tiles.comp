@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-#include "renderer/techniques/gow_ragnarok/shadow_minmax/shadow_minmax_shared.h"
+#include "renderer/passes/shadow_minmax/shadow_minmax_shared.h"
 
 layout(local_size_x = kShadowGroup, local_size_y = kShadowGroup) in;
 layout(set = 0, binding = kShadowBindMap, r32f) uniform readonly image2D shadow_map;

@@ -4,13 +4,13 @@
 #include "frame.glsl"
 #include "hash.glsl"
 layout(local_size_x = kShadowGroup, local_size_y = kShadowGroup) in;
-// The atlas as a sampled image: gow_shadow_tap2 gathers a tap's four texels in one load.
+// The atlas as a sampled image: csm_shadow_tap2 gathers a tap's four texels in one load.
 layout(set = 0, binding = kShadowBindMap) uniform sampler2D shadow_map;
 layout(set = 0, binding = kShadowBindMinMax, rg32f) uniform readonly image2D shadow_minmax;
 layout(set = 0, binding = kShadowBindPosition, rgba32f) uniform readonly image2D gb_position;
 layout(set = 0, binding = kShadowBindNormal, rgba16f) uniform readonly image2D gb_normal;
 layout(set = 0, binding = kShadowBindOut, r32f) uniform writeonly image2D out_visibility;
 layout(push_constant) uniform Push { ShadowCascadePush push; };
-#define GOW_SHADOW_MAP_BOUND 1
-#include "renderer/techniques/gow_ragnarok/include/gow_shadow.glsl"
-#include "renderer/techniques/gow_ragnarok/include/gow_receiver.glsl"
+#define CSM_SHADOW_MAP_BOUND 1
+#include "shadow_cascades.glsl"
+#include "shadow_receiver.glsl"

@@ -1,15 +1,16 @@
-// The cascaded sun shadow map of gow-ragnarok: cascade set-up, projection, selection, the
+// The cascaded sun shadow map (shadow_maps, shadow_minmax, shadows_pcf and gow-ragnarok's
+// shadows_contact_hardening): cascade set-up, projection, selection, the
 // filtered (bilinear comparison) tap and the filter disk. Every function here has a CPU mirror
-// in renderer/techniques/gow_ragnarok/shadow_cascades.h, and tests/test_gow_shadows.cpp checks
+// in renderer/passes/shadow_cascades.h, and tests/test_gow_shadows.cpp checks
 // the two agree.
 //
 // Coordinates are camera-relative (x_rel = world position - camera position) so that a scene
 // 10 km from the origin projects as precisely as one at it. The cascade centres are snapped to
 // whole texels in a world-fixed light frame (stable under camera translation).
 //
-// The includer declares, before including this file: frame.glsl, gow_shadow_shared.h.
-#ifndef GIB_GOW_SHADOW_GLSL
-#define GIB_GOW_SHADOW_GLSL
+// The includer declares, before including this file: frame.glsl, shadow_cascades_shared.h.
+#ifndef GIB_SHADOW_CASCADES_GLSL
+#define GIB_SHADOW_CASCADES_GLSL
 
 struct ShadowBasis {
   vec3 r, u, s;  // light-space right, up, and s: towards the sun
@@ -21,9 +22,9 @@ struct ShadowCascade {
   float z_range;      // metres of depth 0..1
 };
 
-const float kGowGoldenAngle = 2.39996323;
+const float kCsmGoldenAngle = 2.39996323;
 
-ShadowBasis gow_shadow_basis(vec3 sun_dir) {
+ShadowBasis csm_shadow_basis(vec3 sun_dir) {
   ShadowBasis b;
   b.s = normalize(sun_dir);
   vec3 ref = abs(b.s.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
@@ -35,7 +36,7 @@ ShadowBasis gow_shadow_basis(vec3 sun_dir) {
 // The bounding sphere of the view-frustum slice between view distances n and f (measured along
 // the view axis) of a camera with tan(fov_y / 2) = tan_y and width / height = aspect: its
 // centre's distance along the axis (x) and its radius (y).
-vec2 gow_slice_sphere(float n, float f, float tan_y, float aspect) {
+vec2 csm_slice_sphere(float n, float f, float tan_y, float aspect) {
   float a2 = tan_y * tan_y * (1.0 + aspect * aspect);  // squared tan of the corner ray's angle
   float c = min(0.5 * (f + n) * (1.0 + a2), f);
   float r = max(sqrt((c - n) * (c - n) + a2 * n * n), sqrt((f - c) * (f - c) + a2 * f * f));
@@ -43,10 +44,10 @@ vec2 gow_slice_sphere(float n, float f, float tan_y, float aspect) {
 }
 
 // Cascade i of the set in p for a camera at cam looking along fwd.
-ShadowCascade gow_cascade(uint i, vec3 cam, vec3 fwd, float tan_y, float aspect, ShadowBasis b, ShadowCascadePush p) {
+ShadowCascade csm_cascade(uint i, vec3 cam, vec3 fwd, float tan_y, float aspect, ShadowBasis b, ShadowCascadePush p) {
   float n = i == 0u ? p.params.w : p.splits[i - 1u];
   float f = p.splits[i];
-  vec2 sphere = gow_slice_sphere(n, f, tan_y, aspect);
+  vec2 sphere = csm_slice_sphere(n, f, tan_y, aspect);
   float res = p.params.y;
   // Two texels of margin so the snapped square still holds the sphere.
   float texel = 2.0 * sphere.y / (res - 2.0);
@@ -63,22 +64,22 @@ ShadowCascade gow_cascade(uint i, vec3 cam, vec3 fwd, float tan_y, float aspect,
 
 // (u, v, depth) of a camera-relative point in cascade c: u, v in [0, 1] across the cascade's
 // square (v = 0 at texel row 0), depth 0 nearest the sun.
-vec3 gow_shadow_project(ShadowCascade c, ShadowBasis b, vec3 x_rel) {
+vec3 csm_shadow_project(ShadowCascade c, ShadowBasis b, vec3 x_rel) {
   vec2 l = vec2(dot(x_rel, b.r), dot(x_rel, b.u)) - c.offset;
   return vec3(l / (2.0 * c.half_extent) + 0.5, (c.z_top - dot(x_rel, b.s)) / c.z_range);
 }
 
 // Metres per shadow-map texel of cascade c.
-float gow_texel_size(ShadowCascade c, ShadowCascadePush p) { return 2.0 * c.half_extent / p.params.y; }
+float csm_texel_size(ShadowCascade c, ShadowCascadePush p) { return 2.0 * c.half_extent / p.params.y; }
 
 // The first cascade whose square holds x_rel with margin_m metres plus margin_texels texels to
 // spare and whose depth range holds it; kShadowMaxCascades when none does (the point is lit:
 // beyond the shadowed distance).
-uint gow_select_cascade(vec3 cam, vec3 fwd, float tan_y, float aspect, ShadowBasis b, ShadowCascadePush p,
+uint csm_select_cascade(vec3 cam, vec3 fwd, float tan_y, float aspect, ShadowBasis b, ShadowCascadePush p,
                         vec3 x_rel, float margin_m, float margin_texels) {
   for (uint i = 0u; i < uint(p.params.x); ++i) {
-    ShadowCascade c = gow_cascade(i, cam, fwd, tan_y, aspect, b, p);
-    vec3 q = gow_shadow_project(c, b, x_rel);
+    ShadowCascade c = csm_cascade(i, cam, fwd, tan_y, aspect, b, p);
+    vec3 q = csm_shadow_project(c, b, x_rel);
     float m = margin_m / (2.0 * c.half_extent) + margin_texels / p.params.y;
     if (all(greaterThanEqual(q.xy, vec2(m))) && all(lessThanEqual(q.xy, vec2(1.0 - m))) && q.z >= 0.0 && q.z <= 1.0)
       return i;
@@ -88,22 +89,22 @@ uint gow_select_cascade(vec3 cam, vec3 fwd, float tan_y, float aspect, ShadowBas
 
 // The weight of cascade i + 1 at x_rel, a point whose selected cascade is i: the seam blend.
 // With d the distance (in units of cascade i's width) from x_rel to the nearest side of the
-// square gow_select_cascade accepts in cascade i (the same margins), the weight rises linearly
+// square csm_select_cascade accepts in cascade i (the same margins), the weight rises linearly
 // from 0 at d = band to 1 at d = 0, where selection would pass to cascade i + 1. 0 when the band
 // is 0 (blending off), i is the last cascade, or cascade i + 1 does not hold the point with its
 // margins (nothing to blend into).
-float gow_cascade_blend(vec3 cam, vec3 fwd, float tan_y, float aspect, ShadowBasis b, ShadowCascadePush p, uint i,
+float csm_cascade_blend(vec3 cam, vec3 fwd, float tan_y, float aspect, ShadowBasis b, ShadowCascadePush p, uint i,
                         vec3 x_rel, float margin_m, float margin_texels) {
   float band = p.blend.x;
   if (!(band > 0.0) || i + 1u >= uint(p.params.x)) return 0.0;
-  ShadowCascade c = gow_cascade(i, cam, fwd, tan_y, aspect, b, p);
-  vec3 q = gow_shadow_project(c, b, x_rel);
+  ShadowCascade c = csm_cascade(i, cam, fwd, tan_y, aspect, b, p);
+  vec3 q = csm_shadow_project(c, b, x_rel);
   float m = margin_m / (2.0 * c.half_extent) + margin_texels / p.params.y;
   float d = min(min(q.x - m, q.y - m), min(1.0 - m - q.x, 1.0 - m - q.y));
   float w = clamp(1.0 - d / band, 0.0, 1.0);
   if (w <= 0.0) return 0.0;
-  ShadowCascade n = gow_cascade(i + 1u, cam, fwd, tan_y, aspect, b, p);
-  vec3 qn = gow_shadow_project(n, b, x_rel);
+  ShadowCascade n = csm_cascade(i + 1u, cam, fwd, tan_y, aspect, b, p);
+  vec3 qn = csm_shadow_project(n, b, x_rel);
   float mn = margin_m / (2.0 * n.half_extent) + margin_texels / p.params.y;
   bool held = all(greaterThanEqual(qn.xy, vec2(mn))) && all(lessThanEqual(qn.xy, vec2(1.0 - mn))) && qn.z >= 0.0 &&
               qn.z <= 1.0;
@@ -112,14 +113,14 @@ float gow_cascade_blend(vec3 cam, vec3 fwd, float tan_y, float aspect, ShadowBas
 
 // Tap k of n of the filter disk (a golden-angle spiral: even area density, no two taps closer
 // than about 1.2 / sqrt(n) of the radius), turned by `rotation` radians; inside the unit disk.
-vec2 gow_disk_tap(uint k, uint n, float rotation) {
+vec2 csm_disk_tap(uint k, uint n, float rotation) {
   float r = sqrt((float(k) + 0.5) / float(n));
-  float a = float(k) * kGowGoldenAngle + rotation;
+  float a = float(k) * kCsmGoldenAngle + rotation;
   return r * vec2(cos(a), sin(a));
 }
 
 // The camera frame from the frame constants.
-void gow_camera(out vec3 cam, out vec3 fwd, out float tan_y, out float aspect) {
+void csm_camera(out vec3 cam, out vec3 fwd, out float tan_y, out float aspect) {
   cam = gib_frame.camera_pos.xyz;
   vec4 h = gib_frame.inv_view_proj_rel * vec4(0.0, 0.0, 0.5, 1.0);
   fwd = normalize(h.xyz / h.w);
@@ -128,17 +129,17 @@ void gow_camera(out vec3 cam, out vec3 fwd, out float tan_y, out float aspect) {
 }
 
 // tan of the sun's angular radius (frame: cos of it).
-float gow_sun_tan() {
+float csm_sun_tan() {
   float c = clamp(gib_frame.sun_dir.w, 1e-4, 1.0);
   return sqrt(max(1.0 - c * c, 0.0)) / c;
 }
 
 // Area-light radius (m): authored (> 0) or the sun's, seen from the march distance.
-float gow_filter_radius(ShadowCascadePush p) {
-  return p.area.x > 0.0 ? p.area.x : p.area.y * gow_sun_tan();
+float csm_filter_radius(ShadowCascadePush p) {
+  return p.area.x > 0.0 ? p.area.x : p.area.y * csm_sun_tan();
 }
 
-#ifdef GOW_SHADOW_MAP_BOUND
+#ifdef CSM_SHADOW_MAP_BOUND
 // Filtered comparisons at (u, v) of cascade `cascade` against two depths z.x and z.y from one
 // read of the four nearest texels: each texel compared (1: lit, the stored surface is no nearer
 // the sun than z) and bilinearly weighted; texels are clamped to the cascade's own square.
@@ -147,7 +148,7 @@ float gow_filter_radius(ShadowCascadePush p) {
 // sits half a texel from any texel centre, so the gather's own coordinate rounding cannot pick
 // another quad. Elsewhere four texelFetch read the clamped texels. Both return the stored
 // values unchanged, so the result is that of four separate loads bit for bit.
-vec2 gow_shadow_tap2(uint cascade, vec2 uv, vec2 z, float res) {
+vec2 csm_shadow_tap2(uint cascade, vec2 uv, vec2 z, float res) {
   vec2 t = uv * res - 0.5;
   vec2 i0 = floor(t);
   vec2 f = t - i0;
@@ -172,8 +173,8 @@ vec2 gow_shadow_tap2(uint cascade, vec2 uv, vec2 z, float res) {
   return mix(mix(l00, l10, f.x), mix(l01, l11, f.x), f.y);
 }
 
-// One filtered comparison (gow_shadow_tap2 with one depth).
-float gow_shadow_tap(uint cascade, vec2 uv, float z, float res) { return gow_shadow_tap2(cascade, uv, vec2(z), res).x; }
+// One filtered comparison (csm_shadow_tap2 with one depth).
+float csm_shadow_tap(uint cascade, vec2 uv, float z, float res) { return csm_shadow_tap2(cascade, uv, vec2(z), res).x; }
 #endif
 
 #endif

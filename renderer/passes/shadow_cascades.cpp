@@ -1,12 +1,12 @@
-// Mirrors of gow_shadow.glsl, line for line, in float (the GPU's precision).
-#include "renderer/techniques/gow_ragnarok/shadow_cascades.h"
+// Mirrors of shadow_cascades.glsl, line for line, in float (the GPU's precision).
+#include "renderer/passes/shadow_cascades.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace gib {
 
-uint32_t shadow_map_resolution(const GowRagnarokSettings& s) {
+uint32_t shadow_map_resolution(const SunShadowParams& s) {
   const uint32_t t = glsl::kShadowMinMaxTile;
   return std::max<uint32_t>(8 * t, (s.shadow_resolution + t - 1) / t * t);
 }
@@ -23,19 +23,19 @@ std::vector<float> cascade_splits(uint32_t n, float near_plane, float far_plane,
   return out;
 }
 
-glsl::ShadowCascadePush shadow_cascade_push(const GowRagnarokSettings& s, float camera_near) {
+glsl::ShadowCascadePush shadow_cascade_push(const SunShadowParams& s, float camera_near) {
   glsl::ShadowCascadePush p{};
-  const uint32_t n = std::clamp<uint32_t>(s.cascades, 1, glsl::kShadowMaxCascades);
+  const uint32_t n = std::clamp<uint32_t>(s.shadow_cascades, 1, glsl::kShadowMaxCascades);
   const float near_plane = std::max(camera_near, 1e-3f);
-  const std::vector<float> splits = cascade_splits(n, near_plane, std::max(s.shadow_distance, 2 * near_plane), s.split_lambda);
+  const std::vector<float> splits = cascade_splits(n, near_plane, std::max(s.shadow_distance, 2 * near_plane), s.shadow_split_lambda);
   float sp[4];
   for (uint32_t i = 0; i < 4; ++i) sp[i] = splits[std::min(i, n - 1)];
   p.splits = {sp[0], sp[1], sp[2], sp[3]};
-  p.params = {float(n), float(shadow_map_resolution(s)), s.caster_range, near_plane};
-  p.area = {s.filter_radius, s.march_distance, s.shadow_bias, s.normal_offset};
-  p.counts = {std::clamp<uint32_t>(s.taps, 1, glsl::kShadowMaxTaps), std::max<uint32_t>(s.march_steps, 1), 0,
-              s.minmax_early_out ? 1u : 0u};
-  p.blend = {std::max(s.cascade_blend, 0.0f), 0, 0, 0};
+  p.params = {float(n), float(shadow_map_resolution(s)), s.shadow_caster_range, near_plane};
+  p.area = {s.shadow_filter_radius, s.shadow_march_distance, s.shadow_bias, s.shadow_normal_offset};
+  p.counts = {std::clamp<uint32_t>(s.shadow_taps, 1, glsl::kShadowMaxTaps), std::max<uint32_t>(s.shadow_march_steps, 1), 0,
+              s.shadow_minmax_early_out ? 1u : 0u};
+  p.blend = {std::max(s.shadow_cascade_blend, 0.0f), 0, 0, 0};
   return p;
 }
 
@@ -142,7 +142,7 @@ std::vector<Slot> shadow_filter_slots(const char* out) {
 
 void record_shadow_filter(RecordContext& ctx, const char* shader, const char* out) {
   using namespace glsl;
-  ShadowCascadePush push = shadow_cascade_push(ctx.settings.params<GowRagnarokSettings>(), ctx.scene.camera.near_plane);
+  ShadowCascadePush push = shadow_cascade_push(ctx.settings.params<SunShadowParams>(), ctx.scene.camera.near_plane);
   record_compute(ctx, {.shader = shader,
                        .images = {{kShadowBindMap, "shadow_map", false, true},  // sampled: gathered
                                   {kShadowBindMinMax, "shadow_minmax"},

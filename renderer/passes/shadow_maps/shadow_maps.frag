@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-#include "renderer/techniques/gow_ragnarok/shadow_maps/shadow_maps_shared.h"
+#include "renderer/passes/shadow_maps/shadow_maps_shared.h"
 #include "frame.glsl"
 #include "scene.glsl"
 GIB_SCENE_BUFFERS(0, kBindSceneFirst)

@@ -1,5 +1,6 @@
-// CPU side of gow-ragnarok's cascaded shadow map: the push constants every shadow pass gets
-// (cascade splits from the settings), and mirrors of gow_shadow.glsl's closed forms (basis,
+// CPU side of the cascaded sun shadow map (shadow_maps, shadow_minmax, shadows_pcf, gow-ragnarok's
+// shadows_contact_hardening): the push constants every shadow pass gets
+// (cascade splits from the settings), and mirrors of shadow_cascades.glsl's closed forms (basis,
 // slice sphere, cascade, projection, selection, filter disk, filtered tap) that
 // tests/test_gow_shadows.cpp checks against the GPU and against known answers.
 #pragma once
@@ -9,18 +10,18 @@
 #include "renderer/graph/pass.h"
 #include "renderer/image/float_image.h"
 #include "renderer/scene/math.h"
-#include "renderer/techniques/gow_ragnarok/gow_ragnarok.h"
-#include "renderer/techniques/gow_ragnarok/include/gow_shadow_shared.h"
+#include "renderer/passes/sun_shadow_params.h"
+#include "shadow_cascades_shared.h"
 
 namespace gib {
 
 // Texels per side of one cascade (the setting rounded up to whole min/max tiles).
-uint32_t shadow_map_resolution(const GowRagnarokSettings& s);
+uint32_t shadow_map_resolution(const SunShadowParams& s);
 // Far view distances of cascades 0..n-1 between near and far: lambda * logarithmic + (1 -
 // lambda) * uniform (the practical split scheme); the last is `far`.
 std::vector<float> cascade_splits(uint32_t n, float near_plane, float far_plane, float lambda);
 // The push constants of every shadow pass (counts.z, the cascade to rasterise, left 0).
-glsl::ShadowCascadePush shadow_cascade_push(const GowRagnarokSettings& s, float camera_near);
+glsl::ShadowCascadePush shadow_cascade_push(const SunShadowParams& s, float camera_near);
 
 struct ShadowBasisCpu {
   Vec3 r, u, s;

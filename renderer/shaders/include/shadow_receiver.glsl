@@ -1,18 +1,18 @@
-// A G-buffer pixel as a shadow receiver in the cascaded shadow map (gow_shadow.glsl), shared by
+// A G-buffer pixel as a shadow receiver in the cascaded shadow map (shadow_cascades.glsl), shared by
 // shadows_pcf and shadows_contact_hardening: its cascade, shadow-map position, biased depth,
 // receiver-plane depth slope, filter radius in texels, the tap rotation (jitter) and the dilated
 // min/max early-out (seed: "Use dilated min/max depth to early out if fully in or out of shadow,
 // tighten range of ray trace").
 //
-// The includer declares: frame.glsl, hash.glsl, gow_shadow_shared.h, GOW_SHADOW_MAP_BOUND with
-// images shadow_map, shadow_minmax, gb_position, gb_normal; gow_shadow.glsl; push `push`.
-#ifndef GIB_GOW_RECEIVER_GLSL
-#define GIB_GOW_RECEIVER_GLSL
+// The includer declares: frame.glsl, hash.glsl, shadow_cascades_shared.h, CSM_SHADOW_MAP_BOUND with
+// images shadow_map, shadow_minmax, gb_position, gb_normal; shadow_cascades.glsl; push `push`.
+#ifndef GIB_SHADOW_RECEIVER_GLSL
+#define GIB_SHADOW_RECEIVER_GLSL
 
 struct ShadowReceiver {
   int state;         // -1: no pixel (sky) or beyond the cascades (lit); 0 fully shadowed; 1 fully lit; 2 filter
   uint cascade;
-  float blend;       // weight of cascade + 1 near this cascade's edge (gow_cascade_blend; 0: none)
+  float blend;       // weight of cascade + 1 near this cascade's edge (csm_cascade_blend; 0: none)
   vec2 uv;
   float z;           // biased receiver depth
   vec2 slope;        // depth change per unit of uv offset on the receiver's plane
@@ -22,9 +22,9 @@ struct ShadowReceiver {
   float rotation;    // tap-pattern rotation (radians)
 };
 
-// Pixel p as a receiver in cascade `cascade` (selected: gow_receiver; or the next one, for the
+// Pixel p as a receiver in cascade `cascade` (selected: csm_receiver; or the next one, for the
 // seam blend). `cascade` kShadowMaxCascades: the first that holds its filter footprint.
-ShadowReceiver gow_receiver_in(ivec2 p, ShadowCascadePush sp, uint cascade) {
+ShadowReceiver csm_receiver_in(ivec2 p, ShadowCascadePush sp, uint cascade) {
   ShadowReceiver r;
   r.state = -1;
   r.blend = 0.0;
@@ -32,24 +32,24 @@ ShadowReceiver gow_receiver_in(ivec2 p, ShadowCascadePush sp, uint cascade) {
   if (pos.w == 0.0) return r;
   vec3 cam, fwd;
   float tan_y, aspect;
-  gow_camera(cam, fwd, tan_y, aspect);
-  ShadowBasis b = gow_shadow_basis(gib_frame.sun_dir.xyz);
-  float radius_m = gow_filter_radius(sp);
+  csm_camera(cam, fwd, tan_y, aspect);
+  ShadowBasis b = csm_shadow_basis(gib_frame.sun_dir.xyz);
+  float radius_m = csm_filter_radius(sp);
   vec3 x_rel = pos.xyz - cam;
   if (cascade < kShadowMaxCascades) r.cascade = cascade;
   else {
-    r.cascade = gow_select_cascade(cam, fwd, tan_y, aspect, b, sp, x_rel, radius_m, 2.0 + sp.area.w);
+    r.cascade = csm_select_cascade(cam, fwd, tan_y, aspect, b, sp, x_rel, radius_m, 2.0 + sp.area.w);
     if (r.cascade >= kShadowMaxCascades) return r;
-    r.blend = gow_cascade_blend(cam, fwd, tan_y, aspect, b, sp, r.cascade, x_rel, radius_m, 2.0 + sp.area.w);
+    r.blend = csm_cascade_blend(cam, fwd, tan_y, aspect, b, sp, r.cascade, x_rel, radius_m, 2.0 + sp.area.w);
   }
-  ShadowCascade c = gow_cascade(r.cascade, cam, fwd, tan_y, aspect, b, sp);
-  float res = sp.params.y, texel = gow_texel_size(c, sp);
+  ShadowCascade c = csm_cascade(r.cascade, cam, fwd, tan_y, aspect, b, sp);
+  float res = sp.params.y, texel = csm_texel_size(c, sp);
   vec3 n = imageLoad(gb_normal, p).xyz;
   if (!(dot(n, n) > 0.25 && dot(n, n) < 4.0)) n = b.s;  // a broken normal: no offset, flat slope
   n = normalize(n);
   // The normal offset faces the sun side of the surface (light reaching a back face is lit from behind).
   vec3 ns = dot(n, b.s) >= 0.0 ? n : -n;
-  vec3 q = gow_shadow_project(c, b, x_rel + ns * (sp.area.w * texel));
+  vec3 q = csm_shadow_project(c, b, x_rel + ns * (sp.area.w * texel));
   r.uv = q.xy;
   r.z = q.z - sp.area.z / c.z_range;
   // Receiver plane: dot(ns, dx) = 0 gives d(dot(x, s)) = -(ns.r da + ns.u db) / ns.s; depth runs
@@ -77,6 +77,6 @@ ShadowReceiver gow_receiver_in(ivec2 p, ShadowCascadePush sp, uint cascade) {
 }
 
 // Pixel p in the cascade selected for it (r.blend: how much of the next one to blend in).
-ShadowReceiver gow_receiver(ivec2 p, ShadowCascadePush sp) { return gow_receiver_in(p, sp, kShadowMaxCascades); }
+ShadowReceiver csm_receiver(ivec2 p, ShadowCascadePush sp) { return csm_receiver_in(p, sp, kShadowMaxCascades); }
 
 #endif

@@ -1,10 +1,10 @@
-#include "renderer/techniques/gow_ragnarok/shadow_minmax/shadow_minmax.h"
+#include "renderer/passes/shadow_minmax/shadow_minmax.h"
 
 #include <algorithm>
 #include <utility>
 
-#include "renderer/techniques/gow_ragnarok/shadow_cascades.h"
-#include "renderer/techniques/gow_ragnarok/shadow_minmax/shadow_minmax_shared.h"
+#include "renderer/passes/shadow_cascades.h"
+#include "renderer/passes/shadow_minmax/shadow_minmax_shared.h"
 
 namespace gib {
 namespace {
@@ -12,9 +12,9 @@ namespace {
 class ShadowMinMaxPass final : public Pass {
  public:
   PassDecl declare(const Scene&, const Settings& s) const override {
-    const auto& g = s.params<GowRagnarokSettings>();
+    const auto& g = s.params<SunShadowParams>();
     const uint32_t tiles = shadow_map_resolution(g) / glsl::kShadowMinMaxTile;
-    const uint32_t n = std::clamp<uint32_t>(g.cascades, 1, glsl::kShadowMaxCascades);
+    const uint32_t n = std::clamp<uint32_t>(g.shadow_cascades, 1, glsl::kShadowMaxCascades);
     ResourceDesc mm = ResourceDesc{Format::rg32_float, SizeRule::fixed, tiles * n, tiles}.with(unit_values());
     PassDecl d;
     d.name = "shadow_minmax";
@@ -28,7 +28,7 @@ class ShadowMinMaxPass final : public Pass {
 
   void record(RecordContext& ctx) override {
     using namespace glsl;
-    glsl::ShadowCascadePush push = shadow_cascade_push(ctx.settings.params<GowRagnarokSettings>(), ctx.scene.camera.near_plane);
+    glsl::ShadowCascadePush push = shadow_cascade_push(ctx.settings.params<SunShadowParams>(), ctx.scene.camera.near_plane);
     const uint32_t w = ctx.width("shadow_minmax"), h = ctx.height("shadow_minmax");
     record_compute(ctx, {.shader = "shadow_minmax_tiles.comp",
                          .images = {{kShadowBindMap, "shadow_map"}, {kMinMaxBindTiles, "shadow_minmax_tiles"}},
