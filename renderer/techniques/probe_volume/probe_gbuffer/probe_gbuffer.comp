@@ -25,7 +25,7 @@ layout(std430, set = 0, binding = kPvGbufferBindNormal) buffer NormalBuffer { ui
 PV_GBUFFER_DEPTH(kPvGbufferBindDepth, )
 layout(local_size_x = kPvGbufferGroup) in;
 
-shared uint s_backfaces, s_hits, s_min_depth, s_max_key;
+shared uint s_backfaces, s_backfaces_all, s_hits, s_min_depth, s_max_key;
 
 struct Texel {
   uvec2 material;
@@ -49,7 +49,10 @@ Texel trace_texel(vec3 o, vec3 d, float range, float reach) {
   // A thin translucent sheet has no inside: its back is not a sign of being in geometry.
   // Within reach of the probe's cell only: a room modelled as a closed box seen from inside shows
   // back faces everywhere (our surfaces are two-sided), a probe inside a wall sees them close.
-  if (back && m.translucency == 0.0 && hit.t < reach) atomicAdd(s_backfaces, 1u);
+  if (back && m.translucency == 0.0) {
+    if (hit.t < reach) atomicAdd(s_backfaces, 1u);
+    atomicAdd(s_backfaces_all, 1u);
+  }
   atomicAdd(s_hits, 1u);
   vec3 n = back ? -s.normal : s.normal;  // the side the probe sees
   float sun = kHasSun ? pv_sun_visibility(s.position, n, m.translucency) : 0.0;
@@ -83,6 +86,7 @@ void main() {
   float reach = kPvBackfaceReach * pv_spacing(c);
   if (tid == 0u) {
     s_backfaces = 0u;
+    s_backfaces_all = 0u;
     s_hits = 0u;
     s_min_depth = floatBitsToUint(range);
     s_max_key = 0u;
@@ -107,8 +111,14 @@ void main() {
   if (tid == 0u) {
     // The deepest direction: the texel whose (quantised) depth is largest; ties keep the
     // first found, so it is recomputed from the stored depths in probe_relocate.
-    pv_probes[probe].geometry =
-        vec4(float(s_backfaces) / float(max(s_hits, 1u)), uintBitsToFloat(s_min_depth), float(s_max_key >> 16u) / 65534.0 * range, 0.0);
+    // Inside geometry (probe_relocate): the share of back faces among the hits, those within
+    // reach, or all of them when some rays leave into open space: a probe behind a shell (the
+    // outside of a closed box, under a terrain) sees only the shell's backs and the void, at any
+    // distance, while one inside a room modelled as one box (back faces everywhere) sees no void.
+    float hits = float(max(s_hits, 1u));
+    bool open = s_hits < (quarter ? kPvGbufferTexels / 4u : kPvGbufferTexels);
+    float inside = max(float(s_backfaces) / hits, open ? float(s_backfaces_all) / hits : 0.0);
+    pv_probes[probe].geometry = vec4(inside, uintBitsToFloat(s_min_depth), float(s_max_key >> 16u) / 65534.0 * range, 0.0);
     uint f = (uint(p.coord.w) | kPvProbeTraced) & ~(kPvProbeRetrace | kPvProbeQuarter);
     pv_probes[probe].coord.w = int(f | (quarter ? kPvProbeQuarter : 0u));
     pv_probes[probe].offset.xyz = p.offset.xyz;

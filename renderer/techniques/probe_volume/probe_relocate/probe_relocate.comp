@@ -54,8 +54,10 @@ void main() {
     pv_probes[probe].pending = vec4(moved, 0.0);
     f |= kPvProbeRetrace;  // probe_select re-traces it there first among the G-buffer refreshes
   }
-  // Inside and unable to move: disabled (samplers skip it) until a later trace finds it outside.
-  if (inside && !moves) f |= kPvProbeDisabled;
+  // Inside: disabled (samplers skip it) until a later trace finds it outside, also while a move
+  // is pending (its lighting is still the one seen from inside; a probe behind a closed box's
+  // wall kept lighting the walls' samples with the void's darkness while it moved).
+  if (inside) f |= kPvProbeDisabled;
   else f &= ~kPvProbeDisabled;
   pv_probes[probe].coord.w = int(f);
   pv_probes[probe].geometry.w = float(deepest);

@@ -19,9 +19,11 @@ layout(local_size_x = kPvSelectGroup) in;
 shared ivec3 s_origin[kPvMaxCascades];
 shared uint s_subgroup[kPvSelectGroup];
 shared uint s_count;  // entries written so far
+shared uint s_scanned;  // round robin: slots passed over by the class's window in this cascade
 
 // Appends `value` when `pred` (called by every thread of the group): entries keep thread order.
-void append(bool pred, uint value, uint limit) {
+// Returns where this thread's value went, or ~0 when it was not stored (no pred, or past `limit`).
+uint append(bool pred, uint value, uint limit) {
   uvec4 ballot = subgroupBallot(pred);
   if (subgroupElect()) s_subgroup[gl_SubgroupID] = subgroupBallotBitCount(ballot);
   barrier();
@@ -31,10 +33,12 @@ void append(bool pred, uint value, uint limit) {
     total += s_subgroup[i];
   }
   uint at = before + subgroupBallotExclusiveBitCount(ballot);
-  if (pred && at < limit) pv_entries[at] = value;
+  bool stored = pred && at < limit;
+  if (stored) pv_entries[at] = value;
   barrier();
   if (gl_LocalInvocationIndex == 0u) s_count += total;
   barrier();
+  return stored ? at : ~0u;
 }
 
 void main() {
@@ -118,18 +122,33 @@ void main() {
       share = min(share, per);
       uint start = cls == 0u ? pv_cascade[c].rr.x : pv_cascade[c].rr.y;
       uint first = s_count;
-      for (uint j0 = 0u; j0 < share; j0 += kPvSelectGroup) {
+      uint limit = min(first + share, budget);
+      // The window runs on past the probes it cannot take (selected already this frame, not
+      // traced, or disabled for relighting) until it has its share or has seen the whole
+      // cascade, and the index resumes after the last probe taken (the seed's round robin: "the
+      // next frame the selection can start from the next probe"). A window of `share`
+      // consecutive slots instead lost the slots another class had taken: with a budget of every
+      // probe, some went unlit every other frame.
+      if (tid == 0u) s_scanned = share > 0u ? per : 0u;
+      barrier();
+      for (uint j0 = 0u; j0 < per && share > 0u && s_count < limit; j0 += kPvSelectGroup) {
         uint j = j0 + tid;
         uint i = c * per + (start + j) % per;
         bool pick = false;
-        if (j < share) {
+        if (j < per) {
           PvProbe p = pv_probes[i];
           uint f = uint(p.coord.w);
           pick = p.stamp.x != now && (f & kPvProbeTraced) != 0u && (cls == 0u || (f & kPvProbeDisabled) == 0u);
         }
-        append(pick, i, budget);
+        // The thread holding the window's last entry marks where the next frame starts.
+        if (append(pick, i, limit) == limit - 1u) s_scanned = j + 1u;
+        barrier();
       }
-      uint last = min(s_count, budget);
+      uint last = min(s_count, limit);
+      // The last block may have found more than the share: the next window appends after it.
+      memoryBarrierBuffer();
+      barrier();
+      if (tid == 0u) s_count = last;
       for (uint e = first + tid; e < last; e += kPvSelectGroup)
         pv_probes[pv_entries[e]].stamp.xy = uvec2(now, cls == 0u ? kPvClassGbuffer : kPvClassRelight);
       memoryBarrierBuffer();
@@ -137,9 +156,9 @@ void main() {
       if (tid == 0u) {
         counts[cls] += last - first;
         if (cls == 0u)
-          pv_cascade[c].rr.x = (start + share) % per;
+          pv_cascade[c].rr.x = (start + s_scanned) % per;
         else
-          pv_cascade[c].rr.y = (start + share) % per;
+          pv_cascade[c].rr.y = (start + s_scanned) % per;
       }
     }
   }
