@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <random>
@@ -465,6 +466,14 @@ TEST_F(VoxelClipmapEnergy, VoxelsReflectAlbedoTimesTheCubes) {
     worst = std::min(worst, r);
     ++count;
     dark += r < 0.05;
+    if (r < 0.05 && std::getenv("GIB_VC_ENERGY_VERBOSE")) {
+      const int32_t n = int32_t(p().grid);
+      const uint32_t slot = idx % uint32_t(n * n * n);
+      const glsl::VcState st = state(*ex);
+      const Int3 g = vc_slot_world({int32_t(slot) % n, (int32_t(slot) / n) % n, int32_t(slot) / (n * n)},
+                                   {st.voxel_origin[0].x, st.voxel_origin[0].y, st.voxel_origin[0].z}, n);
+      std::printf("  dark voxel %d %d %d flags %x r %.4f\n", g.x, g.y, g.z, vox[idx * 4 + 1], r);
+    }
     if ((vox[idx * 4 + 1] & glsl::kVcVoxelFed) != 0) {
       ++fed;
       sum_fed += r;
@@ -475,8 +484,10 @@ TEST_F(VoxelClipmapEnergy, VoxelsReflectAlbedoTimesTheCubes) {
   std::printf("voxels: %u inner wall voxels: mean %.4f, worst %.4f of a (e + B); %u fed: mean %.4f; %u lit: mean %.4f; %u dark\n",
               count, sum / count, worst, fed, sum_fed / fed, count - fed, (sum - sum_fed) / std::max(1u, count - fed), dark);
   // A loss-free stage gives 1 for every voxel. Measured (lavapipe, medium): voxels lit from their
-  // triangle 0.971 (a 3 % loss per bounce), pixel-fed voxels 0.775 with 88 of the 430 near 0
-  // (their cube lookup finds no usable cell, or they hold no voxelised geometry): the closed
+  // triangle 0.971 (a 3 % loss per bounce), pixel-fed voxels 0.775 with 88 of the 430 at
+  // a e only (bounce 0): the back wall's rim (GIB_VC_ENERGY_VERBOSE=1 lists them), where the
+  // finest level's border hands the lookup to coarser levels whose cells near the edges all
+  // fail the wall test, down to the coarsest, whose cells straddle the walls: the closed
   // box's known failure (cases/white-furnace-closed-box.json). These bounds guard the measured
   // state until the causes are fixed; then they become 1 within RGB9E5's precision.
   EXPECT_GT((sum - sum_fed) / std::max(1u, count - fed), 0.96) << "voxels lit from their triangle";
