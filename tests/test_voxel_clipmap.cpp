@@ -484,10 +484,10 @@ TEST_F(VoxelClipmapEnergy, VoxelsReflectAlbedoTimesTheCubes) {
   std::printf("voxels: %u inner wall voxels: mean %.4f, worst %.4f of a (e + B); %u fed: mean %.4f; %u lit: mean %.4f; %u dark\n",
               count, sum / count, worst, fed, sum_fed / fed, count - fed, (sum - sum_fed) / std::max(1u, count - fed), dark);
   // A loss-free stage gives 1 for every voxel. Measured (lavapipe, medium): voxels lit from their
-  // triangle 0.971 (a 3 % loss per bounce), pixel-fed voxels 0.775 with 88 of the 430 at
-  // a e only (bounce 0): the back wall's rim (GIB_VC_ENERGY_VERBOSE=1 lists them), where the
-  // finest level's border hands the lookup to coarser levels whose cells near the edges all
-  // fail the wall test, down to the coarsest, whose cells straddle the walls: the closed
+  // triangle 0.971 (a 3 % loss per bounce: near a room's edge the wall test rejects every
+  // corner cell, the adjacent wall's voxel layer lying halfway; with the untested cells as a
+  // fallback there they read 0.998), pixel-fed voxels 0.775 with 88 of the 430 at a e only
+  // (no bounce; the back wall's rim, GIB_VC_ENERGY_VERBOSE=1 lists them; not isolated): the closed
   // box's known failure (cases/white-furnace-closed-box.json). These bounds guard the measured
   // state until the causes are fixed; then they become 1 within RGB9E5's precision.
   EXPECT_GT((sum - sum_fed) / std::max(1u, count - fed), 0.96) << "voxels lit from their triangle";
