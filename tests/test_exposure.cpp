@@ -87,7 +87,7 @@ class ConstantFinalColor final : public Pass {
   PassDecl declare(const Scene&, const Settings&) const override {
     ResourceDesc color{Format::rgba32_float, SizeRule::render};
     color.persistent = true;
-    return {"constant_final_color", PassKind::transfer, {}, {{"final_color", Access::write, color}}, false};
+    return {"constant_final_color", PassKind::transfer, {}, {}, {{"final_color", Access::write, color}}, false};
   }
   void record(RecordContext& ctx) override {
     const float value[4] = {v_, v_, v_, 1.0f};

@@ -152,6 +152,28 @@ TEST(GraphCull, ByFeatureWithReason) {
   EXPECT_EQ(p.passes.back().name, "lights");
 }
 
+// A pass the settings switch off is culled with the pass's own words, whatever the scene has,
+// even when it modifies a resource others read (the resource keeps its other writers).
+TEST(GraphCull, SwitchedOffWithReason) {
+  std::vector<PassDecl> g = {
+      pass("base", {W("color")}),
+      pass("extra", {RW("color")}),
+      pass("out", {R("color"), W("final_color")}),
+  };
+  g[1].switched_off = "extra_light is 0";
+  Plan p = compile(g, opts({"final_color"}, Feature::sun));
+  EXPECT_EQ(ran(p), (Names{"base", "out"}));
+  const PlannedPass& c = get(p, "extra");
+  EXPECT_FALSE(c.runs);
+  EXPECT_EQ(c.reason, "switched off: extra_light is 0");
+  // Its only-readers cascade as after a missing feature.
+  std::vector<PassDecl> h = {pass("make", {W("x")}), pass("use", {R("x"), W("out")})};
+  h[0].switched_off = "make is 0";
+  Plan q = compile(h, opts({"out"}));
+  EXPECT_TRUE(q.running().empty());
+  EXPECT_EQ(get(q, "use").reason, "input 'x' has no producer (make culled)");
+}
+
 TEST(GraphCull, CascadesThroughMissingInputs) {
   std::vector<PassDecl> g = {
       pass("light_grid", {W("light_grid", buffer(1024))}, Feature::local_lights),

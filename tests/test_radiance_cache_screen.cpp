@@ -48,7 +48,7 @@ class StubWorldSampling final : public Pass {
     ResourceDesc vis = irr;
     vis.format = Format::rg16_float;
     irr.persistent = vis.persistent = true;
-    return {"stub_world_sampling", PassKind::transfer, {},
+    return {"stub_world_sampling", PassKind::transfer, {}, {},
             {{"rc_cells", Access::write, cells},
              {"probe_irradiance", Access::write, irr},
              {"probe_visibility", Access::write, vis}}, false};
@@ -67,7 +67,7 @@ class SynthGather final : public Pass {
   explicit SynthGather(glsl::SynthPush push) : push_(push) {}
   PassDecl declare(const Scene&, const Settings&) const override {
     ResourceDesc sh{Format::rgba16_float, SizeRule::half};
-    return {"synth_gather", PassKind::compute, {},
+    return {"synth_gather", PassKind::compute, {}, {},
             {{"gbuffer_position", Access::read},
              {"gather_sh_r", Access::write, sh},
              {"gather_sh_g", Access::write, sh},

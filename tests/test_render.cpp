@@ -254,7 +254,7 @@ TEST_F(Render, RequestingOnlyTheVisibilityBufferCullsShading) {
 class TouchesUndeclared final : public Pass {
  public:
   PassDecl declare(const Scene&, const Settings&) const override {
-    return {"rogue", PassKind::compute, {}, {{"rogue_out", Access::write, {Format::rgba16_float}}}, false};
+    return {"rogue", PassKind::compute, {}, {}, {{"rogue_out", Access::write, {Format::rgba16_float}}}, false};
   }
   void record(RecordContext& ctx) override { (void)ctx.image("vbuffer"); }
 };

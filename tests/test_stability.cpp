@@ -102,8 +102,8 @@ TEST(StabilityGraph, DomainIsMetadataDeclaredOnceOrConsistently) {
   EXPECT_EQ(describe(ValueDomain{}), "");
   // The writer declares no domain, a read_write slot with an otherwise unspecified desc does.
   std::vector<PassDecl> decls{
-      {"writer", PassKind::compute, {}, {{"x", Access::write, image(Format::rgba16_float)}}, false},
-      {"modifier", PassKind::compute, {}, {{"x", Access::read_write, ResourceDesc{}.with(unit_values())}}, false}};
+      {"writer", PassKind::compute, {}, {}, {{"x", Access::write, image(Format::rgba16_float)}}, false},
+      {"modifier", PassKind::compute, {}, {}, {{"x", Access::read_write, ResourceDesc{}.with(unit_values())}}, false}};
   Plan plan = compile(decls, {{}, {"x"}});
   ASSERT_NE(plan.find("x"), nullptr);
   EXPECT_EQ(plan.find("x")->desc.format, Format::rgba16_float);

@@ -5,11 +5,20 @@
 
 #include <bit>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <map>
 #include <random>
 #include <vector>
 
+#include "renderer/codecs/packed_float.h"
+#include "renderer/codecs/rgb9e5.h"
 #include "renderer/codecs/voxel_clipmap.h"
+#include "renderer/graph/executor.h"
+#include "renderer/scene/scene_loader.h"
+#include "renderer/techniques/technique.h"
+#include "renderer/techniques/voxel_clipmap/voxel_clipmap.h"
 #include "tests/gpu_fixture.h"
 #include "tests/voxel_clipmap_test_shared.h"
 
@@ -323,6 +332,214 @@ TEST_F(VoxelClipmapGpu, FillKeyAndClosestPointMatchCpu) {
   }
   EXPECT_LE(differ, 2u);
   EXPECT_GT(inside, 200u);  // both branches (interior and edges) are exercised
+}
+
+// ---------------------------------------------------------------- the plan
+// scene_voxel_light exists for geometry_light: with it off the graph culls the pass (it would
+// dispatch and return), with it on the pass runs.
+TEST(VoxelClipmapPlan, SceneVoxelLightRunsOnlyWithGeometryLight) {
+  const Scene scene = load_scene(std::string(GIB_SOURCE_DIR) + "/cases/scenes/closed_box.json");
+  const Technique& t = find_technique("voxel-clipmap");
+  auto light_pass = [&](double on) {
+    Settings s = apply_options(t, apply_preset(t, "medium", Settings{}), {{"geometry_light", on}});
+    s.width = 64;
+    s.height = 36;
+    std::vector<PassDecl> decls;
+    for (auto& pass : make_passes(t)) decls.push_back(pass->declare(scene, s));
+    const Plan plan = compile(decls, {scene.features(), {t.output}, s.width, s.height});
+    for (const PlannedPass& pp : plan.passes)
+      if (pp.name == "scene_voxel_light") return pp;
+    ADD_FAILURE() << "no scene_voxel_light in the plan";
+    return PlannedPass{};
+  };
+  const PlannedPass off = light_pass(0), on = light_pass(1);
+  EXPECT_FALSE(off.runs);
+  EXPECT_EQ(off.reason, "switched off: geometry_light is 0");
+  EXPECT_TRUE(on.runs) << on.reason;
+}
+
+// ---------------------------------------------------------------- energy through the clipmap
+// The closed box (cases/scenes/closed_box.json: a 4 m box, walls of albedo 0.99 emitting 0.01,
+// no sun or sky; the exact radiance E / (1 - a) = 1 needs hundreds of bounces) at the stage
+// level, with geometry_light and every voxel and cell refreshed each frame. Each stage of the
+// loop gets a known input through a graph override and must pass the light on undiminished:
+// cubes B everywhere inside -> every wall voxel reflects a (e + B); wall voxels of radiance R
+// -> every cell inside sees R in every direction (and the walls' emission e as its direct
+// part). A loss of x per bounce caps the box at e / (1 - a (1 - x)): 2 % caps it at 0.34.
+constexpr float kBoxAlbedo = 0.99f, kBoxEmission = 0.01f;
+
+bool vc_in_closed_box(float x, float y, float z) { return x > -2 && x < 2 && y > 0 && y < 4 && z > -2 && z < 2; }
+
+class VoxelClipmapEnergy : public test::GpuTest {
+ protected:
+  void SetUp() override {
+    test::GpuTest::SetUp();
+    scene_ = load_scene(std::string(GIB_SOURCE_DIR) + "/cases/scenes/closed_box.json");
+    const Technique& t = find_technique("voxel-clipmap");
+    Settings s;
+    s.width = 64;
+    s.height = 36;
+    settings_ = apply_options(t, apply_preset(t, "medium", s),
+                              {{"geometry_light", 1}, {"feed_weight", 1}, {"history_frames", 1}, {"lit_voxels", 1e7},
+                               {"queue_a", 65536}, {"queue_a_new", 65536}, {"queue_b", 65536}});
+  }
+  std::unique_ptr<Executor> executor() {
+    const Technique& t = find_technique("voxel-clipmap");
+    return std::make_unique<Executor>(gpu(), scene_, settings_, make_passes(t), std::vector<std::string>{"final_color"});
+  }
+  const VoxelClipmapSettings& p() const { return settings_.params<VoxelClipmapSettings>(); }
+  static glsl::VcState state(Executor& ex) {
+    glsl::VcState st{};
+    const auto bytes = ex.read_buffer("voxel_clip_state");
+    std::memcpy(&st, bytes.data(), sizeof(st));
+    return st;
+  }
+  // Level-0 voxels whose centre lies inside the box and that hold geometry (the walls' inner layer).
+  template <class F>
+  void for_inner_wall_voxels(const glsl::VcState& st, const std::vector<uint32_t>& vox, F f) const {
+    const int32_t n = int32_t(p().grid);
+    const float vs = p().voxel_size;
+    const Int3 o{st.voxel_origin[0].x, st.voxel_origin[0].y, st.voxel_origin[0].z};
+    for (int32_t z = o.z; z < o.z + n; ++z)
+      for (int32_t y = o.y; y < o.y + n; ++y)
+        for (int32_t x = o.x; x < o.x + n; ++x) {
+          if (!vc_in_closed_box((x + 0.5f) * vs, (y + 0.5f) * vs, (z + 0.5f) * vs)) continue;
+          const uint32_t idx = vc_voxel_index(0, {x, y, z}, n);
+          if ((vox[idx * 4 + 1] & glsl::kVcVoxelGeometry) != 0) f(idx);
+        }
+  }
+  // Every level's cells with the centre inside the box (and not on its walls' voxel layer).
+  template <class F>
+  void for_inner_cells(const glsl::VcState& st, F f) const {
+    const int32_t m = int32_t(p().grid) / 2;
+    for (uint32_t l = 0; l < p().levels; ++l) {
+      const float c = 2 * p().voxel_size * float(1u << l);
+      const Int3 o{st.cell_origin[l].x, st.cell_origin[l].y, st.cell_origin[l].z};
+      for (int32_t z = o.z; z < o.z + m; ++z)
+        for (int32_t y = o.y; y < o.y + m; ++y)
+          for (int32_t x = o.x; x < o.x + m; ++x)
+            if (vc_in_closed_box((x + 0.5f) * c, (y + 0.5f) * c, (z + 0.5f) * c))
+              f(l, uint32_t(l * m * m * m + vc_slot_index(vc_wrap({x, y, z}, m), m)));
+    }
+  }
+  Scene scene_;
+  Settings settings_;
+};
+
+std::vector<uint32_t> as_words(const std::vector<uint8_t>& b) {
+  std::vector<uint32_t> w(b.size() / 4);
+  std::memcpy(w.data(), b.data(), w.size() * 4);
+  return w;
+}
+template <class T>
+std::vector<uint8_t> as_bytes(const std::vector<T>& v) {
+  std::vector<uint8_t> b(v.size() * sizeof(T));
+  std::memcpy(b.data(), v.data(), b.size());
+  return b;
+}
+
+TEST_F(VoxelClipmapEnergy, VoxelsReflectAlbedoTimesTheCubes) {
+  auto ex = executor();
+  ex->run_frame();
+  // Cubes: bounce B in every direction and the walls' emission as the direct part, in every cell
+  // inside the box; cells outside see nothing (a converged box's outside is dark).
+  const float B = 0.5f;
+  std::vector<float> cube(ex->read_buffer("irradiance_x").size() / 4, 0.0f);
+  for_inner_cells(state(*ex), [&](uint32_t, uint32_t cell) {
+    for (int f = 0; f < 6; ++f) cube[cell * 12 + f] = B;
+    for (int f = 6; f < 12; ++f) cube[cell * 12 + f] = kBoxEmission;
+  });
+  for (const char* axis : {"irradiance_x", "irradiance_y", "irradiance_z"})
+    ex->add_override({"irradiance_relight", axis, as_bytes(cube)});
+  for (int f = 0; f < 3; ++f) ex->run_frame();
+  const auto vox = as_words(ex->read_buffer("scene_voxel_data"));
+  // Fed voxels: direct_light (the walls' emission through the pixel's sky rays: a e) + a B; lit
+  // ones: a (B + e) from the cubes. Both a (e + B).
+  const double want = double(kBoxAlbedo) * (kBoxEmission + B);
+  double sum = 0, worst = 1, sum_fed = 0;
+  uint32_t count = 0, fed = 0, dark = 0;
+  for_inner_wall_voxels(state(*ex), vox, [&](uint32_t idx) {
+    float rgb[3];
+    decode_rgb9e5(vox[idx * 4], rgb);
+    const double r = rgb[1] / want;
+    sum += r;
+    worst = std::min(worst, r);
+    ++count;
+    dark += r < 0.05;
+    if (r < 0.05 && std::getenv("GIB_VC_ENERGY_VERBOSE")) {
+      const int32_t n = int32_t(p().grid);
+      const uint32_t slot = idx % uint32_t(n * n * n);
+      const glsl::VcState st = state(*ex);
+      const Int3 g = vc_slot_world({int32_t(slot) % n, (int32_t(slot) / n) % n, int32_t(slot) / (n * n)},
+                                   {st.voxel_origin[0].x, st.voxel_origin[0].y, st.voxel_origin[0].z}, n);
+      std::printf("  dark voxel %d %d %d flags %x r %.4f\n", g.x, g.y, g.z, vox[idx * 4 + 1], r);
+    }
+    if ((vox[idx * 4 + 1] & glsl::kVcVoxelFed) != 0) {
+      ++fed;
+      sum_fed += r;
+    }
+  });
+  ASSERT_GT(count, 500u);
+  ASSERT_GT(fed, 100u);
+  std::printf("voxels: %u inner wall voxels: mean %.4f, worst %.4f of a (e + B); %u fed: mean %.4f; %u lit: mean %.4f; %u dark\n",
+              count, sum / count, worst, fed, sum_fed / fed, count - fed, (sum - sum_fed) / std::max(1u, count - fed), dark);
+  // A loss-free stage gives 1 for every voxel. Measured (lavapipe, medium): voxels lit from their
+  // triangle 0.971 (a 3 % loss per bounce: near a room's edge the wall test rejects every
+  // corner cell, the adjacent wall's voxel layer lying halfway; with the untested cells as a
+  // fallback there they read 0.998), pixel-fed voxels 0.775 with 88 of the 430 at a e only
+  // (no bounce; the back wall's rim, GIB_VC_ENERGY_VERBOSE=1 lists them; not isolated): the closed
+  // box's known failure (cases/white-furnace-closed-box.json). These bounds guard the measured
+  // state until the causes are fixed; then they become 1 within RGB9E5's precision.
+  EXPECT_GT((sum - sum_fed) / std::max(1u, count - fed), 0.96) << "voxels lit from their triangle";
+  EXPECT_GT(sum / count, 0.84) << "light lost from the cubes to the voxels per bounce";
+  EXPECT_LT(sum / count, 1.005) << "light gained from the cubes to the voxels per bounce";
+}
+
+TEST_F(VoxelClipmapEnergy, CubesSeeTheWallsRadiance) {
+  auto ex = executor();
+  ex->run_frame();
+  // Voxels: every voxel with geometry reflects R and emits e.
+  const float R = 0.5f;
+  auto vox = as_words(ex->read_buffer("scene_voxel_data"));
+  for (size_t i = 0; i < vox.size() / 4; ++i)
+    if (vox[i * 4 + 1] & glsl::kVcVoxelGeometry) {
+      vox[i * 4] = encode_rgb9e5(R, R, R);
+      vox[i * 4 + 2] = encode_rgb9e5(kBoxEmission, kBoxEmission, kBoxEmission);
+    }
+  ex->add_override({"scene_voxel_light", "scene_voxel_data", as_bytes(vox)});
+  for (int f = 0; f < 3; ++f) ex->run_frame();
+  const auto cx = ex->read_buffer("irradiance_x"), cy = ex->read_buffer("irradiance_y"), cz = ex->read_buffer("irradiance_z");
+  const float* axes[3] = {reinterpret_cast<const float*>(cx.data()), reinterpret_cast<const float*>(cy.data()),
+                          reinterpret_cast<const float*>(cz.data())};
+  float r_packed[3];
+  decode_rgb9e5(encode_rgb9e5(R, R, R), r_packed);
+  const auto cs = as_words(ex->read_buffer("irradiance_cell_state"));
+  double sum = 0, worst = 1, direct = 0;
+  uint32_t count = 0;
+  for_inner_cells(state(*ex), [&](uint32_t l, uint32_t cell) {
+    if (l > 0) return;  // coarser cells' boxes reach past the walls
+    // Only cells relit in the last frame (age 0): the others still hold what they saw before.
+    if ((cs[cell] & glsl::kVcCellRelit) == 0 || (cs[cell] & glsl::kVcAgeMask) != 0) return;
+    for (int a = 0; a < 3; ++a)
+      for (int d = 0; d < 2; ++d) {
+        const double b = axes[a][cell * 12 + d * 3 + 1] / r_packed[1];
+        sum += b;
+        worst = std::min(worst, b);
+        direct += axes[a][cell * 12 + 6 + d * 3 + 1] / kBoxEmission;
+        ++count;
+      }
+  });
+  ASSERT_GT(count, 1000u);
+  std::printf("cubes: %u cell directions: bounce mean %.4f, worst %.4f of R; direct mean %.4f of e\n", count,
+              sum / count, worst, direct / count);
+  // Loss-free: every direction of every cell sees R. Measured (lavapipe, medium): bounce 0.863 of
+  // R while the direct part (the emission of the same voxels hit) is 1.001 of e: the rays meet
+  // wall voxels, but some of those return less than R (voxels with opacity the feed wrote but no
+  // voxelised geometry keep their own radiance; not isolated). A guard of the measured state,
+  // as above.
+  EXPECT_GT(sum / count, 0.85) << "light lost from the voxels to the cubes per bounce";
+  EXPECT_LT(sum / count, 1.005) << "light gained from the voxels to the cubes per bounce";
+  EXPECT_NEAR(direct / count, 1.0, 0.01);
 }
 
 }  // namespace

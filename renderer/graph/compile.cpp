@@ -35,7 +35,7 @@ class Compiler {
   Plan run() {
     gather();
     validate();
-    cull_by_features();
+    cull_by_declaration();
     cull_cascade();
     cull_unreachable();
     std::vector<int> order = topo_order(alive_mask());
@@ -229,10 +229,14 @@ class Compiler {
     reason_[p] = std::move(reason);
   }
 
-  void cull_by_features() {
+  // Passes the settings switch off, and passes needing a scene feature the scene lacks.
+  void cull_by_declaration() {
     for (int p = 0; p < int(decls_.size()); ++p) {
       SceneFeatures missing = decls_[p].needs.missing_from(options_.features);
-      if (!missing.empty()) cull(p, "scene lacks " + to_string(missing));
+      if (!decls_[p].switched_off.empty())
+        cull(p, "switched off: " + decls_[p].switched_off);
+      else if (!missing.empty())
+        cull(p, "scene lacks " + to_string(missing));
     }
   }
 

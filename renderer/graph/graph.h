@@ -142,6 +142,9 @@ struct PassDecl {
   std::string name;     // == folder == timer label == bench key
   PassKind kind = PassKind::compute;
   SceneFeatures needs;  // culled when the scene lacks any of these
+  // Non-empty: the settings switch the pass off (an option it exists for is 0); culled with this
+  // text as the reason, before anything else, and its readers cascade as for a missing feature.
+  std::string switched_off;
   std::vector<Slot> slots;
   bool side_effect = false;  // never culled for unused outputs (readbacks, stats)
   std::vector<WorkCounter> work;  // besides "pixels", which every pass reports

@@ -123,14 +123,16 @@ void vc_cube_eval(uint cell, vec3 n, out vec3 bounce, out vec3 sky) {
 }
 
 #ifdef VC_CONVEX_VOXELS
-// Whether the level-l voxel halfway between q and the centre of cell k holds geometry: a wall
-// lies between them. q is 1.5 voxels off the surface: a surface on a voxel boundary is
-// voxelised into the voxels on both sides, so a point one voxel off it lies in a voxel that
-// touches it. Needs the voxel buffer (VC_VOXEL_BUFFER).
+// Whether the level-l voxel halfway between q and the centre of cell k holds voxelised geometry
+// (scene_voxel_fill's flag): a wall lies between them. q is 1.5 voxels off the surface: a
+// surface on a voxel boundary is voxelised into the voxels on both sides, so a point one voxel
+// off it lies in a voxel that touches it. The flag, not the opacity: the feed writes opacities
+// while it runs this test, and keeps the flag as it was, so the result does not depend on
+// thread timing. Needs the voxel buffer (VC_VOXEL_BUFFER).
 bool vc_cell_behind_wall(uint l, vec3 q, ivec3 k) {
   vec3 mid = 0.5 * (q + (vec3(k) + 0.5) * vc_cell_size(l));
   ivec3 g = ivec3(floor(mid / vc_voxel_size(l)));
-  return vc_in_box(g, vc_voxel_origin(l), vc_n()) && (vc_voxels[vc_voxel_index(l, g)].y & kVcOpacityMask) != 0u;
+  return vc_in_box(g, vc_voxel_origin(l), vc_n()) && (vc_voxels[vc_voxel_index(l, g)].y & kVcVoxelGeometry) != 0u;
 }
 #endif
 

@@ -27,6 +27,7 @@ layout(set = 0, binding = kScFeedBindDirect, rgba32f) uniform readonly image2D d
 layout(set = 0, binding = kScFeedBindEmissive, rgba16f) uniform readonly image2D gb_emissive;
 #define VC_HAS_STATE
 #define VC_HAS_CUBES
+#define VC_CONVEX_VOXELS
 #include "renderer/techniques/voxel_clipmap/include/vc_common.glsl"
 layout(local_size_x = kScFeedGroup) in;
 
@@ -76,8 +77,8 @@ void main() {
   vec3 direct = max(imageLoad(direct_light, p).rgb - emitted, vec3(0.0));
   if (vc_flag(kVcFlagNanGuards) && !gib_finite(direct)) return;
   vec3 bounce, sky;
-  // Without the wall test of VC_CONVEX_VOXELS: this kernel writes voxel opacities that another
-  // thread's test would read (a race, and the result must not depend on thread timing).
+  // With the wall test of VC_CONVEX_VOXELS (geometry_light): it reads the geometry flag, which
+  // this kernel keeps, not the opacities it writes, so thread timing does not matter.
   vc_irradiance(x, n, vc_flag(kVcFlagConvexOffset), bounce, sky);
   if (!vc_flag(kVcFlagMultiBounce)) bounce = vec3(0.0);
   vec3 radiance = direct + albedo * (bounce + (vc_flag(kVcFlagSkyFromCubes) ? sky : vec3(0.0)));

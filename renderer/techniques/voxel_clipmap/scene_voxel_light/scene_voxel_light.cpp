@@ -20,6 +20,7 @@ class SceneVoxelLightPass final : public Pass {
                {"scene_voxel_data", Access::read_write, vc_voxels_desc(p)}};
     d.work = {{"voxels", double(vc_lit_visits(p))}};
     d.traces_rays = true;
+    if (!p.geometry_light) d.switched_off = "geometry_light is 0";
     return d;
   }
 
@@ -27,7 +28,6 @@ class SceneVoxelLightPass final : public Pass {
     using namespace glsl;
     const VoxelClipmapSettings& p = ctx.settings.params<VoxelClipmapSettings>();
     const uint32_t visits = vc_lit_visits(p);
-    if (visits == 0) return;
     ScLightPush push{make_vc_params(ctx.settings, ctx.frame)};
     const SceneFeatures f = ctx.scene.features();
     record_compute(ctx, {.shader = "scene_voxel_light.comp",

@@ -12,7 +12,8 @@
 // cubes average over time). So walls the camera never sees keep sending their light and take
 // part in every bounce; a static camera in a closed room converges. Pixel-fed voxels are left
 // to the feed (textures, exact sky rays). With geometry_light 0 (the default until the
-// technique's goldens are re-recorded) the pass records nothing.
+// technique's goldens are re-recorded) the pass declares itself switched off and the graph
+// culls it.
 // Slots: read irradiance_x/_y/_z, irradiance_cell_state; read_write voxel_clip_state,
 // scene_voxel_data.
 #pragma once
