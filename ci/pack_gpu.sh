@@ -7,10 +7,10 @@
 #
 #   ci/pack_gpu.sh [--build DIR] [--out DIR] [--full] [--validation] [--archive] [BINARY...]
 #
-# Default binaries: gibench-perf, gibench-bench and gib_gpu_tests (if built): none links
-# OpenImageIO, so the pack is ~10 MiB and fits the device tool's 64 MiB carry. --full adds
-# gibench and gib_tests, which link OpenImageIO and its ~260 libraries (~350 MiB, ~100 MiB as
-# .tar.xz): fine to scp to a real GPU host, too big to carry here. Run a packed binary with
+# Default binaries: gibench-perf, gibench-bench and gib_gpu_tests (if built): none links an
+# image library, so the pack is ~14 MiB. --full adds gibench and gib_tests, which link OpenEXR
+# (gibench + gibench-perf: 29 MiB, 10 libraries): both fit the device tool's 64 MiB carry with
+# the cases and CI-tier goldens. Run a packed binary with
 #   OUT/run.sh gibench-perf bench --profile all
 set -euo pipefail
 cd "$(dirname "$0")/.."

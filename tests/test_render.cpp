@@ -240,9 +240,11 @@ TEST_F(Render, RequestingOnlyTheVisibilityBufferCullsShading) {
   Scene scene = load_scene(scene_path("cornell.json"));
   Settings s = defaults_of("direct");
   Executor ex(gpu(), scene, s, make_passes(find_technique("direct")), {"vbuffer"});
+  // The shading passes go for want of a reader; the shadow-mapped mode's passes are culled
+  // before that, for want of a sun (cornell has none).
   std::vector<std::string> culled;
   for (auto& p : ex.plan().passes)
-    if (!p.runs) {
+    if (!p.runs && p.reason != "scene lacks sun") {
       culled.push_back(p.name);
       EXPECT_EQ(p.reason, "outputs unused");
     }
