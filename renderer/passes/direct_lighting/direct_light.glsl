@@ -84,30 +84,11 @@ vec3 gib_direct_light(ivec2 p, uint sky_rays, bool nan_guards, bool translucent_
     }
 #endif
   }
-  if (kSkyUnoccluded && kHasSky && sky_rays > 0u) {
-    // shadow_mapped: the sky seen unoccluded along the cosine directions the rays would take.
-    vec3 ng = n;
-    uint ids = imageLoad(vbuffer, p).x;
-    if (ids != kVisibilityNone) {
-      vec3 o, d;
-      gib_camera_ray(vec2(p) + 0.5, o, d);
-      ng = gib_face_normal_facing(ids - 1u, d, n);
-    }
-    vec3 sky = vec3(0.0), sheen_sky = vec3(0.0);
-    for (uint i = 0u; i < sky_rays; ++i) {
-      bool back = translucency > 0.0 && gib_next(rng) < translucency;
-      vec3 side = back ? -n : n, side_g = back ? -ng : ng;
-      vec3 wi = gib_above_face(gib_cosine_hemisphere(side, gib_next2(rng)), side_g);
-      vec3 found = gib_sky_radiance(wi);
-      sky += found;
-      if (sheen > 0.0) sheen_sky += GIB_PI * gib_sheen_lobe(sheen, normal_rough.a, n, wi, wo) * found;
-    }
-    result += albedo * sky / float(sky_rays);
-    if (sheen > 0.0) result += sheen_sky / float(sky_rays);
-  } else if (!kSkyUnoccluded && (kHasSky || kHasEmissive) && sky_rays > 0u) {
+  if ((kSkyUnoccluded ? kHasSky : (kHasSky || kHasEmissive)) && sky_rays > 0u) {
     // Cosine-distributed rays: each carries albedo * the radiance it finds straight away, the
     // sky's where it escapes, an emissive surface's emission where it hits one (light that
-    // reaches this surface with no further bounce: direct, by the AOV contract).
+    // reaches this surface with no further bounce: direct, by the AOV contract). shadow_mapped
+    // (kSkyUnoccluded): the sky seen unoccluded along the same directions, no ray, no emission.
     // The rays leave as the reference's path continuation does (path_trace.comp): a direction
     // below the face (the interpolated normal leans past it on curved meshes) is mirrored back
     // across the face plane, and the origin is offset along the face normal, so no ray starts
@@ -124,17 +105,18 @@ vec3 gib_direct_light(ivec2 p, uint sky_rays, bool nan_guards, bool translucent_
       bool back = translucency > 0.0 && gib_next(rng) < translucency;
       vec3 side = back ? -n : n, side_g = back ? -ng : ng;
       vec3 wi = gib_above_face(gib_cosine_hemisphere(side, gib_next2(rng)), side_g);
-      vec3 origin = gib_offset_ray(x, side_g);
       vec3 found = vec3(0.0);
-      if (kHasEmissive) {
+      if (kSkyUnoccluded) {
+        found = gib_sky_radiance(wi);
+      } else if (kHasEmissive) {
         GibHit hit;
-        if (!trace_closest(origin, wi, 0.0, kShadowMax, hit)) {
+        if (!trace_closest(gib_offset_ray(x, side_g), wi, 0.0, kShadowMax, hit)) {
           found = kHasSky ? gib_sky_radiance(wi) : vec3(0.0);
         } else {
           GibSurface s = gib_surface(hit.triangle, hit.u, hit.v, nan_guards);
           found = gib_material_emissive(gib_materials[s.material], s.uv);
         }
-      } else if (!trace_any(origin, wi, 0.0, kShadowMax)) {
+      } else if (!trace_any(gib_offset_ray(x, side_g), wi, 0.0, kShadowMax)) {
         found = gib_sky_radiance(wi);
       }
       sky += found;
