@@ -358,7 +358,7 @@ Threshold read_threshold(const Node& n, const Case& c, const TechniqueRun& run) 
 // Fields shared by technique entries and negative controls.
 const std::vector<std::string> kRunKeys = {"technique",  "label",    "presets",       "options", "compare_aov",
                                            "thresholds", "variants", "known_failure", "spp",
-                                           "frames"};
+                                           "frames",     "attribute"};
 
 // An object of option name -> number, validated against the technique's options.
 std::map<std::string, double> read_options(const Node& options, const Technique& tech) {
@@ -438,6 +438,13 @@ TechniqueRun read_run(const Node& n, const Case& c, bool negative) {
   if (Node kf = n["known_failure"]; kf.present()) {
     if (negative) kf.fail("no \"known_failure\" in a negative control (it must fail anyway)");
     run.known_failure = read_device_keyed(kf);
+  }
+  if (Node a = n["attribute"]; a.present()) {
+    if (negative) a.fail("no \"attribute\" in a negative control");
+    if (!a.v->is_boolean()) a.fail("true or false");
+    const bool oracles = std::any_of(tech.stages.begin(), tech.stages.end(), [](const TechniqueStage& s) { return bool(s.make); });
+    if (a.v->get<bool>() && !oracles) a.fail(fmt::format("a technique with stage oracles ({} declares none)", tech.name), "true");
+    run.attribute = a.v->get<bool>();
   }
   if (Node aov = n["compare_aov"]; aov.present())
     run.compare_aov = read_choice(aov, reference_outputs(), "one of the reference outputs");

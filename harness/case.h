@@ -87,6 +87,7 @@ struct TechniqueRun {
   std::map<std::string, double> options;    // validated against the technique's option names
   std::string compare_aov;                  // reference AOV this output is compared to ("" = Case::output)
   std::vector<Threshold> thresholds;
+  bool attribute = false;  // error attribution of this row under `gibench run --attribute`
   // Named option sets rendered alongside (same technique and preset; these options on top of
   // `options`) as comparison images: a threshold's against "variant:NAME".
   std::map<std::string, std::map<std::string, double>> variants;

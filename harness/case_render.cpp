@@ -87,6 +87,10 @@ CaseRender render(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::s
   for (uint32_t f = 1; f <= frames; ++f) {
     results.push_back(ex.run_frame());
     if (progress) progress(f, frames);
+    if (hooks && !hooks->read.empty() && f < frames && f + hooks->read_frames > frames) {
+      auto& reads = r.read_before.emplace_back();
+      for (const std::string& name : hooks->read) reads[name] = ex.read_bytes(name);
+    }
     bool eval_here = std::find(eval.begin(), eval.end(), f) != eval.end();
     bool keep = keep_last && f + keep_last > frames;
     const bool track_nan = c.track_nan;  // the reference too: its accumulation is temporal

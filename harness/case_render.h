@@ -39,14 +39,17 @@ struct CaseRender {
   std::map<std::string, FloatImage> views;      // Technique::views at the last frame (those in the plan)
   std::map<std::string, std::string> printouts; // Technique::printouts at the last frame (those in the plan)
   std::map<std::string, std::vector<uint8_t>> read;  // RunHooks::read: raw bytes after the last frame
+  std::vector<std::map<std::string, std::vector<uint8_t>>> read_before;  // the same after the frames before it
 };
 
 // Error attribution's access to a technique run (harness/attribution/): graph overrides in
 // place from the first frame (Executor::add_override), and resources whose raw bytes are read
-// after the last frame (Executor::read_bytes). A hooked run renders no timing frames.
+// after the last frame (Executor::read_bytes), and after the `read_frames` - 1 frames before it
+// too (CaseRender::read_before). A hooked run renders no timing frames.
 struct RunHooks {
   std::vector<ResourceOverride> overrides;
   std::vector<std::string> read;
+  uint32_t read_frames = 1;
 };
 
 // `progress` (may be empty) is called after each frame with (frames done, frames in all).

@@ -78,6 +78,9 @@ int main(int argc, char** argv) {
                 "write each row's wall seconds into cases/timings/lavapipe.json (the quick profile's costs; CPU device)");
   run->add_flag("--dry-run", run_opts.dry_run,
                 "print the plan: each row, run or not and why, its expected seconds; render nothing");
+  run->add_flag("--attribute", run_opts.attribute,
+                "after the rows, the error attribution of every row a case flags with \"attribute\": true "
+                "(gibench attribute's defaults), its waterfall linked from the report");
   run->add_flag("--worker", run_opts.worker, "internal: a worker of a parallel run (rows on stdin, events on stdout)")
       ->group("");
   run->add_option("--technique", run_opts.techniques,
@@ -141,10 +144,14 @@ int main(int argc, char** argv) {
   attribute->add_option("--technique", attr.technique, "technique (required)")->required();
   attribute->add_option("--label", attr.label, "the case run's label (default: the unlabelled run)");
   attribute->add_option("--preset", attr.preset, "preset (default: the run's first)");
-  attribute->add_option("--seeds", attr.seeds, "renders per subset of oracles (default 2)")->check(CLI::Range(1u, 64u));
-  attribute->add_option("--oracle-seeds", attr.oracle_seeds, "renders the seed-mean oracles average (default 4)")
+  attribute->add_option("--seeds", attr.settings.seeds, "renders per subset of oracles (default 2)")->check(CLI::Range(1u, 64u));
+  attribute->add_option("--oracle-seeds", attr.settings.oracle_seeds, "renders the seed-mean oracles average (default 4)")
       ->check(CLI::Range(1u, 64u));
-  attribute->add_option("--noise-spp", attr.noise_spp,
+  attribute
+      ->add_option("--oracle-frames", attr.settings.oracle_frames,
+                   "the seed-mean oracles average each oracle render's last N frames too (static scenes; default 16)")
+      ->check(CLI::Range(1u, 1024u));
+  attribute->add_option("--noise-spp", attr.settings.noise_spp,
                         "spp of the two reference renders the noise floor is scaled from (default 16)")
       ->check(CLI::Range(1u, 65536u));
 

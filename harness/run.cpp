@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <set>
 
+#include "harness/attribution/suite_attribution.h"
 #include "harness/jobs.h"
 #include "harness/plan.h"
 #include "harness/progress.h"
@@ -228,6 +229,7 @@ int cmd_run(const SuiteOptions& o) {
   std::vector<nlohmann::json> rows = j["results"].get<std::vector<nlohmann::json>>();
   std::stable_sort(rows.begin(), rows.end(),
                    [&](auto& a, auto& b) { return order[row_key_of(a)] < order[row_key_of(b)]; });
+  attribute_flagged_rows(o, s.tier, s.cases, rp.run, rows);
   j["results"] = rows;
   if (!rp.shard.is_null()) j["shard"] = rp.shard;
   j["run"] = {{"profile", profile_name(profile)}, {"jobs", jobs}, {"rows_run", rp.run.size()},

@@ -53,6 +53,9 @@ struct SuiteOptions {
   bool record_timings = false;
   // run: print the plan (each row, run or not and why, its expected seconds) and render nothing.
   bool dry_run = false;
+  // run: after the rows, the error attribution of every row that ran whose case run says
+  // "attribute": true (harness/attribution/suite_attribution.h), linked from the report.
+  bool attribute = false;
   // run: a worker of a parallel run (jobs.h): row keys arrive on stdin, events leave on stdout.
   bool worker = false;
   // run: the gibench binary the workers run ("": this process's own, /proc/self/exe; a test

@@ -328,6 +328,25 @@ TEST(CaseLoad, LabelsTellRunsOfOneTechniqueAndPresetApart) {
   expect_error(dir, nc, "/negative_controls/0/label", "no label in a negative control");
 }
 
+TEST(CaseLoad, AttributeFlagsARowOfATechniqueWithStageOracles) {
+  TempDir dir;
+  json d = valid_case();
+  json run = {{"technique", "probe-volume"}, {"compare_aov", "indirect_diffuse"}, {"attribute", true}};
+  d["techniques"].push_back(run);
+  Case c = load_case(dir.write("attribute.json", d.dump()));
+  EXPECT_TRUE(c.techniques[2].attribute);
+  EXPECT_FALSE(c.techniques[0].attribute);
+  json e = valid_case();
+  e["techniques"][0]["attribute"] = true;  // direct declares no stage oracles
+  expect_error(dir, e, "/techniques/0/attribute", "a technique with stage oracles (direct declares none)");
+  e = d;
+  e["techniques"][2]["attribute"] = "yes";
+  expect_error(dir, e, "/techniques/2/attribute", "true or false");
+  e = valid_case();
+  e["negative_controls"][0]["attribute"] = false;
+  expect_error(dir, e, "/negative_controls/0/attribute", "no \"attribute\" in a negative control");
+}
+
 TEST(CaseLoad, KnownFailureEverywhereOrPerDeviceClass) {
   TempDir dir;
   json d = valid_case();

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -56,19 +57,36 @@ std::vector<double> reference_noise(Gpu& gpu, const Case& c, const std::string& 
   return out;
 }
 
+bool has_reference(const GoldenStore& store, const Case& c, const std::string& aov) {
+  return !store.find(GoldenStore::reference_stem(aov, c.output), "").empty();
+}
+
+// Why stage `s` cannot play in this row ("" when it can): the pass its oracle follows is culled,
+// a resource it reads is not made, or a reference AOV it needs is not committed (in an analytic
+// case, only indirect_diffuse of a radiance comparison can be derived).
+std::string why_not_playable(const TechniqueStage& s, const Plan& plan, const GoldenStore& store, const Case& c,
+                             bool analytic, const std::string& aov, const Technique& t) {
+  bool runs = false;
+  for (const PlannedPass* p : plan.running()) runs |= p->name == s.after_pass;
+  if (!runs) return fmt::format("{} does not run in this row", s.after_pass);
+  for (const std::string& r : s.seed_reads)
+    if (!plan.find(r)) return fmt::format("no resource '{}' in this row", r);
+  for (const std::string& a : s.reference_aovs) {
+    if (a == aov) continue;
+    if (analytic && !(a == "indirect_diffuse" && aov == "radiance" && t.contract_aovs.count("direct")))
+      return fmt::format("the case is analytic and '{}' cannot be derived from it", a);
+    if (!analytic && !has_reference(store, c, a))
+      return fmt::format("no reference '{}' committed for the case", GoldenStore::reference_stem(a, c.output));
+  }
+  return "";
+}
+
 }  // namespace
 
 int cmd_attribute(const AttributeOptions& o) {
-  if (o.technique.empty()) throw std::invalid_argument("attribute: expected --technique NAME");
-  if (o.seeds == 0 || o.oracle_seeds == 0 || o.noise_spp == 0)
-    throw std::invalid_argument("attribute: expected --seeds, --oracle-seeds and --noise-spp >= 1");
-  const Technique& t = find_technique(o.technique);
-  std::vector<size_t> game;  // indices into t.stages of the stages with an oracle
-  for (size_t i = 0; i < t.stages.size(); ++i)
-    if (t.stages[i].make) game.push_back(i);
-  if (game.empty())
-    throw std::invalid_argument(fmt::format("attribute: technique '{}' declares no stage with an oracle "
-                                            "(Technique::stages)", t.name));
+  const AttributionSettings& st = o.settings;
+  if (st.seeds == 0 || st.oracle_seeds == 0 || st.oracle_frames == 0 || st.noise_spp == 0)
+    throw std::invalid_argument("attribute: expected --seeds, --oracle-seeds, --oracle-frames and --noise-spp >= 1");
   std::vector<Case> cases = select_cases(o.suite);
   if (cases.size() != 1)
     throw CaseError(fmt::format("attribute: expected --case naming exactly one case, got {}", cases.size()));
@@ -77,41 +95,104 @@ int cmd_attribute(const AttributeOptions& o) {
   const Tier tier = resolve_tier(o.suite.tier, device_class(dev.driver_name, dev.name));
   const Case c = at_tier(cases.front(), tier);
   const TechniqueRun& run = find_run(c, o.technique, o.label);
-  const std::string preset = o.preset.empty() ? run.presets.front() : o.preset;
+  attribute_row(*gpu, c, tier, run, o.preset.empty() ? run.presets.front() : o.preset, st, o.suite, true);
+  return 0;
+}
+
+nlohmann::json attribute_row(Gpu& gpu_ref, const Case& c, Tier tier, const TechniqueRun& run, const std::string& preset,
+                             const AttributionSettings& st, const SuiteOptions& suite, bool verbose) {
+  Gpu* gpu = &gpu_ref;
+  const DeviceInfo& dev = gpu->info();
+  const Technique& t = find_technique(run.technique);
+  if (std::none_of(t.stages.begin(), t.stages.end(), [](const TechniqueStage& x) { return bool(x.make); }))
+    throw std::invalid_argument(fmt::format("attribute: technique '{}' declares no stage with an oracle "
+                                            "(Technique::stages)", t.name));
   const std::string aov = run.compare_aov.empty() ? c.output : run.compare_aov;
-  const std::string cache_root = tier == Tier::gpu ? reference_cache_root(o.suite.reference_cache) : "";
-  const GoldenStore store = prepare_references(*gpu, o.suite.goldens_dir, cache_root, c, tier).store;
-  fmt::print("attribute {} {} {} ({}x{}, {} frames, compared: {}) on {} ({}), tier {}\n", c.name, run.name(), preset,
+  // An analytic case (reference_spp 0) has no path-traced reference: the compared image is the
+  // constant analytic value (exact, no noise floor), and a stage's indirect_diffuse reference is
+  // that value less the technique's own direct AOV (the oracle seeds' mean): what makes the image
+  // exact given the direct light the stage received.
+  const bool analytic = c.reference_spp == 0 && c.analytic_value.has_value();
+  const std::string cache_root = tier == Tier::gpu ? reference_cache_root(suite.reference_cache) : "";
+  const GoldenStore store =
+      analytic ? GoldenStore(suite.goldens_dir, c.name) : prepare_references(*gpu, suite.goldens_dir, cache_root, c, tier).store;
+  if (verbose)
+    fmt::print("attribute {} {} {} ({}x{}, {} frames, compared: {}) on {} ({}), tier {}\n", c.name, run.name(), preset,
              c.width, c.height, run.frames ? run.frames : c.frames, aov, dev.name, dev.driver_info, tier_name(tier));
+
+  // The row's plan (one frame) says which oracles can be written here.
+  Case one = c;
+  one.frames = 1;
+  TechniqueRun one_run = run;
+  one_run.frames = 1;
+  const Plan plan = render_case_hooked(*gpu, one, one_run, preset, 1000, {}).plan;
+  std::vector<size_t> game;  // indices into t.stages of the stages whose oracle plays
+  std::map<size_t, std::string> excluded;  // stages with an oracle that cannot play here, and why
+  for (size_t i = 0; i < t.stages.size(); ++i) {
+    if (!t.stages[i].make) continue;
+    const std::string why = why_not_playable(t.stages[i], plan, store, c, analytic, aov, t);
+    if (why.empty())
+      game.push_back(i);
+    else
+      excluded[i] = "no oracle in this row: " + why;
+  }
+  if (verbose)
+    for (const auto& [i, why] : excluded) fmt::print("  stage {}: {}\n", t.stages[i].name, why);
+  if (game.empty()) throw CaseError(fmt::format("attribute: {}: no stage of {} can take its oracle in this row", c.name, run.name()));
 
   OracleInputs in;
   in.width = c.width;
   in.height = c.height;
-  in.reference[aov] = read_reference(store, c, aov);
+  const FloatImage constant(c.width, c.height, 4, float(c.analytic_value.value_or(0.0)));
+  in.reference[aov] = analytic ? constant : read_reference(store, c, aov);
   RunHooks reads;
+  reads.read_frames = st.oracle_frames;
+  bool derive_indirect = false;  // analytic: indirect_diffuse = the value - the technique's direct
   for (size_t i : game) {
-    for (const std::string& a : t.stages[i].reference_aovs)
-      if (!in.reference.count(a)) in.reference[a] = read_reference(store, c, a);
+    for (const std::string& a : t.stages[i].reference_aovs) {
+      if (in.reference.count(a)) continue;
+      if (!analytic) {
+        in.reference[a] = read_reference(store, c, a);
+      } else if (!derive_indirect) {
+        derive_indirect = true;
+        reads.read.push_back(t.contract_aovs.at("direct"));
+      }
+    }
     for (const std::string& r : t.stages[i].seed_reads) reads.read.push_back(r);
   }
   const auto t0 = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-  for (uint32_t s = 0; s < o.oracle_seeds; ++s) {
+  for (uint32_t s = 0; s < st.oracle_seeds; ++s) {
     CaseRender r = render_case_hooked(*gpu, c, run, preset, 1000 + s, reads);
     for (const std::string& name : reads.read) {
       const ResolvedResource* res = r.plan.find(name);
       in.formats[name] = res->desc.format;
       in.extents[name] = {res->width, res->height};
     }
+    for (auto& before : r.read_before) in.seeds.push_back(std::move(before));
     in.seeds.push_back(std::move(r.read));
-    fmt::print("  oracle seed render {}/{} ({:.0f} s)\n", s + 1, o.oracle_seeds, elapsed());
+    if (verbose)
+      fmt::print("  oracle seed render {}/{}, reads of its last {} frames ({:.0f} s)\n", s + 1, st.oracle_seeds,
+               r.read_before.size() + 1, elapsed());
     std::fflush(stdout);
+  }
+  if (derive_indirect) {
+    const std::string direct = t.contract_aovs.at("direct");
+    FloatImage indirect = constant;
+    for (const auto& seed : in.seeds) {
+      const FloatImage d = decode_texels(in.formats.at(direct), c.width, c.height, seed.at(direct));
+      for (size_t i = 0; i < indirect.pixels.size(); ++i) indirect.pixels[i] -= d.pixels[i] / float(in.seeds.size());
+    }
+    in.reference["indirect_diffuse"] = indirect;
+    if (verbose) fmt::print("  analytic: indirect_diffuse reference = {} - the seeds' mean {}\n", *c.analytic_value, direct);
   }
   std::vector<std::vector<ResourceOverride>> oracles;
   std::vector<std::string> names;
   for (size_t i : game) {
     std::vector<ResourceOverride> ov;
-    for (auto& [resource, bytes] : t.stages[i].make(in)) ov.push_back({t.stages[i].after_pass, resource, bytes});
+    const TechniqueStage& st_i = t.stages[i];
+    for (auto& [resource, bytes] : st_i.make(in))
+      ov.push_back({st_i.after_pass_of.count(resource) ? st_i.after_pass_of.at(resource) : st_i.after_pass, resource, bytes});
     oracles.push_back(std::move(ov));
     names.push_back(t.stages[i].name);
   }
@@ -119,21 +200,29 @@ int cmd_attribute(const AttributeOptions& o) {
   std::vector<NamedRoi> rois{{"image", {}}};
   for (const Roi& r : c.rois) rois.push_back({r.name, {r.x0, r.y0, r.x1, r.y1}});
   attribution::Options opts;
-  opts.seeds = o.seeds;
-  const nlohmann::json record = store.record_of(GoldenStore::reference_stem(aov, c.output) + ".exr");
-  const uint32_t committed_spp = record.value("spp", 0u);
-  opts.noise_floor = reference_noise(*gpu, c, aov, o.noise_spp, committed_spp, rois);
-  fmt::print("  reference noise floor from two {}-spp renders, scaled to the reference's {} spp ({:.0f} s)\n",
-             o.noise_spp, committed_spp, elapsed());
-  const uint32_t total = (1u << game.size()) * o.seeds;
+  opts.seeds = st.seeds;
+  const uint32_t committed_spp =
+      analytic ? 0u : store.record_of(GoldenStore::reference_stem(aov, c.output) + ".exr").value("spp", 0u);
+  if (analytic) {
+    opts.noise_floor.assign(rois.size(), 0.0);
+    if (verbose) fmt::print("  reference: the analytic value {} (no noise floor)\n", *c.analytic_value);
+  } else {
+    opts.noise_floor = reference_noise(*gpu, c, aov, st.noise_spp, committed_spp, rois);
+    if (verbose)
+      fmt::print("  reference noise floor from two {}-spp renders, scaled to the reference's {} spp ({:.0f} s)\n",
+               st.noise_spp, committed_spp, elapsed());
+  }
+  const uint32_t total = (1u << game.size()) * st.seeds;
   uint32_t done = 0;
   auto render = [&](uint32_t mask, uint32_t seed) {
     RunHooks hooks;
     for (size_t i = 0; i < oracles.size(); ++i)
       if (mask & (1u << i)) hooks.overrides.insert(hooks.overrides.end(), oracles[i].begin(), oracles[i].end());
     FloatImage img = render_case_hooked(*gpu, c, run, preset, seed, hooks).image;
-    fmt::print("  render {}/{}: oracles {{{}}} seed {} ({:.0f} s)\n", ++done, total,
-               attribution::mask_names(names, mask), seed, elapsed());
+    ++done;
+    if (verbose)
+      fmt::print("  render {}/{}: oracles {{{}}} seed {} ({:.0f} s)\n", done, total, attribution::mask_names(names, mask),
+                 seed, elapsed());
     std::fflush(stdout);
     return img;
   };
@@ -145,15 +234,30 @@ int cmd_attribute(const AttributeOptions& o) {
   ctx.preset = preset;
   ctx.aov = aov;
   ctx.device = dev.name;
-  for (const TechniqueStage& s : t.stages) ctx.stages.push_back({s.name, s.passes, s.oracle});
-  fmt::print("{}", attribution::format_table(a, ctx));
-  const fs::path dir = fs::path(o.suite.out) / "attribution";
+  for (size_t i = 0; i < t.stages.size(); ++i)
+    ctx.stages.push_back({t.stages[i].name, t.stages[i].passes,
+                          excluded.count(i) ? excluded.at(i) : t.stages[i].oracle});
+  if (verbose) fmt::print("{}", attribution::format_table(a, ctx));
+  const fs::path dir = fs::path(suite.out) / "attribution";
   fs::create_directories(dir);
   const std::string stem = fmt::format("{}.{}.{}", c.name, run.name(), preset);
-  std::ofstream(dir / (stem + ".json")) << attribution::to_json(a, ctx).dump(2) << "\n";
+  const nlohmann::json full = attribution::to_json(a, ctx);
+  std::ofstream(dir / (stem + ".json")) << full.dump(2) << "\n";
   std::ofstream(dir / (stem + ".html")) << attribution::waterfall_html(a, ctx);
-  fmt::print("wrote {} and {}\n", (dir / (stem + ".json")).string(), (dir / (stem + ".html")).string());
-  return 0;
+  if (verbose) fmt::print("wrote {} and {}\n", (dir / (stem + ".json")).string(), (dir / (stem + ".html")).string());
+  nlohmann::json summary = {{"page", "attribution/" + stem + ".html"},
+                            {"json", "attribution/" + stem + ".json"},
+                            {"stages_in_game", names},
+                            {"renders", full.value("renders", 0)},
+                            {"seconds", elapsed()},
+                            {"rois", nlohmann::json::array()}};
+  for (const auto& r : full["rois"])
+    summary["rois"].push_back({{"roi", r["roi"]},
+                               {"largest", r["largest"]},
+                               {"mse", r["technique"]["mse"]},
+                               {"signed_energy", r["technique"]["signed_energy"]},
+                               {"oracle_floor", r["oracle_floor"]["mse"]}});
+  return summary;
 }
 
 }  // namespace gib

@@ -54,7 +54,8 @@ std::string format_table(const Attribution& a, const ReportContext& ctx) {
     for (const StageInfo& s : ctx.stages) {
       const StageBar* b = bar_of(r, s.name);
       if (!b) {
-        out += fmt::format("  {:<12} no oracle yet ({})\n", s.name, fmt::join(s.passes, ", "));
+        out += fmt::format("  {:<12} {} ({})\n", s.name, s.oracle.empty() ? "no oracle yet" : s.oracle,
+                           fmt::join(s.passes, ", "));
         continue;
       }
       out += fmt::format("  {:<12} {:>7} {:>10.4g} {:>10.4g} {:>10.4g} {:>9.2g} {:>+7.1f}% {:>10.4g} {:>10.4g}{}\n",

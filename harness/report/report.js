@@ -954,11 +954,31 @@
       (row.printouts || []).length ? h('div', { class: 'printouts' }, row.printouts.map(function (p) {
         return h('details', null, [h('summary', null, 'printout: ' + p.name), h('pre', { class: 'printout' }, p.text)]);
       })) : null,
+      attributionSection(row),
       h('div', { class: 'card-cols' }, [
         h('section', { class: 'col' }, [h('h5', null, 'Checks'), checksList(row)]),
         h('section', { class: 'col' }, [h('h5', null, 'GPU passes & plan')].concat(passBars(row, maxMs))),
         stabilitySection(row)
       ])
+    ]);
+  }
+
+  // Error attribution of a row its case flags (gibench run --attribute): the largest stage's share
+  // per ROI and a link to the waterfall page; asked for but not run, or failed, said so.
+  function attributionSection(row) {
+    var a = row.attribution;
+    if (!a) return null;
+    if (a.not_run) return h('p', { class: 'attribution not-run' }, [h('b', null, 'Error attribution: '), 'not run: ' + a.not_run]);
+    if (a.error) return h('p', { class: 'attribution bad' }, [h('b', null, 'Error attribution failed: '), a.error]);
+    var items = (a.rois || []).map(function (r) {
+      return h('li', null, [h('b', null, r.roi), ': largest share ' + r.largest + ' (MSE ' + fmtNum(r.mse) +
+        ', energy ' + (r.signed_energy >= 0 ? '+' : '') + fmtNum(100 * r.signed_energy, 1) + '%, oracle floor ' +
+        fmtNum(r.oracle_floor) + ')']);
+    });
+    return h('section', { class: 'attribution' }, [
+      h('h5', null, ['Error attribution (stages in the game: ' + (a.stages_in_game || []).join(', ') + '; ' + a.renders +
+        ' renders) ', h('a', { href: a.page }, 'waterfall')]),
+      h('ul', null, items)
     ]);
   }
 

@@ -99,7 +99,8 @@ struct TechniqueStage {
   std::string name;
   std::vector<std::string> passes;
   std::string oracle;                        // what the oracle is, in words
-  std::string after_pass;                    // writes every resource `make` returns
+  std::string after_pass;                    // writes every resource `make` returns, except:
+  std::map<std::string, std::string> after_pass_of;  // resource -> the pass it is written after instead
   std::vector<std::string> seed_reads;       // resources the oracle reads from the seed renders
   std::vector<std::string> reference_aovs;   // reference AOVs it reads
   // Resource -> the bytes that replace it (its format; a buffer's one copy).

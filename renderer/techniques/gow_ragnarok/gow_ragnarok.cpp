@@ -24,6 +24,7 @@
 #include "renderer/techniques/gow_ragnarok/ssgi/ssgi.h"
 #include "renderer/techniques/direct_light_modes.h"
 #include "renderer/techniques/technique.h"
+#include "renderer/techniques/gow_ragnarok/gow_ragnarok_stages.h"
 
 namespace gib {
 namespace {
@@ -91,6 +92,7 @@ Technique gow_ragnarok_technique() {
                      {"indirect_diffuse", "ssgi_indirect"},
                      {"reflection", "reflection"}};
   t.contract_aov_needs = {{"reflection", Feature::glossy}};
+  t.stages = gow_ragnarok_stages();
   t.aovs = {"vbuffer",          "depth",         "gbuffer_albedo",   "gbuffer_normal",   "gbuffer_position",
             "gbuffer_emissive", "shadow_map",    "shadow_minmax",    "shadow_pcf",       "shadow_contact_hardening",
             "direct_light",     "ssdo_cone",     "ssdo_local_light", "ssgi_indirect",    "gow_direct",

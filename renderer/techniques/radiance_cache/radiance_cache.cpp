@@ -17,6 +17,7 @@
 #include "renderer/techniques/radiance_cache/radiance_cache_update/radiance_cache_update.h"
 #include "renderer/techniques/direct_light_modes.h"
 #include "renderer/techniques/technique.h"
+#include "renderer/techniques/radiance_cache/radiance_cache_stages.h"
 
 namespace gib {
 namespace {
@@ -179,6 +180,7 @@ Technique radiance_cache_technique() {
   t.aovs = {"indirect_diffuse", "direct_radiance",  "gi_irradiance",  "gi_direct_irradiance", "direct_light",
             "probe_irradiance", "probe_visibility", "gather_sh_r",    "gather_direct",        "gbuffer_albedo",
             "gbuffer_normal",   "gbuffer_position"};
+  t.stages = radiance_cache_stages();
   define_settings<RadianceCacheSettings>(t, kPresets, apply_preset_row);
   t.options = with_common_options(own_options(), {0, 1, 2});
   add_direct_light_modes(t);  // option direct_light: traced or shadow_mapped

@@ -10,6 +10,7 @@
 #include "renderer/passes/visibility/visibility.h"
 #include "renderer/techniques/direct_light_modes.h"
 #include "renderer/techniques/technique.h"
+#include "renderer/techniques/voxel_clipmap/voxel_clipmap_stages.h"
 #include "renderer/techniques/voxel_clipmap/irradiance_clipmap/irradiance_clipmap.h"
 #include "renderer/techniques/voxel_clipmap/irradiance_relight/irradiance_relight.h"
 #include "renderer/techniques/voxel_clipmap/irradiance_select/irradiance_select.h"
@@ -122,6 +123,7 @@ Technique voxel_clipmap_technique() {
   t.contract_aovs = {{"direct", "direct_radiance"}, {"indirect_diffuse", "indirect_diffuse"}};
   t.aovs = {"indirect_diffuse", "direct_radiance", "gi_irradiance",  "gi_direct_irradiance",
             "direct_light",     "gbuffer_albedo",  "gbuffer_normal", "gbuffer_position"};
+  t.stages = voxel_clipmap_stages();
   // VcState: 4 x 8 ivec4 origins (128 words), select (4), stats (4); VcQueue: args (4), counts (4).
   t.stats = {
       {"voxels_entered", "voxels that entered the clipmap or were invalidated this frame", "voxel_clip_state", 132},

@@ -1,0 +1,94 @@
+#include "renderer/techniques/radiance_cache/radiance_cache_stages.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+
+#include "renderer/codecs/half.h"
+#include "renderer/techniques/radiance_cache/exposure/exposure_shared.h"
+#include "renderer/techniques/stage_oracles.h"
+
+namespace gib {
+
+namespace {
+
+using oracles::Bytes;
+
+std::map<std::string, Bytes> volumes_oracle(const OracleInputs& in) {
+  return {{"probe_irradiance", oracles::mean_rgb9e5(in, "probe_irradiance")},
+          {"probe_visibility", oracles::mean_halves(in, "probe_visibility")}};
+}
+
+float exposure_now(const Bytes& exposure) {
+  float p;
+  std::memcpy(&p, &exposure.at(size_t(glsl::kExposureNow) * 4), 4);
+  return p;
+}
+
+// gi_denoise filters each gather image into its own output of the same size and format. The
+// gather holds irradiance / pi x P (pre-exposure, P from the exposure pass, which follows the
+// image): each read is brought to absolute units by its own P, averaged, and written at a fixed
+// P, the reads' mean, which the oracle also writes into `exposure` (this frame's and last
+// frame's P, after the exposure pass: the whole frame runs at that P) for gi_upscale; without that, an oracle brighter than the technique lowers the
+// next frame's P and gi_upscale divides the frozen values by it: a feedback that drifts.
+std::map<std::string, Bytes> denoise_oracle(const OracleInputs& in) {
+  double p_sum = 0.0;
+  for (size_t s = 0; s < in.seeds.size(); ++s) p_sum += exposure_now(oracles::seed_bytes(in, s, "exposure"));
+  const float p_fixed = float(p_sum / double(in.seeds.size()));
+  std::map<std::string, Bytes> out;
+  for (const auto& [from, to] : {std::pair{"gather_sh_r", "gi_sh_r"}, std::pair{"gather_sh_g", "gi_sh_g"},
+                                 std::pair{"gather_sh_b", "gi_sh_b"}, std::pair{"gather_direct", "gi_direct"}}) {
+    const size_t halves = oracles::seed_bytes(in, 0, from).size() / 2;
+    std::vector<double> sum(halves, 0.0);
+    for (size_t s = 0; s < in.seeds.size(); ++s) {
+      const Bytes& b = oracles::seed_bytes(in, s, from);
+      if (b.size() != halves * 2) throw std::runtime_error(fmt::format("radiance-cache oracle: '{}' differs in size", from));
+      const double scale = p_fixed / std::max(exposure_now(oracles::seed_bytes(in, s, "exposure")), 1e-30f);
+      for (size_t i = 0; i < halves; ++i) {
+        uint16_t h;
+        std::memcpy(&h, &b[i * 2], 2);
+        sum[i] += codecs::half_to_float(h) * scale;
+      }
+    }
+    Bytes& o = out[to];
+    o.resize(halves * 2);
+    for (size_t i = 0; i < halves; ++i) {
+      const uint16_t h = codecs::float_to_half(float(sum[i] / double(in.seeds.size())));
+      std::memcpy(&o[i * 2], &h, 2);
+    }
+  }
+  Bytes exposure = oracles::seed_bytes(in, 0, "exposure");
+  std::memcpy(&exposure.at(size_t(glsl::kExposureNow) * 4), &p_fixed, 4);
+  std::memcpy(&exposure.at(size_t(glsl::kExposurePrev) * 4), &p_fixed, 4);
+  out["exposure"] = exposure;
+  return out;
+}
+
+}  // namespace
+
+std::vector<TechniqueStage> radiance_cache_stages() {
+  std::vector<TechniqueStage> s(5);
+  s[0].name = "radiance_cache";
+  s[0].passes = {"light_grid", "probe_trace", "radiance_cache_update", "radiance_cache_shade"};
+  s[1].name = "irradiance_volumes";
+  s[1].passes = {"irradiance_volume_update"};
+  s[1].oracle = "converged: the seed renders' mean probe_irradiance (RGB9E5) and probe_visibility";
+  s[1].after_pass = "irradiance_volume_update";
+  s[1].seed_reads = {"probe_irradiance", "probe_visibility"};
+  s[1].make = volumes_oracle;
+  s[2].name = "final_gather";
+  s[2].passes = {"exposure", "final_gather"};
+  s[3].name = "denoise";
+  s[3].passes = {"gi_denoise"};
+  s[3].oracle = "the seed renders' mean of its input (gather_sh_r/g/b, gather_direct), at their mean pre-exposure";
+  s[3].after_pass = "gi_denoise";
+  s[3].seed_reads = {"gather_sh_r", "gather_sh_g", "gather_sh_b", "gather_direct", "exposure"};
+  s[3].after_pass_of = {{"exposure", "exposure"}};  // the pass that writes it: the whole frame at that P
+  s[3].make = denoise_oracle;
+  s[4] = oracles::exact_gi_irradiance_stage("upscale", {"gi_upscale"}, "gi_upscale");
+  return s;
+}
+
+}  // namespace gib
