@@ -18,13 +18,20 @@ vec2 gow_ss_rotation(uint seed, uint frame, uvec2 p, uint stream) {
 // Direction i of n around the normal: cosine-weighted (equal-area rings of r^2 = (i + 0.5) / n
 // on the unit disk, lifted to the hemisphere), spread by the golden angle and turned by
 // `rotation` whole turns. Each direction stands for 1 / n of the cosine-weighted hemisphere.
-vec3 gow_ss_direction(uint i, uint n, float rotation, vec3 normal) {
+// Its coordinates in the normal's frame (gib_onb's t, b, then the normal), unit up to rounding:
+// a pass that turns one set into many pixels' frames computes these once.
+vec3 gow_ss_local_direction(uint i, uint n, float rotation) {
   float u = (float(i) + 0.5) / float(n);
   float r = sqrt(u);
   float phi = float(i) * kGoldenAngle + 2.0 * GIB_PI * rotation;
+  return vec3(r * cos(phi), r * sin(phi), sqrt(max(0.0, 1.0 - u)));
+}
+
+vec3 gow_ss_direction(uint i, uint n, float rotation, vec3 normal) {
+  vec3 l = gow_ss_local_direction(i, n, rotation);
   vec3 t, b;
   gib_onb(normal, t, b);
-  return normalize(t * (r * cos(phi)) + b * (r * sin(phi)) + normal * sqrt(max(0.0, 1.0 - u)));
+  return normalize(t * l.x + b * l.y + normal * l.z);
 }
 
 // One texel of ssdo_ssgi's half-resolution surfaces (rg32ui), the surface the march's depth

@@ -12,6 +12,7 @@ GIB_SCENE_BUFFERS(0, kBindSceneFirst)
 #include "lights.glsl"
 #include "finite.glsl"
 layout(constant_id = kSsCombinedSpecLocal) const bool kHasLocal = true;
+layout(constant_id = kSsCombinedSpecDirections) const uint kDirections = kSsMaxDirections;
 layout(local_size_x = kSsGroup, local_size_y = kSsGroup) in;
 layout(set = 0, binding = kSsCombinedBindPosition, rgba32f) uniform readonly image2D gb_position;
 layout(set = 0, binding = kSsCombinedBindNormal, rgba16f) uniform readonly image2D gb_normal;
@@ -28,7 +29,6 @@ layout(set = 0, binding = kSsCombinedBindIndirectPrev, rgba32f) uniform readonly
 layout(set = 0, binding = kSsCombinedBindSurfaces, rg32ui) uniform readonly uimage2D surfaces;
 layout(push_constant) uniform Push { SsCombinedPush push; };
 #include "renderer/techniques/gow_ragnarok/include/gow_screen_space.glsl"
-#include "renderer/techniques/gow_ragnarok/include/gow_ss_lights.glsl"
 
 // A 2x2 quad of threads (4x4 pixels) shares one turned direction set; thread qi of the quad
 // marches directions qi, qi + 4, ... from its block's pixel. Each pixel then takes the results
@@ -40,6 +40,9 @@ shared vec4 s_pos[kSsGroup][kSsGroup];     // the thread's pixel's position; w: 
 shared vec3 s_normal[kSsGroup][kSsGroup];
 shared uvec2 s_bits[kSsGroup][kSsGroup];   // x: open directions (SSDO), y: marched directions
 shared vec3 s_gather[kSsGroup][kSsGroup];  // sum of the bounce light its hits gave (SSGI)
+// Each quad's directions in the frame of a normal (gow_ss_local_direction), written by the thread
+// that marched each: a pixel turns them into its own frame with three multiply-adds, no trig.
+shared vec3 s_local[kSsGroup / 2][kSsGroup / 2][kDirections];
 
 bool ssdo_on() { return (push.counts.z & 1u) != 0u; }
 bool ssgi_on() { return (push.counts.z & 2u) != 0u; }
@@ -136,6 +139,34 @@ void accumulate(vec3 x, inout vec3 local, inout vec3 indirect, out float count) 
   indirect = mix(prev_indirect.rgb, indirect, 1.0 / count);
 }
 
+// The unshadowed local lights through SSDO's visibility, as gow_ss_local_light
+// (gow_ss_lights.glsl) computes them, with the quad's directions from s_local in the pixel's
+// frame (t, b, n): per light and direction one dot product and the lobe's exp.
+vec3 local_light(vec3 x, vec3 n, vec3 t, vec3 b, vec3 albedo, uint open_bits, uint known, uvec2 q, float open_fraction) {
+  vec3 result = vec3(0.0);
+  for (uint k = 0u; k < gib_light_count(); ++k) {
+    vec3 wi;
+    float dist;
+    vec3 e = gib_local_light(gib_lights[k], x, wi, dist);
+    float c = dot(n, wi);
+    if (c <= 0.0 || all(equal(e, vec3(0.0)))) continue;
+    float vis = 1.0;
+    if (open_fraction < 1.0) {
+      vec3 wl = vec3(dot(t, wi), dot(b, wi), c);
+      float num = 0.0, den = 0.0;
+      for (uint bits = known; bits != 0u; bits &= bits - 1u) {
+        uint i = uint(findLSB(bits));
+        float w = exp((dot(s_local[q.y][q.x][i], wl) - 1.0) / kSsLobe);
+        den += w;
+        if ((open_bits & (1u << i)) != 0u) num += w;
+      }
+      vis = den > 1e-3 ? num / den : open_fraction;
+    }
+    result += albedo * (c / GIB_PI) * e * vis;
+  }
+  return result;
+}
+
 void main() {
   uvec2 lt = gl_LocalInvocationID.xy;
   ivec2 block = ivec2(gl_GlobalInvocationID.xy);
@@ -163,9 +194,13 @@ void main() {
   vec3 gathered = vec3(0.0);
   if (rep.x >= 0) {
     rn = gow_ss_normal(rep, guard);
+    vec3 rt, rb;
+    gib_onb(rn, rt, rb);
     uint qi = (lt.x & 1u) | ((lt.y & 1u) << 1u);
     for (uint i = qi; i < dirs && (ssdo_on() || ssgi_on()); i += 4u) {
-      vec3 d = gow_ss_direction(i, dirs, turn, rn);
+      vec3 l = gow_ss_local_direction(i, dirs, turn);
+      s_local[lt.y >> 1u][lt.x >> 1u][i] = l;
+      vec3 d = normalize(rt * l.x + rb * l.y + rn * l.z);  // gow_ss_direction(i, dirs, turn, rn)
       bool blocked;
       ivec2 hit;
       vec3 hit_normal;
@@ -215,15 +250,19 @@ void main() {
         sum += s_gather[c.y][c.x];
       }
       float marched_count = float(bitCount(known));
+      vec3 pt, pb;
+      gib_onb(n, pt, pb);
+      uvec2 q = lt >> 1u;
       cone = vec4(n, 1.0);
       if (ssdo_on() && known != 0u) {
-        vec3 bent = vec3(0.0);
-        for (uint i = 0u; i < dirs; ++i)
-          if ((open_all & (1u << i)) != 0u) bent += gow_ss_direction(i, dirs, turn, n);
+        // The mean open direction: the sum of the open directions, turned into n's frame once.
+        vec3 open_sum = vec3(0.0);
+        for (uint bits = open_all; bits != 0u; bits &= bits - 1u) open_sum += s_local[q.y][q.x][findLSB(bits)];
+        vec3 bent = pt * open_sum.x + pb * open_sum.y + n * open_sum.z;
         cone = vec4(dot(bent, bent) > 0.0 ? normalize(bent) : n, float(bitCount(open_all)) / marched_count);
       }
       vec3 albedo = imageLoad(gb_albedo, p).rgb;
-      if (kHasLocal) local = gow_ss_local_light(pos.xyz, n, albedo, open_all, known, dirs, turn, cone.w);
+      if (kHasLocal) local = local_light(pos.xyz, n, pt, pb, albedo, open_all, known, q, cone.w);
       // Cosine-weighted directions: the Lambertian estimate is albedo x the mean radiance found.
       if (ssgi_on() && known != 0u) indirect = albedo * sum / marched_count;
     }

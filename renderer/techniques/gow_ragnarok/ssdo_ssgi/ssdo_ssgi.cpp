@@ -89,7 +89,7 @@ class SsdoSsgiPass final : public Pass {
                          .groups_y = div_up(div_up(ctx.height("gow_radiance"), kSsCombinedBlock), kSsGroup),
                          .push = &push,
                          .push_bytes = sizeof(push),
-                         .spec_constants = {{kSsCombinedSpecLocal, local}}});
+                         .spec_constants = {{kSsCombinedSpecLocal, local}, {kSsCombinedSpecDirections, m.directions}}});
   }
 };
 

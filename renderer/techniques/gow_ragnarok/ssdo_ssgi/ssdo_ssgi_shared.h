@@ -19,6 +19,7 @@ GIB_CONST(uint, kSsCombinedBindOutRadiance, 18)  // out: gow_radiance
 GIB_CONST(uint, kSsCombinedBindIndirectPrev, 19) // last frame's ssgi_indirect (its history)
 GIB_CONST(uint, kSsCombinedBindSurfaces, 20)    // ss_surfaces (rg32ui, half size): each block's surface for the march
 GIB_CONST(uint, kSsCombinedSpecLocal, 0)         // 1: the scene has unshadowed local lights
+GIB_CONST(uint, kSsCombinedSpecDirections, 1)    // the direction set's size (sizes the shared direction table)
 struct SsCombinedPush {
   vec4 radius;   // x: ssdo radius, y: ssgi radius, z: step length (m), w: unused
   vec4 thickness;  // x: ssdo thickness, y: ssgi thickness, z, w: unused
