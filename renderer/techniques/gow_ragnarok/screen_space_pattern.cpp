@@ -1,7 +1,10 @@
 #include "renderer/techniques/gow_ragnarok/screen_space_pattern.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+
+#include "renderer/codecs/octahedral.h"
 
 namespace gib {
 namespace {
@@ -45,6 +48,23 @@ Vec3 ss_direction(uint32_t i, uint32_t n, float turn, Vec3 normal) {
                t.z * (r * std::cos(phi)) + b.z * (r * std::sin(phi)) + normal.z * h};
   const float len = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
   return {d.x / len, d.y / len, d.z / len};
+}
+
+void ss_pack_surface(float dist, Vec3 n, uint32_t pixel, uint32_t out[2]) {
+  const bool plane = std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z) && dot(n, n) > 0.25f;
+  const Vec2 uv = codecs::oct_encode(plane ? n : Vec3{0, 0, 1});
+  auto q = [](float v) { return uint32_t(std::floor(std::clamp(v, 0.0f, 1.0f) * 32767.0f + 0.5f)); };
+  out[0] = std::bit_cast<uint32_t>(std::fabs(dist)) | (plane ? 0u : 0x80000000u);
+  out[1] = (pixel & 3u) | (q(uv.x) << 2u) | (q(uv.y) << 17u);
+}
+
+SsSurface ss_unpack_surface(const uint32_t in[2]) {
+  SsSurface s;
+  s.dist = std::bit_cast<float>(in[0] & 0x7fffffffu);
+  s.plane = (in[0] & 0x80000000u) == 0u;
+  s.normal = codecs::oct_decode({float((in[1] >> 2u) & 0x7fffu) / 32767.0f, float(in[1] >> 17u) / 32767.0f});
+  s.pixel = in[1] & 3u;
+  return s;
 }
 
 }  // namespace gib

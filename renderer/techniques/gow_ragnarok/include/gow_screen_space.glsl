@@ -19,14 +19,18 @@ vec3 gow_ss_project(vec3 x) {
 // pixel's plane (its G-buffer position and normal) cut by that ray, so a pixel's depth is read
 // where q projects inside it, not at its centre (no false blockers on surfaces seen at grazing
 // angles). A broken normal or a ray along the plane falls back to the pixel's own distance.
+// Camera-relative form: v the unit ray towards q, h_rel the pixel's position less the camera's,
+// own its length.
+float gow_ss_plane_distance(vec3 v, vec3 h_rel, float own, vec3 hn) {
+  float c = dot(v, hn);
+  if (!(abs(c) > 0.05)) return own;
+  float t = dot(h_rel, hn) / c;
+  return t > 0.0 ? t : own;
+}
+
 float gow_ss_surface_distance(vec3 q, vec3 hp, vec3 hn) {
   vec3 cam = gib_frame.camera_pos.xyz;
-  vec3 v = normalize(q - cam);
-  float c = dot(v, hn);
-  float own = length(hp - cam);
-  if (!(abs(c) > 0.05)) return own;
-  float t = dot(hp - cam, hn) / c;
-  return t > 0.0 ? t : own;
+  return gow_ss_plane_distance(normalize(q - cam), hp - cam, length(hp - cam), hn);
 }
 
 // The depth-buffer surface at march point q: sets h to the pixel q projects to and returns how

@@ -1,4 +1,6 @@
-// ssdo_ssgi: SSDO and SSGI in one pass, one march per direction serving both (see ssdo_ssgi.h).
+// ssdo_ssgi, second dispatch: SSDO and SSGI in one pass, one march per direction serving both
+// (see ssdo_ssgi.h); the marches' depth tests read the blocks' surfaces (ss_surfaces, written
+// by ssdo_ssgi_surfaces.comp).
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "renderer/techniques/gow_ragnarok/ssdo_ssgi/ssdo_ssgi_shared.h"
@@ -10,6 +12,7 @@ GIB_SCENE_BUFFERS(0, kBindSceneFirst)
 #include "lights.glsl"
 #include "finite.glsl"
 layout(constant_id = kSsCombinedSpecLocal) const bool kHasLocal = true;
+layout(constant_id = kSsCombinedSpecDirections) const uint kDirections = kSsMaxDirections;
 layout(local_size_x = kSsGroup, local_size_y = kSsGroup) in;
 layout(set = 0, binding = kSsCombinedBindPosition, rgba32f) uniform readonly image2D gb_position;
 layout(set = 0, binding = kSsCombinedBindNormal, rgba16f) uniform readonly image2D gb_normal;
@@ -23,9 +26,9 @@ layout(set = 0, binding = kSsCombinedBindOutDirect, rgba32f) uniform writeonly i
 layout(set = 0, binding = kSsCombinedBindOutIndirect, rgba32f) uniform writeonly image2D out_indirect;
 layout(set = 0, binding = kSsCombinedBindOutRadiance, rgba32f) uniform writeonly image2D out_radiance;
 layout(set = 0, binding = kSsCombinedBindIndirectPrev, rgba32f) uniform readonly image2D indirect_prev;
+layout(set = 0, binding = kSsCombinedBindSurfaces, rg32ui) uniform readonly uimage2D surfaces;
 layout(push_constant) uniform Push { SsCombinedPush push; };
 #include "renderer/techniques/gow_ragnarok/include/gow_screen_space.glsl"
-#include "renderer/techniques/gow_ragnarok/include/gow_ss_lights.glsl"
 
 // A 2x2 quad of threads (4x4 pixels) shares one turned direction set; thread qi of the quad
 // marches directions qi, qi + 4, ... from its block's pixel. Each pixel then takes the results
@@ -37,6 +40,9 @@ shared vec4 s_pos[kSsGroup][kSsGroup];     // the thread's pixel's position; w: 
 shared vec3 s_normal[kSsGroup][kSsGroup];
 shared uvec2 s_bits[kSsGroup][kSsGroup];   // x: open directions (SSDO), y: marched directions
 shared vec3 s_gather[kSsGroup][kSsGroup];  // sum of the bounce light its hits gave (SSGI)
+// Each quad's directions in the frame of a normal (gow_ss_local_direction), written by the thread
+// that marched each: a pixel turns them into its own frame with three multiply-adds, no trig.
+shared vec3 s_local[kSsGroup / 2][kSsGroup / 2][kDirections];
 
 bool ssdo_on() { return (push.counts.z & 1u) != 0u; }
 bool ssgi_on() { return (push.counts.z & 2u) != 0u; }
@@ -49,12 +55,45 @@ vec3 bounce_at(ivec2 h) {
   return max(lit - imageLoad(gb_emissive, h).rgb, vec3(0.0));
 }
 
+// The depth-buffer surface at march point q, as gow_ss_gap (gow_screen_space.glsl) finds it, but
+// read from the half-size surfaces: the block q projects to stands for its four pixels with the
+// one pixel its texel holds (h set to that pixel, hn to its normal; vec3(0) where the normal is
+// unusable, which then faces nothing). One 8-byte load per test, from an image a sixteenth the
+// size of gbuffer_position + gbuffer_normal, in place of those two loads.
+float surface_gap(vec3 q, out ivec2 h, out vec3 hn, out bool off) {
+  ivec2 size = ivec2(gib_render_size());
+  vec3 sp = gow_ss_project(q);
+  ivec2 px = ivec2(floor(sp.xy));
+  off = sp.z <= 0.0 || any(lessThan(px, ivec2(0))) || any(greaterThanEqual(px, size));
+  hn = vec3(0.0);
+  h = px;
+  if (off) return -1.0;
+  GowSsSurface sf = gow_ss_unpack_surface(imageLoad(surfaces, px >> 1).xy);
+  if (sf.dist == 0.0) return -1.0;  // sky: nothing in front of the march point
+  h = (px & ~1) + ivec2(sf.pixel & 1u, sf.pixel >> 1u);
+  vec3 rel = q - gib_frame.camera_pos.xyz;
+  float dq = length(rel);
+  float d = sf.dist;
+  if (sf.plane) {
+    vec3 o, vh;
+    gib_camera_ray(vec2(h) + 0.5, o, vh);
+    d = gow_ss_plane_distance(rel / dq, vh * sf.dist, sf.dist, sf.normal);
+    hn = sf.normal;
+  }
+  float gap = dq - d;
+  // In front by more than a relative epsilon (the surface the march starts on is never its own
+  // blocker).
+  return gap > 1e-3 * dq ? gap : -1.0;
+}
+
 // One march along d from x serving both terms, steps of push.radius.z: SSDO's blocker (a
 // surface in front by less than its thickness within its radius) and SSGI's hit (the same with
-// its own thickness and radius); each as the separate passes' gow_ss_march would find it.
-void march(vec3 x, vec3 d, float jitter, out bool blocked, out ivec2 hit) {
+// its own thickness and radius; hn its normal); each as the separate passes' gow_ss_march
+// would find it.
+void march(vec3 x, vec3 d, float jitter, out bool blocked, out ivec2 hit, out vec3 hit_normal) {
   blocked = false;
   hit = ivec2(-1);
+  hit_normal = vec3(0.0);
   bool want_ssdo = ssdo_on(), want_ssgi = ssgi_on();
   for (uint s = 0u; s < push.counts.y; ++s) {
     float t = push.radius.z * (float(s) + jitter);
@@ -62,8 +101,9 @@ void march(vec3 x, vec3 d, float jitter, out bool blocked, out ivec2 hit) {
     want_ssgi = want_ssgi && t < push.radius.y;
     if (!(want_ssdo || want_ssgi)) return;
     ivec2 h;
+    vec3 hn;
     bool off;
-    float gap = gow_ss_gap(x + d * t, h, off);
+    float gap = surface_gap(x + d * t, h, hn, off);
     if (off) return;
     if (gap <= 0.0) continue;
     if (want_ssdo && gap < push.thickness.x) {
@@ -72,6 +112,7 @@ void march(vec3 x, vec3 d, float jitter, out bool blocked, out ivec2 hit) {
     }
     if (want_ssgi && gap < push.thickness.y) {
       hit = h;
+      hit_normal = hn;
       want_ssgi = false;
     }
   }
@@ -98,6 +139,34 @@ void accumulate(vec3 x, inout vec3 local, inout vec3 indirect, out float count) 
   indirect = mix(prev_indirect.rgb, indirect, 1.0 / count);
 }
 
+// The unshadowed local lights through SSDO's visibility, as gow_ss_local_light
+// (gow_ss_lights.glsl) computes them, with the quad's directions from s_local in the pixel's
+// frame (t, b, n): per light and direction one dot product and the lobe's exp.
+vec3 local_light(vec3 x, vec3 n, vec3 t, vec3 b, vec3 albedo, uint open_bits, uint known, uvec2 q, float open_fraction) {
+  vec3 result = vec3(0.0);
+  for (uint k = 0u; k < gib_light_count(); ++k) {
+    vec3 wi;
+    float dist;
+    vec3 e = gib_local_light(gib_lights[k], x, wi, dist);
+    float c = dot(n, wi);
+    if (c <= 0.0 || all(equal(e, vec3(0.0)))) continue;
+    float vis = 1.0;
+    if (open_fraction < 1.0) {
+      vec3 wl = vec3(dot(t, wi), dot(b, wi), c);
+      float num = 0.0, den = 0.0;
+      for (uint bits = known; bits != 0u; bits &= bits - 1u) {
+        uint i = uint(findLSB(bits));
+        float w = exp((dot(s_local[q.y][q.x][i], wl) - 1.0) / kSsLobe);
+        den += w;
+        if ((open_bits & (1u << i)) != 0u) num += w;
+      }
+      vis = den > 1e-3 ? num / den : open_fraction;
+    }
+    result += albedo * (c / GIB_PI) * e * vis;
+  }
+  return result;
+}
+
 void main() {
   uvec2 lt = gl_LocalInvocationID.xy;
   ivec2 block = ivec2(gl_GlobalInvocationID.xy);
@@ -106,21 +175,18 @@ void main() {
   uint frame = gib_frame_index();
   bool guard = push.counts.w != 0u;
   uint dirs = push.counts.x;
-  // The block's marched pixel: its four pixels in turn from a hashed start, the first surface.
+  // The block's marched pixel: ssdo_ssgi_surfaces chose it (the same hash stream, its first
+  // number); the second is the march's first step.
   GibRng rng = gib_rng(gib_seed(), frame, uvec2(block), kSsCombinedStream);
-  vec2 u = gib_next2(rng);  // x: start pixel, y: the march's first step (in steps)
+  vec2 u = gib_next2(rng);  // x: start pixel (the surfaces pass's), y: the march's first step (in steps)
   float turn = gow_ss_rotation(gib_seed(), frame, uvec2(block) >> 1u, kSsCombinedStream + 1u).x;
-  uint first = min(uint(u.x * 4.0), 3u);
   ivec2 rep = ivec2(-1);
   vec4 rpos = vec4(0.0);
-  for (uint k = 0u; k < 4u && rep.x < 0; ++k) {
-    uint j = (first + k) & 3u;
-    ivec2 q = origin + ivec2(j & 1u, j >> 1u);
-    if (any(greaterThanEqual(q, size))) continue;
-    vec4 qp = imageLoad(gb_position, q);
-    if (qp.w != 0.0) {
-      rep = q;
-      rpos = qp;
+  if (all(lessThan(origin, size))) {
+    uvec2 own = imageLoad(surfaces, block).xy;
+    if ((own.x & 0x7fffffffu) != 0u) {
+      rep = origin + ivec2(own.y & 1u, (own.y >> 1u) & 1u);
+      rpos = imageLoad(gb_position, rep);
     }
   }
   vec3 rn = vec3(0.0, 0.0, 1.0);
@@ -128,16 +194,21 @@ void main() {
   vec3 gathered = vec3(0.0);
   if (rep.x >= 0) {
     rn = gow_ss_normal(rep, guard);
+    vec3 rt, rb;
+    gib_onb(rn, rt, rb);
     uint qi = (lt.x & 1u) | ((lt.y & 1u) << 1u);
     for (uint i = qi; i < dirs && (ssdo_on() || ssgi_on()); i += 4u) {
-      vec3 d = gow_ss_direction(i, dirs, turn, rn);
+      vec3 l = gow_ss_local_direction(i, dirs, turn);
+      s_local[lt.y >> 1u][lt.x >> 1u][i] = l;
+      vec3 d = normalize(rt * l.x + rb * l.y + rn * l.z);  // gow_ss_direction(i, dirs, turn, rn)
       bool blocked;
       ivec2 hit;
-      march(rpos.xyz, d, u.y, blocked, hit);
+      vec3 hit_normal;
+      march(rpos.xyz, d, u.y, blocked, hit, hit_normal);
       marched |= 1u << i;
       if (!blocked) open_bits |= 1u << i;
       // Only the side of the hit that faces the receiver reflects towards it.
-      if (hit.x >= 0 && dot(imageLoad(gb_normal, hit).xyz, d) < 0.0) gathered += bounce_at(hit);
+      if (hit.x >= 0 && dot(hit_normal, d) < 0.0) gathered += bounce_at(hit);
     }
   }
   s_pos[lt.y][lt.x] = vec4(rpos.xyz, rep.x >= 0 ? 1.0 : 0.0);
@@ -179,15 +250,19 @@ void main() {
         sum += s_gather[c.y][c.x];
       }
       float marched_count = float(bitCount(known));
+      vec3 pt, pb;
+      gib_onb(n, pt, pb);
+      uvec2 q = lt >> 1u;
       cone = vec4(n, 1.0);
       if (ssdo_on() && known != 0u) {
-        vec3 bent = vec3(0.0);
-        for (uint i = 0u; i < dirs; ++i)
-          if ((open_all & (1u << i)) != 0u) bent += gow_ss_direction(i, dirs, turn, n);
+        // The mean open direction: the sum of the open directions, turned into n's frame once.
+        vec3 open_sum = vec3(0.0);
+        for (uint bits = open_all; bits != 0u; bits &= bits - 1u) open_sum += s_local[q.y][q.x][findLSB(bits)];
+        vec3 bent = pt * open_sum.x + pb * open_sum.y + n * open_sum.z;
         cone = vec4(dot(bent, bent) > 0.0 ? normalize(bent) : n, float(bitCount(open_all)) / marched_count);
       }
       vec3 albedo = imageLoad(gb_albedo, p).rgb;
-      if (kHasLocal) local = gow_ss_local_light(pos.xyz, n, albedo, open_all, known, dirs, turn, cone.w);
+      if (kHasLocal) local = local_light(pos.xyz, n, pt, pb, albedo, open_all, known, q, cone.w);
       // Cosine-weighted directions: the Lambertian estimate is albedo x the mean radiance found.
       if (ssgi_on() && known != 0u) indirect = albedo * sum / marched_count;
     }

@@ -33,6 +33,8 @@ class SsdoSsgiPass final : public Pass {
                {"gbuffer_albedo", Access::read},   {"gbuffer_emissive", Access::read},
                {"direct_light", Access::read},     {"gow_direct", Access::write, out},
                {"gow_radiance", Access::write, out}};
+    // Each 2x2 block's surface, the one the marches' depth tests read (ssdo_ssgi_surfaces.comp).
+    d.slots.push_back({"ss_surfaces", Access::write, ResourceDesc{Format::rg32_uint, SizeRule::half}});
     ResourceDesc history = out;
     history.persistent = true;  // the temporal accumulation's history
     d.slots.push_back({"ssgi_indirect", Access::write, history});
@@ -60,6 +62,14 @@ class SsdoSsgiPass final : public Pass {
                         {m.directions, m.steps, (g.ssdo ? 1u : 0u) | (g.ssgi ? 2u : 0u),
                          ctx.settings.nan_guards ? 1u : 0u},
                         {ctx.frame > 0 ? 1u : 0u, g.ss_history, 0u, 0u}};
+    record_compute(ctx, {.shader = "ssdo_ssgi_surfaces.comp",
+                         .images = {{kSsCombinedBindPosition, "gbuffer_position"},
+                                    {kSsCombinedBindNormal, "gbuffer_normal"},
+                                    {kSsCombinedBindSurfaces, "ss_surfaces"}},
+                         .groups_x = div_up(ctx.width("ss_surfaces"), kSsSurfacesGroup),
+                         .groups_y = div_up(ctx.height("ss_surfaces"), kSsSurfacesGroup),
+                         .label = "ssdo_ssgi/surfaces",
+                         .barrier_after = true});
     // Without local lights the local bindings hold images the pass reads or writes anyway, unused.
     record_compute(ctx, {.shader = "ssdo_ssgi.comp",
                          .images = {{kSsCombinedBindPosition, "gbuffer_position"},
@@ -73,12 +83,13 @@ class SsdoSsgiPass final : public Pass {
                                     {kSsCombinedBindOutDirect, "gow_direct"},
                                     {kSsCombinedBindOutIndirect, "ssgi_indirect"},
                                     {kSsCombinedBindOutRadiance, "gow_radiance"},
-                                    {kSsCombinedBindIndirectPrev, "ssgi_indirect", true}},
+                                    {kSsCombinedBindIndirectPrev, "ssgi_indirect", true},
+                                    {kSsCombinedBindSurfaces, "ss_surfaces"}},
                          .groups_x = div_up(div_up(ctx.width("gow_radiance"), kSsCombinedBlock), kSsGroup),
                          .groups_y = div_up(div_up(ctx.height("gow_radiance"), kSsCombinedBlock), kSsGroup),
                          .push = &push,
                          .push_bytes = sizeof(push),
-                         .spec_constants = {{kSsCombinedSpecLocal, local}}});
+                         .spec_constants = {{kSsCombinedSpecLocal, local}, {kSsCombinedSpecDirections, m.directions}}});
   }
 };
 

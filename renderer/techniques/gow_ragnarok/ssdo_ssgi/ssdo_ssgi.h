@@ -6,7 +6,9 @@
 // share one turned direction set of max(ssdo_directions, ssgi_directions) directions, each
 // marching a quarter of them, and every pixel takes the results of the quad's threads on its own
 // surface (depth and normal agreement). A pixel so reads the whole direction set at a sixteenth
-// of the marches. The bounce at a hit reads direct_light and last frame's ssdo_local_light (this
+// of the marches. Two dispatches: ssdo_ssgi_surfaces.comp picks each block's marched pixel and
+// writes it to ss_surfaces (half size, 8 bytes a texel: distance, normal, which pixel), which
+// the marches' depth tests read in place of the full-size G-buffer (ssdo_ssgi.comp). The bounce at a hit reads direct_light and last frame's ssdo_local_light (this
 // frame's is being computed here). Outputs as the separate passes (ssdo/, ssgi/: option
 // ss_combined 0, kept for comparison): ssdo_local_light and ssdo_cone where the scene has
 // unshadowed local lights, gow_direct, ssgi_indirect and gow_radiance.

@@ -4,6 +4,7 @@
 GIB_SHARED_BEGIN
 GIB_CONST(uint, kSsCombinedBlock, 2)          // each thread shades a 2x2 pixel block
 GIB_CONST(uint, kSsCombinedStream, 0x55c0u)   // hash stream: the quad's turn and each block's pixel and first step
+GIB_CONST(uint, kSsSurfacesGroup, 8)          // ssdo_ssgi_surfaces: 8x8 blocks a workgroup
 GIB_CONST(uint, kSsCombinedBindPosition, 8)   // gbuffer_position (rgba32f)
 GIB_CONST(uint, kSsCombinedBindNormal, 9)     // gbuffer_normal (rgba16f)
 GIB_CONST(uint, kSsCombinedBindAlbedo, 10)    // gbuffer_albedo (rgba16f)
@@ -16,7 +17,9 @@ GIB_CONST(uint, kSsCombinedBindOutDirect, 16)    // out: gow_direct
 GIB_CONST(uint, kSsCombinedBindOutIndirect, 17)  // out: ssgi_indirect
 GIB_CONST(uint, kSsCombinedBindOutRadiance, 18)  // out: gow_radiance
 GIB_CONST(uint, kSsCombinedBindIndirectPrev, 19) // last frame's ssgi_indirect (its history)
+GIB_CONST(uint, kSsCombinedBindSurfaces, 20)    // ss_surfaces (rg32ui, half size): each block's surface for the march
 GIB_CONST(uint, kSsCombinedSpecLocal, 0)         // 1: the scene has unshadowed local lights
+GIB_CONST(uint, kSsCombinedSpecDirections, 1)    // the direction set's size (sizes the shared direction table)
 struct SsCombinedPush {
   vec4 radius;   // x: ssdo radius, y: ssgi radius, z: step length (m), w: unused
   vec4 thickness;  // x: ssdo thickness, y: ssgi thickness, z, w: unused
