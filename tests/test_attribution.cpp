@@ -184,6 +184,45 @@ TEST(Attribution, AnExactStageGetsAboutNothing) {
   }
 }
 
+// FLIP as its own game: v(S) = the ROI's mean per-pixel error over the seeds, exact Shapley
+// values summing to its own gap, reported beside (never inside) the MSE bars. Here the per-pixel
+// error is |render - reference| in channel 0, so the known answer is the mean absolute error.
+TEST(Attribution, FlipIsItsOwnGame) {
+  const Synthetic s;
+  Options o;
+  o.seeds = 2;
+  o.noise_floor = {s.noise_floor()};
+  o.flip_map = [&](const FloatImage& img) {
+    FloatImage e(img.width, img.height, 1);
+    for (uint32_t y = 0; y < img.height; ++y)
+      for (uint32_t x = 0; x < img.width; ++x) e.at(x, y, 0) = std::abs(img.at(x, y, 0) - s.reference.at(x, y, 0));
+    return e;
+  };
+  const Attribution a = attribute({"probes", "gather", "denoise"}, [&](uint32_t m, uint32_t seed) { return s.render(m, seed); },
+                                  s.reference, {{"all", {}}}, o);
+  const RoiAttribution& r = a.rois[0];
+  ASSERT_EQ(r.flip.size(), 8u);
+  ASSERT_EQ(r.flip_shapley.size(), 3u);
+  EXPECT_NEAR(r.flip_shapley[0] + r.flip_shapley[1] + r.flip_shapley[2], r.flip[0] - r.flip[7], 1e-12);
+  double mae = 0;  // v(none) by hand: seeds 0 and 1 of the untouched chain
+  for (uint32_t seed = 0; seed < 2; ++seed) {
+    const FloatImage img = s.render(0, seed);
+    for (uint32_t y = 0; y < Synthetic::kH; ++y)
+      for (uint32_t x = 0; x < Synthetic::kW; ++x)
+        mae += std::abs(double(img.at(x, y, 0)) - s.reference.at(x, y, 0)) / (2.0 * Synthetic::kW * Synthetic::kH);
+  }
+  EXPECT_NEAR(r.flip[0], mae, 1e-6);
+  EXPECT_GT(r.flip_shapley[1], 0.5 * (r.flip[0] - r.flip[7]));  // the scaled gather holds most of it
+  EXPECT_NEAR(r.flip_shapley[0], 0.0, 1e-9);                    // the exact probes stage changes nothing
+  ReportContext ctx{"synthetic", "chain", "medium", "radiance", "cpu", {{"probes", {"p"}, "exact"}}};
+  EXPECT_NE(format_table(a, ctx).find("FLIP game (its own: FLIP is not additive per pixel)"), std::string::npos);
+  const nlohmann::json j = to_json(a, ctx);
+  EXPECT_NEAR(j["rois"][0]["flip_game"]["technique"].get<double>(), r.flip[0], 1e-12);
+  EXPECT_NE(waterfall_html(a, ctx).find("FLIP game"), std::string::npos);
+  // Without a flip_map there is no FLIP game and nothing about it in the outputs.
+  EXPECT_TRUE(s.run().rois[0].flip.empty());
+}
+
 TEST(Attribution, TableJsonAndWaterfallSayTheSame) {
   const Attribution a = Synthetic().run(2);
   ReportContext ctx{"synthetic", "chain", "medium", "radiance", "cpu",

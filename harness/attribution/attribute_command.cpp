@@ -12,6 +12,7 @@
 #include "harness/attribution/attribution_report.h"
 #include "harness/case_render.h"
 #include "harness/goldens.h"
+#include "harness/measure.h"
 #include "harness/references.h"
 #include "renderer/techniques/technique.h"
 
@@ -201,6 +202,9 @@ nlohmann::json attribute_row(Gpu& gpu_ref, const Case& c, Tier tier, const Techn
   for (const Roi& r : c.rois) rois.push_back({r.name, {r.x0, r.y0, r.x1, r.y1}});
   attribution::Options opts;
   opts.seeds = st.seeds;
+  const FloatImage& compared_reference = in.reference.at(aov);
+  const FlipOptions flip_opts = flip_options(c);
+  opts.flip_map = [&](const FloatImage& img) { return flip(compared_reference, img, flip_opts).error_map; };
   const uint32_t committed_spp =
       analytic ? 0u : store.record_of(GoldenStore::reference_stem(aov, c.output) + ".exr").value("spp", 0u);
   if (analytic) {

@@ -17,6 +17,14 @@ std::vector<double> game_of(const std::vector<RoiError>& subsets, double RoiErro
 }
 
 // The stage with the largest share when it beats the next by 3x the noise floor; else -1.
+// The mean of channel 0 over `rect`.
+double rect_mean(const FloatImage& img, const metrics::PixelRect& rect) {
+  double sum = 0;
+  for (uint32_t y = rect.y_begin; y < rect.y_end; ++y)
+    for (uint32_t x = rect.x_begin; x < rect.x_end; ++x) sum += img.at(x, y, 0);
+  return sum / double(rect.pixel_count());
+}
+
 int largest_resolved(const std::vector<StageBar>& bars, double noise_floor) {
   if (bars.empty()) return -1;
   std::vector<size_t> order(bars.size());
@@ -43,6 +51,12 @@ Attribution attribute_renders(const std::vector<std::string>& stages,
   out.seeds = uint32_t(renders[0].size());
   out.renders = uint32_t(renders.size() * out.seeds);
   const uint32_t all = (1u << n) - 1;
+  std::vector<std::vector<FloatImage>> flip_maps;  // [mask][seed]
+  if (options.flip_map)
+    for (const auto& seeds : renders) {
+      auto& maps = flip_maps.emplace_back();
+      for (const FloatImage& img : seeds) maps.push_back(options.flip_map(img));
+    }
   for (size_t r = 0; r < rois.size(); ++r) {
     RoiAttribution ra;
     ra.roi = rois[r].name;
@@ -79,6 +93,12 @@ Attribution attribute_renders(const std::vector<std::string>& stages,
       b.resolved = std::abs(b.shapley) >= 3.0 * ra.noise_floor;
       ra.stages.push_back(b);
     }
+    for (const auto& maps : flip_maps) {
+      double sum = 0;
+      for (const FloatImage& m : maps) sum += rect_mean(m, rect) / double(maps.size());
+      ra.flip.push_back(sum);
+    }
+    if (!ra.flip.empty()) ra.flip_shapley = shapley(ra.flip, n);
     ra.floor_disagrees = ra.noise_floor > 0 && ra.all.mse > 3.0 * ra.noise_floor;
     ra.largest = largest_resolved(ra.stages, ra.noise_floor);
     out.rois.push_back(std::move(ra));

@@ -30,6 +30,10 @@ struct Options {
   // Per ROI (the `rois` order), the reference's own noise in MSE units (its per-pixel variance
   // against the converged value); 0 when unknown. Differences below 3x it are "not resolved".
   std::vector<double> noise_floor;
+  // The per-pixel FLIP error of a render against the reference (1 channel, [0, 1]); empty: no
+  // FLIP game. FLIP is not additive over pixels or stages, so it is its own game (v(S) = the
+  // ROI's mean FLIP over the seeds), reported beside the MSE bars, never summed with them.
+  std::function<FloatImage(const FloatImage& render)> flip_map;
 };
 
 struct StageBar {
@@ -51,6 +55,8 @@ struct RoiAttribution {
   double noise_floor = 0;
   bool floor_disagrees = false;   // the oracle floor sits above 3x the noise floor (oracle vs reference)
   int largest = -1;               // the stage with the largest share, -1 when not resolved from the next
+  std::vector<double> flip;          // the FLIP game's v(S) by bit mask (empty: no FLIP game)
+  std::vector<double> flip_shapley;  // its Shapley values, in stage order
 };
 
 struct Attribution {

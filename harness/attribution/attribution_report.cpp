@@ -29,6 +29,16 @@ nlohmann::json error_json(const RoiError& e) {
 
 }  // namespace
 
+// "FLIP game (not additive per pixel): technique 0.21, oracle floor 0.02; a +0.15, b +0.04"; "" without.
+std::string flip_line(const Attribution& a, const RoiAttribution& r) {
+  if (r.flip.empty()) return "";
+  std::string bars;
+  for (size_t i = 0; i < a.stages.size(); ++i)
+    bars += fmt::format("{}{} {:+.4f}", i ? ", " : "", a.stages[i], r.flip_shapley[i]);
+  return fmt::format("FLIP game (its own: FLIP is not additive per pixel): technique {:.4f}, oracle floor {:.4f}; {}",
+                     r.flip.front(), r.flip.back(), bars);
+}
+
 std::string mask_names(const std::vector<std::string>& stages, uint32_t mask) {
   std::string s;
   for (size_t i = 0; i < stages.size(); ++i)
@@ -64,6 +74,7 @@ std::string format_table(const Attribution& a, const ReportContext& ctx) {
     }
     out += r.largest >= 0 ? fmt::format("  largest share: {}\n", r.stages[size_t(r.largest)].stage)
                           : std::string("  largest share: not resolved (within 3x the noise floor of the next)\n");
+    if (!r.flip.empty()) out += "  " + flip_line(a, r) + "\n";
   }
   return out;
 }
@@ -92,6 +103,15 @@ nlohmann::json to_json(const Attribution& a, const ReportContext& ctx) {
                             {"resolved", b.resolved}});
     for (size_t m = 0; m < r.subsets.size(); ++m)
       jr["subsets"].push_back({{"oracles", mask_names(a.stages, uint32_t(m))}, {"error", error_json(r.subsets[m])}});
+    if (!r.flip.empty()) {
+      nlohmann::json bars = nlohmann::json::object();
+      for (size_t i = 0; i < a.stages.size(); ++i) bars[a.stages[i]] = r.flip_shapley[i];
+      jr["flip_game"] = {{"note", "FLIP is not additive per pixel: its own game, not a part of the MSE bars"},
+                         {"technique", r.flip.front()},
+                         {"oracle_floor", r.flip.back()},
+                         {"subsets", r.flip},
+                         {"shapley", bars}};
+    }
     j["rois"].push_back(jr);
   }
   return j;
@@ -147,6 +167,7 @@ std::string waterfall_html(const Attribution& a, const ReportContext& ctx) {
                         "{:.1f}% absolute); oracle floor {:.4g}; dashed: 3x the reference noise floor {:.3g}</p>{}",
                         r.roi, r.none.mse, r.none.bias2, r.none.variance, 100 * r.none.signed_energy,
                         100 * r.none.abs_energy, r.all.mse, r.noise_floor, svg);
+    if (!r.flip.empty()) body += "<p>" + flip_line(a, r) + "</p>";
   }
   std::string stages;
   for (const StageInfo& s : ctx.stages)
