@@ -627,7 +627,7 @@ TEST_F(CodecsGpu, PackingMatchesCpuBitForBit) {
   const std::vector<CodecsTestIn> in = make_inputs(kCount, 7);
   const std::vector<CodecsTestOut> out = run_codecs<CodecsTestOut>(in, CODECS_TEST_MODE_PACKING, kCount);
   uint64_t bad_e5 = 0, bad_e5_dither = 0, bad_r11 = 0, bad_r11_rne = 0, bad_half = 0, bad_e5_dec = 0, bad_r11_dec = 0,
-           bad_half_dec = 0, native_rne = 0, native_rtz = 0, native_neither = 0;
+           bad_half_dec = 0, native_rne = 0, native_rtz = 0, native_neither = 0, bad_half_rtz = 0;
   int reported = 0;
   uint64_t native_nan = 0, native_nan_same = 0, native_nan_is_nan = 0;
   uint64_t nan_in = 0, inf_in = 0, neg_in = 0, denorm_in = 0, above_max_in = 0;
@@ -651,11 +651,16 @@ TEST_F(CodecsGpu, PackingMatchesCpuBitForBit) {
     for (int k = 0; k < 4; ++k) {
       const uint32_t native = (k < 2 ? o.native_half_xy : o.native_half_zw) >> (16 * (k & 1)) & 0xffffu;
       if (std::isnan(f[k])) {  // no rounding to classify: does the device keep our NaN bits?
+        const uint32_t rtz = (k < 2 ? o.half_rtz_xy : o.half_rtz_zw) >> (16 * (k & 1)) & 0xffffu;
+        bad_half_rtz += (rtz & 0x7c00u) != 0x7c00u || (rtz & 0x3ffu) == 0;
         native_nan_same += native == float_to_half(f[k]);
         native_nan_is_nan += (native & 0x7c00u) == 0x7c00u && (native & 0x3ffu);
         ++native_nan;
         continue;
       }
+      // gib_pack_half2x16_rtz: toward zero bit for bit (NaN: a NaN, the device's payload).
+      const uint32_t rtz = (k < 2 ? o.half_rtz_xy : o.half_rtz_zw) >> (16 * (k & 1)) & 0xffffu;
+      bad_half_rtz += rtz != float_to_half_rtz(f[k]);
       if (native == float_to_half(f[k])) ++native_rne;
       if (native == float_to_half_rtz(f[k])) ++native_rtz;
       if (native != float_to_half(f[k]) && native != float_to_half_rtz(f[k])) ++native_neither;
@@ -685,8 +690,8 @@ TEST_F(CodecsGpu, PackingMatchesCpuBitForBit) {
               "decode rgb9e5 %llu, r11g11b10 %llu, half %llu\n", (unsigned long long)bad_e5, (unsigned long long)bad_r11,
               (unsigned long long)bad_r11_rne, (unsigned long long)bad_half, 2 * kCount, (unsigned long long)bad_e5_dec,
               (unsigned long long)bad_r11_dec, (unsigned long long)bad_half_dec);
-  std::printf("[codecs] GPU vs CPU mismatches: rgb9e5 with stochastic rounding %llu (of %u)\n",
-              (unsigned long long)bad_e5_dither, kCount);
+  std::printf("[codecs] GPU vs CPU mismatches: rgb9e5 with stochastic rounding %llu (of %u), half toward zero %llu "
+              "(of %u)\n", (unsigned long long)bad_e5_dither, kCount, (unsigned long long)bad_half_rtz, 4 * kCount);
   std::printf("[codecs] device packHalf2x16 (non-NaN floats): equals RNE %llu, equals RTZ %llu, neither %llu; NaN "
               "floats %llu: same bits %llu, a NaN %llu\n", (unsigned long long)native_rne, (unsigned long long)native_rtz,
               (unsigned long long)native_neither, (unsigned long long)native_nan, (unsigned long long)native_nan_same,
@@ -699,6 +704,7 @@ TEST_F(CodecsGpu, PackingMatchesCpuBitForBit) {
   EXPECT_EQ(bad_e5_dec, 0u);
   EXPECT_EQ(bad_r11_dec, 0u);
   EXPECT_EQ(bad_half_dec, 0u);
+  EXPECT_EQ(bad_half_rtz, 0u);
 }
 
 TEST_F(CodecsGpu, DeviceFormatConversionsMatchCpu) {
