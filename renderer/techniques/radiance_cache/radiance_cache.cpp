@@ -130,6 +130,12 @@ std::vector<TechniqueOption> own_options() {
              "irradiance_volume_update's kernels: 0 by device (GPU: one workgroup per probe; CPU device: the split "
              "ray/convolve pair), 1 per-probe, 2 split; the same math, so a cross-device difference can be isolated",
              0, 2, &S::volume_kernel),
+      option("volume_fallback",
+             "the per-probe volume kernel's cache fallback (a hit whose cell is not shaded): 0 in a second, indirect "
+             "dispatch over the probes that have such a ray (none in a steady frame), which the first dispatch "
+             "lists instead of updating them, so the first carries none of its code; 1 inline in the one dispatch; "
+             "the same atlas",
+             0, 1, &S::volume_fallback),
       option("insertion_rounds",
              "radiance_cache_update's insertion rounds 1 .. cache_max_probe: 0 in one dispatch of one workgroup "
              "(a barrier between rounds), 1 one indirect dispatch per round; the same table and counters",
