@@ -29,6 +29,7 @@ using uint = uint32_t;
 #define CODECS_FORMAT_BINDING_STORE 2     // storage B10G11R11
 #define CODECS_FORMAT_BINDING_STORE_IN 3  // vec4 per texel
 #define CODECS_FORMAT_BINDING_OUT 4       // CodecsFormatOut per texel
+#define CODECS_FORMAT_BINDING_STORE16 5   // storage R16G16B16A16_SFLOAT (the same floats stored)
 #define CODECS_FORMAT_WORKGROUP 8         // 8 x 8
 
 struct CodecsTestIn {  // 16 bytes; also CodecsGeomIn's size is 32
