@@ -9,6 +9,7 @@
 layout(binding = CODECS_FORMAT_BINDING_E5) uniform sampler2D e5_image;
 layout(binding = CODECS_FORMAT_BINDING_B10) uniform sampler2D b10_image;
 layout(binding = CODECS_FORMAT_BINDING_STORE, r11f_g11f_b10f) uniform writeonly image2D store_image;
+layout(binding = CODECS_FORMAT_BINDING_STORE16, rgba16f) uniform writeonly image2D store16_image;
 layout(std430, binding = CODECS_FORMAT_BINDING_STORE_IN) readonly buffer StoreIn { vec4 store_in[]; };
 layout(std430, binding = CODECS_FORMAT_BINDING_OUT) writeonly buffer Out { uint out_words[]; };
 layout(push_constant) uniform Push { CodecsFormatPush pc; };
@@ -30,4 +31,5 @@ void main() {
   out_words[b + 6] = 0u;
   out_words[b + 7] = 0u;
   imageStore(store_image, p, vec4(store_in[i].xyz, 1.0));
+  imageStore(store16_image, p, vec4(store_in[i].xyz, 1.0));
 }

@@ -28,7 +28,7 @@ void packing(uint i) {
   vec3 e5 = gib_unpack_rgb9e5(w.x);
   vec3 r11 = gib_unpack_r11g11b10(w.y);
   vec2 h = gib_unpack_half2x16(w.z);
-  uint b = 16u * i;
+  uint b = 18u * i;
   out_words[b + 0] = o.rgb9e5;
   out_words[b + 1] = o.r11g11b10;
   out_words[b + 2] = o.r11g11b10_rne;
@@ -46,6 +46,8 @@ void packing(uint i) {
   out_words[b + 13] = floatBitsToUint(r11.z);
   out_words[b + 14] = floatBitsToUint(h.x);
   out_words[b + 15] = floatBitsToUint(h.y);
+  out_words[b + 16] = gib_pack_half2x16_rtz(f.xy);
+  out_words[b + 17] = gib_pack_half2x16_rtz(f.zw);
 }
 
 void geometry(uint i) {

@@ -29,13 +29,14 @@ using uint = uint32_t;
 #define CODECS_FORMAT_BINDING_STORE 2     // storage B10G11R11
 #define CODECS_FORMAT_BINDING_STORE_IN 3  // vec4 per texel
 #define CODECS_FORMAT_BINDING_OUT 4       // CodecsFormatOut per texel
+#define CODECS_FORMAT_BINDING_STORE16 5   // storage R16G16B16A16_SFLOAT (the same floats stored)
 #define CODECS_FORMAT_WORKGROUP 8         // 8 x 8
 
 struct CodecsTestIn {  // 16 bytes; also CodecsGeomIn's size is 32
   uint x, y, z, w;
 };
 
-struct CodecsTestOut {  // 64 bytes
+struct CodecsTestOut {  // 72 bytes
   uint rgb9e5;          // gib_pack_rgb9e5(float bits x, y, z)
   uint r11g11b10;       // gib_pack_r11g11b10
   uint r11g11b10_rne;   // gib_pack_r11g11b10_rne
@@ -47,6 +48,8 @@ struct CodecsTestOut {  // 64 bytes
   float e5_r, e5_g, e5_b;     // gib_unpack_rgb9e5(x)
   float r11_r, r11_g, r11_b;  // gib_unpack_r11g11b10(y)
   float half_lo, half_hi;     // gib_unpack_half2x16(z)
+  uint half_rtz_xy;           // gib_pack_half2x16_rtz(x, y)
+  uint half_rtz_zw;           // gib_pack_half2x16_rtz(z, w)
 };
 
 struct CodecsGeomIn {  // 32 bytes
@@ -80,7 +83,7 @@ struct CodecsFormatPush {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(CodecsTestOut) == 64 && sizeof(CodecsGeomIn) == 32 &&
+static_assert(sizeof(CodecsTestOut) == 72 && sizeof(CodecsGeomIn) == 32 &&
               sizeof(CodecsGeomOut) == 48 && sizeof(CodecsFormatOut) == 32);
 }  // namespace gib::codecs_test
 #endif

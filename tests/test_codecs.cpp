@@ -627,7 +627,7 @@ TEST_F(CodecsGpu, PackingMatchesCpuBitForBit) {
   const std::vector<CodecsTestIn> in = make_inputs(kCount, 7);
   const std::vector<CodecsTestOut> out = run_codecs<CodecsTestOut>(in, CODECS_TEST_MODE_PACKING, kCount);
   uint64_t bad_e5 = 0, bad_e5_dither = 0, bad_r11 = 0, bad_r11_rne = 0, bad_half = 0, bad_e5_dec = 0, bad_r11_dec = 0,
-           bad_half_dec = 0, native_rne = 0, native_rtz = 0, native_neither = 0;
+           bad_half_dec = 0, native_rne = 0, native_rtz = 0, native_neither = 0, bad_half_rtz = 0;
   int reported = 0;
   uint64_t native_nan = 0, native_nan_same = 0, native_nan_is_nan = 0;
   uint64_t nan_in = 0, inf_in = 0, neg_in = 0, denorm_in = 0, above_max_in = 0;
@@ -651,11 +651,16 @@ TEST_F(CodecsGpu, PackingMatchesCpuBitForBit) {
     for (int k = 0; k < 4; ++k) {
       const uint32_t native = (k < 2 ? o.native_half_xy : o.native_half_zw) >> (16 * (k & 1)) & 0xffffu;
       if (std::isnan(f[k])) {  // no rounding to classify: does the device keep our NaN bits?
+        const uint32_t rtz = (k < 2 ? o.half_rtz_xy : o.half_rtz_zw) >> (16 * (k & 1)) & 0xffffu;
+        bad_half_rtz += (rtz & 0x7c00u) != 0x7c00u || (rtz & 0x3ffu) == 0;
         native_nan_same += native == float_to_half(f[k]);
         native_nan_is_nan += (native & 0x7c00u) == 0x7c00u && (native & 0x3ffu);
         ++native_nan;
         continue;
       }
+      // gib_pack_half2x16_rtz: toward zero bit for bit (NaN: a NaN, the device's payload).
+      const uint32_t rtz = (k < 2 ? o.half_rtz_xy : o.half_rtz_zw) >> (16 * (k & 1)) & 0xffffu;
+      bad_half_rtz += rtz != float_to_half_rtz(f[k]);
       if (native == float_to_half(f[k])) ++native_rne;
       if (native == float_to_half_rtz(f[k])) ++native_rtz;
       if (native != float_to_half(f[k]) && native != float_to_half_rtz(f[k])) ++native_neither;
@@ -685,8 +690,8 @@ TEST_F(CodecsGpu, PackingMatchesCpuBitForBit) {
               "decode rgb9e5 %llu, r11g11b10 %llu, half %llu\n", (unsigned long long)bad_e5, (unsigned long long)bad_r11,
               (unsigned long long)bad_r11_rne, (unsigned long long)bad_half, 2 * kCount, (unsigned long long)bad_e5_dec,
               (unsigned long long)bad_r11_dec, (unsigned long long)bad_half_dec);
-  std::printf("[codecs] GPU vs CPU mismatches: rgb9e5 with stochastic rounding %llu (of %u)\n",
-              (unsigned long long)bad_e5_dither, kCount);
+  std::printf("[codecs] GPU vs CPU mismatches: rgb9e5 with stochastic rounding %llu (of %u), half toward zero %llu "
+              "(of %u)\n", (unsigned long long)bad_e5_dither, kCount, (unsigned long long)bad_half_rtz, 4 * kCount);
   std::printf("[codecs] device packHalf2x16 (non-NaN floats): equals RNE %llu, equals RTZ %llu, neither %llu; NaN "
               "floats %llu: same bits %llu, a NaN %llu\n", (unsigned long long)native_rne, (unsigned long long)native_rtz,
               (unsigned long long)native_neither, (unsigned long long)native_nan, (unsigned long long)native_nan_same,
@@ -699,6 +704,7 @@ TEST_F(CodecsGpu, PackingMatchesCpuBitForBit) {
   EXPECT_EQ(bad_e5_dec, 0u);
   EXPECT_EQ(bad_r11_dec, 0u);
   EXPECT_EQ(bad_half_dec, 0u);
+  EXPECT_EQ(bad_half_rtz, 0u);
 }
 
 TEST_F(CodecsGpu, DeviceFormatConversionsMatchCpu) {
@@ -719,6 +725,7 @@ TEST_F(CodecsGpu, DeviceFormatConversionsMatchCpu) {
   auto e5 = gpu().create_image(Format::e5b9g9r9_float, kW, kH, "codecs_test.e5");
   auto b10 = gpu().create_image(Format::b10g11r11_float, kW, kH, "codecs_test.b10");
   auto store = gpu().create_image(Format::b10g11r11_float, kW, kH, "codecs_test.b10_store");
+  auto store16 = gpu().create_image(Format::rgba16_float, kW, kH, "codecs_test.rgba16f_store");
   gpu().upload(*e5, e5_bits.data(), e5_bits.size() * 4);
   gpu().upload(*b10, b10_bits.data(), b10_bits.size() * 4);
   auto store_buf = buffer(store_in.data(), store_in.size() * 4, "codecs_test.store_in");
@@ -728,10 +735,11 @@ TEST_F(CodecsGpu, DeviceFormatConversionsMatchCpu) {
                             {CODECS_FORMAT_BINDING_B10, DescriptorKind::sampled_image},
                             {CODECS_FORMAT_BINDING_STORE, DescriptorKind::storage_image},
                             {CODECS_FORMAT_BINDING_STORE_IN, DescriptorKind::storage_buffer},
-                            {CODECS_FORMAT_BINDING_OUT, DescriptorKind::storage_buffer}},
+                            {CODECS_FORMAT_BINDING_OUT, DescriptorKind::storage_buffer},
+                            {CODECS_FORMAT_BINDING_STORE16, DescriptorKind::storage_image}},
                            sizeof(CodecsFormatPush)};
   auto pipeline = gpu().compute_pipeline(desc);
-  Bind binds[5] = {};
+  Bind binds[6] = {};
   binds[0].binding = CODECS_FORMAT_BINDING_E5;
   binds[0].image = e5.get();
   binds[1].binding = CODECS_FORMAT_BINDING_B10;
@@ -742,6 +750,8 @@ TEST_F(CodecsGpu, DeviceFormatConversionsMatchCpu) {
   binds[3].buffer = store_buf.get();
   binds[4].binding = CODECS_FORMAT_BINDING_OUT;
   binds[4].buffer = out_buf.get();
+  binds[5].binding = CODECS_FORMAT_BINDING_STORE16;
+  binds[5].image = store16.get();
   const CodecsFormatPush push{kW, kH};
   auto cmd = gpu().begin();
   cmd->bind(*pipeline, binds, &push, sizeof(push));
@@ -751,6 +761,37 @@ TEST_F(CodecsGpu, DeviceFormatConversionsMatchCpu) {
   gpu().download(*out_buf, out.data(), out.size() * sizeof(CodecsFormatOut));
   const std::vector<uint8_t> stored = gpu().download(*store);
   ASSERT_EQ(stored.size(), size_t(kCount) * 4);
+  // imageStore to R16G16B16A16_SFLOAT: Vulkan lets a device round toward zero or to nearest.
+  // gi_denoise rounds its horizontal result toward zero itself (gib_pack_half2x16_rtz), which is
+  // what lavapipe's store does: this says which one a device does.
+  const std::vector<uint8_t> stored16 = gpu().download(*store16);
+  ASSERT_EQ(stored16.size(), size_t(kCount) * 8);
+  uint64_t half_channels = 0, half_rtz = 0, half_rne = 0, half_neither = 0, half_nan = 0, half_nan_ok = 0;
+  for (uint32_t i = 0; i < kCount; ++i)
+    for (int k = 0; k < 3; ++k) {
+      uint16_t h;
+      std::memcpy(&h, stored16.data() + 8 * size_t(i) + 2 * k, 2);
+      const float f = store_in[4 * size_t(i) + k];
+      if (std::isnan(f)) {
+        ++half_nan;
+        half_nan_ok += (h & 0x7c00u) == 0x7c00u && (h & 0x3ffu);
+        continue;
+      }
+      ++half_channels;
+      half_rtz += h == float_to_half_rtz(f);
+      half_rne += h == float_to_half(f);
+      half_neither += h != float_to_half_rtz(f) && h != float_to_half(f);
+    }
+  std::printf("[codecs] imageStore R16G16B16A16_SFLOAT: non-NaN channels %llu: equal to toward zero %llu, to nearest "
+              "even %llu, neither %llu; NaN channels %llu: stored a NaN %llu\n", (unsigned long long)half_channels,
+              (unsigned long long)half_rtz, (unsigned long long)half_rne, (unsigned long long)half_neither,
+              (unsigned long long)half_nan, (unsigned long long)half_nan_ok);
+  EXPECT_EQ(half_neither, 0u);
+  EXPECT_EQ(half_nan_ok, half_nan);
+  if (gpu().info().is_software()) {
+    EXPECT_EQ(half_rtz, half_channels) << "lavapipe's RGBA16F store rounds toward zero (gi_denoise relies on it for "
+                                          "unchanged lavapipe goldens)";
+  }
 
   uint64_t e5_bad = 0, b10_bad = 0, b10_bad_nan_only = 0, store_rtz = 0, store_rne = 0, store_bad = 0;
   uint64_t store_nan = 0, store_nan_ok = 0, store_nan_same = 0, store_finite_bad = 0;

@@ -11,7 +11,6 @@
 #include <nlohmann/json.hpp>
 
 #include "renderer/graph/executor.h"
-#include "renderer/passes/composite/composite.h"
 #include "renderer/passes/direct_lighting/direct_lighting.h"
 #include "renderer/techniques/radiance_cache/exposure/exposure.h"
 #include "renderer/techniques/radiance_cache/exposure/exposure_shared.h"
@@ -20,6 +19,8 @@
 #include "renderer/passes/gbuffer/gbuffer.h"
 #include "renderer/techniques/radiance_cache/gi_denoise/gi_denoise.h"
 #include "renderer/techniques/radiance_cache/gi_denoise/gi_denoise_shared.h"
+#include "renderer/techniques/radiance_cache/gi_composite/gi_composite.h"
+#include "renderer/techniques/radiance_cache/gi_resolve/gi_resolve.h"
 #include "renderer/techniques/radiance_cache/gi_upscale/gi_upscale.h"
 #include "renderer/techniques/radiance_cache/irradiance_volume_update/irradiance_volume_update.h"
 #include "renderer/techniques/radiance_cache/probe_trace/probe_trace.h"
@@ -106,7 +107,8 @@ std::vector<std::unique_ptr<Pass>> screen_passes() {
   p.push_back(make_final_gather_pass());
   p.push_back(make_gi_denoise_pass());
   p.push_back(make_gi_upscale_pass());
-  p.push_back(make_composite_pass());
+  p.push_back(make_gi_composite_pass());
+  p.push_back(make_gi_resolve_pass());
   return p;
 }
 
@@ -169,7 +171,7 @@ TEST_F(RadianceCacheScreen, ConstantSkyRoundTripsThroughTheGather) {
   for (const Scene* scene : {&plane, &sphere}) {
     const char* name = scene == &plane ? "plane" : "sphere";
     Settings s = small_settings();
-    Executor ex(gpu(), *scene, s, screen_passes(), {"final_color", "indirect_diffuse", "direct_radiance"});
+    Executor ex(gpu(), *scene, s, screen_passes(), {"final_color", "indirect_diffuse", "direct_radiance", "gi_irradiance", "gi_direct_irradiance"});
     for (int f = 0; f < 12; ++f) ex.run_frame();
     FloatImage gi = ex.read("gi_direct_irradiance"), bounce = ex.read("gi_irradiance");
     FloatImage ind = ex.read("indirect_diffuse"), dir = ex.read("direct_radiance"), pos = ex.read("gbuffer_position");
@@ -227,7 +229,7 @@ TEST_F(RadianceCacheScreen, PreExposureKeepsABrightSkyInRange) {
     Settings s = small_settings();
     rc(s).pre_exposure = pre_exposure;
     const Scene scene = scene_with_sky(sky);  // the executor keeps a reference
-    Executor ex(gpu(), scene, s, screen_passes(), {"final_color"});
+    Executor ex(gpu(), scene, s, screen_passes(), {"final_color", "gi_irradiance", "gi_direct_irradiance"});
     for (int f = 0; f < 12; ++f) ex.run_frame();
     FloatImage gi = total_gi(ex), pos = ex.read("gbuffer_position"), sh = ex.read("gather_sh_r");
     std::vector<uint8_t> raw = ex.read_buffer("exposure");
@@ -282,7 +284,7 @@ TEST_F(RadianceCacheScreen, SkyIsCountedOnceWhicheverPassTracesIt) {
   for (uint32_t rays : {0u, 4u}) {
     Settings s = small_settings();
     sky_rays(s) = rays;
-    Executor ex(gpu(), scene, s, screen_passes(), {"final_color"});
+    Executor ex(gpu(), scene, s, screen_passes(), {"final_color", "gi_irradiance", "gi_direct_irradiance"});
     for (int f = 0; f < 3; ++f) ex.run_frame();
     FloatImage out = ex.read("final_color"), gi = ex.read("gi_irradiance");
     double worst = 0, gi_max = 0;
@@ -308,7 +310,7 @@ TEST_F(RadianceCacheScreen, TemporalFilterAccumulatesToNMax) {
   Settings s = small_settings();
   rc(s).history_format = 3;
   const uint32_t n_max = rc(s).history_max_frames;
-  Executor ex(gpu(), scene, s, screen_passes(), {"final_color"});
+  Executor ex(gpu(), scene, s, screen_passes(), {"final_color", "gi_irradiance", "gi_direct_irradiance"});
   FloatImage prev;
   double first_change = 0, last_change = 0;
   for (uint32_t f = 0; f < n_max + 4; ++f) {
@@ -547,15 +549,18 @@ void expect_kernels_agree(const std::vector<uint32_t>& tiled, const std::vector<
   }
 }
 
-// gi_denoise's two kernels (denoise_kernel 0: taps preloaded to a group-shared tile; 1: each tap
-// reads the images) give the same SH and direct part bit for bit, frame after frame, at radii up
-// to the tile's limit, with the hit-distance weight off and on, on a size whose gather
-// resolution is not a multiple of the 8x8 groups (partial tiles at the right and bottom edges).
-// A tile indexed one texel off, or a tap outside the image not skipped, fails it.
+// gi_denoise's three kernels (denoise_kernel 0: both directions in one dispatch over a
+// group-shared tile, up to radius 4, else as 2; 1: two dispatches, each tap reads the images; 2:
+// two dispatches, taps preloaded to a group-shared tile along the axis) give the same SH and
+// direct part bit for bit, frame after frame, at radii up to the tiles' limits, with the
+// hit-distance weight off and on, on a size whose gather resolution is not a multiple of the 8x8
+// groups (partial tiles at the right and bottom edges). A tile indexed one texel off, a tap
+// outside the image not skipped, or a horizontal result kept at another precision than the
+// RGBA16F image holds, fails it.
 TEST_F(RadianceCacheScreen, DenoiseKernelsAgreeBitForBit) {
   Scene scene = box_scene();
   // mode 0: no injection; 1, 2: a NaN normal with the guards on, off.
-  for (uint32_t radius : {1u, 3u, glsl::kDenoiseTileMaxRadius})
+  for (uint32_t radius : {1u, glsl::kDenoiseFusedMaxRadius, glsl::kDenoiseTileMaxRadius})
     for (uint32_t hit_weight : {0u, 1u})
       for (int mode = 0; mode < 3; ++mode) {
         SCOPED_TRACE("radius " + std::to_string(radius) + ", hit weight " + std::to_string(hit_weight) +
@@ -575,13 +580,15 @@ TEST_F(RadianceCacheScreen, DenoiseKernelsAgreeBitForBit) {
           }
           return bits;
         };
-        expect_kernels_agree(run(0), run(1), 1.0 / 8, mode == 2);
+        const std::vector<uint32_t> per_tap = run(1);
+        expect_kernels_agree(run(0), per_tap, 1.0 / 8, mode == 2);
+        expect_kernels_agree(run(2), per_tap, 1.0 / 8, mode == 2);
       }
 }
 
-// The tiled denoise tests each tile texel's values for the NaN guard once, the per-tap kernel at
-// every tap: on a synthetic gather with a NaN in some pixels' SH, both skip the same taps (the
-// output is finite and equal bit for bit), and without guards both spread the NaN.
+// The tiled denoise kernels test each tile texel's values for the NaN guard once, the per-tap
+// kernel at every tap: on a synthetic gather with a NaN in some pixels' SH, all skip the same taps
+// (the output is finite and equal bit for bit), and without guards all spread the NaN.
 TEST_F(RadianceCacheScreen, DenoiseKernelsSkipTheSameNanTaps) {
   Scene scene = box_scene();
   for (bool guards : {true, false}) {
@@ -602,7 +609,9 @@ TEST_F(RadianceCacheScreen, DenoiseKernelsSkipTheSameNanTaps) {
         for (float v : ex.read(name).pixels) bits.push_back(std::bit_cast<uint32_t>(v));
       return bits;
     };
-    expect_kernels_agree(run(0), run(1), 1.0 / 8, !guards);
+    const std::vector<uint32_t> per_tap = run(1);
+    expect_kernels_agree(run(0), per_tap, 1.0 / 8, !guards);
+    expect_kernels_agree(run(2), per_tap, 1.0 / 8, !guards);
   }
 }
 
@@ -649,7 +658,7 @@ TEST_F(RadianceCacheScreen, HistoryFormatsAgreeWithinTheirPrecision) {
   for (uint32_t format = 0; format < 4; ++format) {
     Settings s = small_settings();
     rc(s).history_format = format;
-    Executor ex(gpu(), scene, s, screen_passes(), {"final_color"});
+    Executor ex(gpu(), scene, s, screen_passes(), {"final_color", "gi_irradiance", "gi_direct_irradiance"});
     EXPECT_EQ(ex.plan().find("gi_history")->desc.format, gi_history_format(format));
     for (int f = 0; f < 12; ++f) ex.run_frame();
     results.push_back(total_gi(ex));
@@ -702,7 +711,7 @@ TEST_F(RadianceCacheScreen, FullChainWithWorldSamplingPasses) {
   passes.push_back(make_final_gather_pass());
   passes.push_back(make_gi_denoise_pass());
   passes.push_back(make_gi_upscale_pass());
-  passes.push_back(make_composite_pass());
+  passes.push_back(make_gi_composite_pass());
   Executor ex(gpu(), scene, s, std::move(passes), {"final_color"});
   for (auto& p : ex.plan().passes) EXPECT_TRUE(p.runs) << p.name << ": " << p.reason;
   uint32_t total[4] = {};
@@ -737,7 +746,7 @@ TEST_F(RadianceCacheScreen, PassTimesAt128x72) {
   const int frames = 4;
   for (int f = 0; f < frames; ++f)
     for (auto& p : ex.run_frame().passes) ms[p.name] += p.ms / frames;
-  for (const char* name : {"final_gather", "gi_denoise", "gi_upscale", "composite"}) {
+  for (const char* name : {"final_gather", "gi_denoise", "gi_upscale", "gi_composite"}) {
     std::printf("%s: %.3f ms (%s, 128x72)\n", name, ms[name], gpu().info().name.c_str());
     RecordProperty(std::string(name) + "_ms", std::to_string(ms[name]));
     EXPECT_GT(ms[name], 0.0);

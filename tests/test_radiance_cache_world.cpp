@@ -401,35 +401,54 @@ TEST_F(RadianceCacheWorld, InsertionMatchesCpuMirrorOfAllRounds) {
   }
 }
 
-// irradiance_volume_update's two layouts: the per-probe kernel GPUs run (volume_kernel 1: carry,
-// then one group per probe with its rays in group-shared memory) and the CPU split (2: carry,
-// rays, convolve) leave bit-identical atlases and moments, frame after frame, with three cascades
-// so every frame carries two of them. (The per-probe layout keeps its rays in shared memory and
-// zeroes probe_ray_radiance, so the ray buffers are not compared.)
+// irradiance_volume_update's layouts: the per-probe kernel GPUs run (volume_kernel 1: carry,
+// then one group per probe with its rays in group-shared memory; the cache fallback in a second
+// dispatch over the probes that need it, volume_fallback 0, or inline, 1) and the CPU split (2:
+// carry, rays, convolve) leave bit-identical atlases and moments, frame after frame, with three
+// cascades so every frame carries two of them, in a table where every hit finds its cell and in
+// one where many do not. (The per-probe layout keeps its rays in shared memory and zeroes
+// probe_ray_radiance, so the ray buffers are not compared.)
 TEST_F(RadianceCacheWorld, VolumeKernelsAgreeBitForBit) {
   Scene scene = parse_scene(nlohmann::json::parse(kRoom), "room");
-  auto run = [&](uint32_t kernel) {
-    Settings s = small_settings();
-    rc(s).cascades = 3;
-    rc(s).volume_kernel = kernel;
-    Executor ex(gpu(), scene, s, world_passes(), {"probe_irradiance", "rc_test_keys", "rc_test_atlas"});
-    std::vector<std::vector<uint32_t>> frames;  // bit patterns: decoded atlas, both moments
-    for (uint32_t f = 0; f < 4; ++f) {
-      ex.run_frame();
-      std::vector<uint32_t> bits;
-      for (float v : ex.read("rc_test_atlas").pixels) bits.push_back(std::bit_cast<uint32_t>(v));
-      for (float v : ex.read("probe_visibility").pixels) bits.push_back(std::bit_cast<uint32_t>(v));
-      frames.push_back(std::move(bits));
+  // The default table, and one of 64 cells, where many hits find no cell: their probes take the
+  // cache fallback (the per-probe kernel's second dispatch with volume_fallback 0).
+  for (uint32_t log2_cells : {RadianceCacheSettings{}.cache_log2_cells, 6u}) {
+    SCOPED_TRACE("2^" + std::to_string(log2_cells) + " cells");
+    uint32_t listed = 0;  // probes the first per-probe dispatch left to the fallback dispatch
+    auto run = [&](uint32_t kernel, uint32_t fallback) {
+      Settings s = small_settings();
+      rc(s).cascades = 3;
+      rc(s).cache_log2_cells = log2_cells;
+      rc(s).volume_kernel = kernel;
+      rc(s).volume_fallback = fallback;
+      Executor ex(gpu(), scene, s, world_passes(), {"probe_irradiance", "rc_test_keys", "rc_test_atlas"});
+      std::vector<std::vector<uint32_t>> frames;  // bit patterns: decoded atlas, both moments
+      for (uint32_t f = 0; f < 4; ++f) {
+        ex.run_frame();
+        std::vector<uint32_t> bits;
+        for (float v : ex.read("rc_test_atlas").pixels) bits.push_back(std::bit_cast<uint32_t>(v));
+        for (float v : ex.read("probe_visibility").pixels) bits.push_back(std::bit_cast<uint32_t>(v));
+        frames.push_back(std::move(bits));
+        if (kernel == 1 && fallback == 0) listed += as<uint32_t>(ex.read_buffer("iv_fallback")).at(0);
+      }
+      return frames;
+    };
+    auto split = run(2, 0);
+    for (uint32_t fallback : {0u, 1u}) {
+      SCOPED_TRACE(fallback == 0 ? "per-probe, fallback dispatch" : "per-probe, fallback inline");
+      auto per_probe = run(1, fallback);
+      ASSERT_EQ(per_probe.size(), split.size());
+      for (size_t f = 0; f < split.size(); ++f) {
+        ASSERT_EQ(per_probe[f].size(), split[f].size());
+        size_t differ = 0;
+        for (size_t i = 0; i < split[f].size(); ++i) differ += per_probe[f][i] != split[f][i];
+        EXPECT_EQ(differ, 0u) << "frame " << f << ": values of the atlas / moments that differ";
+      }
     }
-    return frames;
-  };
-  auto per_probe = run(1), split = run(2);
-  ASSERT_EQ(per_probe.size(), split.size());
-  for (size_t f = 0; f < split.size(); ++f) {
-    ASSERT_EQ(per_probe[f].size(), split[f].size());
-    size_t differ = 0;
-    for (size_t i = 0; i < split[f].size(); ++i) differ += per_probe[f][i] != split[f][i];
-    EXPECT_EQ(differ, 0u) << "frame " << f << ": values of the atlas / moments that differ";
+    std::printf("2^%u cells: %u probes left to the fallback dispatch over 4 frames\n", log2_cells, listed);
+    if (log2_cells == 6u) {
+      EXPECT_GT(listed, 0u) << "the tiny table must send probes to the fallback";
+    }
   }
 }
 

@@ -19,6 +19,11 @@
 // non-NaN inputs (Vulkan leaves packHalf2x16's rounding open; these are exact everywhere).
 //   uint gib_float_to_half(float f); float gib_half_to_float(uint h);
 //   uint gib_pack_half2x16(vec2 v); vec2 gib_unpack_half2x16(uint p);
+// gib_pack_half2x16_rtz(v): packHalf2x16 layout, rounding toward zero (overflow -> 65504, Inf
+// stays Inf, NaN stays NaN): what an imageStore to an RGBA16F image gives on lavapipe; a value so
+// rounded is stored exactly by any device. Cheap (the device's packHalf2x16, then one step
+// toward zero where it rounded away): exact wherever packHalf2x16 returns one of the two halves
+// around the value with denormals (RNE on lavapipe and NVIDIA, tests/test_codecs.cpp).
 #ifndef GIB_PACKING_GLSL
 #define GIB_PACKING_GLSL
 
@@ -71,6 +76,14 @@ float gib_half_to_float(uint h) {
 }
 
 uint gib_pack_half2x16(vec2 v) { return gib_float_to_half(v.x) | (gib_float_to_half(v.y) << 16); }
+uint gib_pack_half2x16_rtz(vec2 v) {
+  uint p = packHalf2x16(v);
+  vec2 back = unpackHalf2x16(p);
+  // One code down is one step toward zero in the sign-magnitude layout (false for NaN).
+  if (abs(back.x) > abs(v.x)) p -= 1u;
+  if (abs(back.y) > abs(v.y)) p -= 0x10000u;
+  return p;
+}
 vec2 gib_unpack_half2x16(uint p) {
   return vec2(gib_half_to_float(p & 0xffffu), gib_half_to_float(p >> 16));
 }

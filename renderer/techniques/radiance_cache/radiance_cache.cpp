@@ -3,12 +3,13 @@
 // radiance_cache.md beside this file.
 #include "renderer/techniques/radiance_cache/radiance_cache.h"
 
-#include "renderer/passes/composite/composite.h"
 #include "renderer/passes/gbuffer/gbuffer.h"
 #include "renderer/passes/visibility/visibility.h"
 #include "renderer/techniques/radiance_cache/exposure/exposure.h"
 #include "renderer/techniques/radiance_cache/final_gather/final_gather.h"
+#include "renderer/techniques/radiance_cache/gi_composite/gi_composite.h"
 #include "renderer/techniques/radiance_cache/gi_denoise/gi_denoise.h"
+#include "renderer/techniques/radiance_cache/gi_resolve/gi_resolve.h"
 #include "renderer/techniques/radiance_cache/gi_upscale/gi_upscale.h"
 #include "renderer/techniques/radiance_cache/irradiance_volume_update/irradiance_volume_update.h"
 #include "renderer/techniques/radiance_cache/light_grid/light_grid.h"
@@ -130,6 +131,12 @@ std::vector<TechniqueOption> own_options() {
              "irradiance_volume_update's kernels: 0 by device (GPU: one workgroup per probe; CPU device: the split "
              "ray/convolve pair), 1 per-probe, 2 split; the same math, so a cross-device difference can be isolated",
              0, 2, &S::volume_kernel),
+      option("volume_fallback",
+             "the per-probe volume kernel's cache fallback (a hit whose cell is not shaded): 0 in a second, indirect "
+             "dispatch over the probes that have such a ray (none in a steady frame), which the first dispatch "
+             "lists instead of updating them, so the first carries none of its code; 1 inline in the one dispatch; "
+             "the same atlas",
+             0, 1, &S::volume_fallback),
       option("insertion_rounds",
              "radiance_cache_update's insertion rounds 1 .. cache_max_probe: 0 in one dispatch of one workgroup "
              "(a barrier between rounds), 1 one indirect dispatch per round; the same table and counters",
@@ -145,9 +152,12 @@ std::vector<TechniqueOption> own_options() {
              "the same sums",
              0, 2, &S::update_counters),
       option("denoise_kernel",
-             "gi_denoise's kernel: 0 each group preloads its taps into shared memory (the seed's) where the radius "
-             "fits the tile (<= 8), else as 1; 1 each tap reads the images; the same values and arithmetic",
-             0, 1, &S::denoise_kernel),
+             "gi_denoise's kernel: 0 both directions in one dispatch, each group filtering a shared-memory tile "
+             "of its pixels and radius more on every side (the seed's group-shared memory) where the radius fits "
+             "it (<= 4), else as 2; 1 two dispatches, each tap reads the images; 2 two dispatches, each group "
+             "preloads its taps along the axis into shared memory where the radius fits (<= 8), else as 1; the "
+             "same values and arithmetic",
+             0, 2, &S::denoise_kernel),
       option("upscale_kernel",
              "gi_upscale's kernel: 0 each group preloads the gather samples its taps reach into shared memory, 1 "
              "each tap reads the images; the same values and arithmetic",
@@ -174,7 +184,8 @@ Technique radiance_cache_technique() {
               {"final_gather", make_final_gather_pass},
               {"gi_denoise", make_gi_denoise_pass},
               {"gi_upscale", make_gi_upscale_pass},
-              {"composite", make_composite_pass}};
+              {"gi_composite", make_gi_composite_pass},
+              {"gi_resolve", make_gi_resolve_pass}};
   t.output = "final_color";
   t.contract_aovs = {{"direct", "direct_radiance"}, {"indirect_diffuse", "indirect_diffuse"}};
   t.aovs = {"indirect_diffuse", "direct_radiance",  "gi_irradiance",  "gi_direct_irradiance", "direct_light",

@@ -16,10 +16,15 @@ GIB_CONST(uint, kDenoiseBindInDirect, 17)  // horizontal: gather_direct; vertica
 GIB_CONST(uint, kDenoiseBindOutDirect, 18) // horizontal: gi_denoise_tmp_direct; vertical: gi_direct
 GIB_CONST(uint, kDenoiseSpecTiled, 0)      // bool: taps preloaded into group-shared memory
 GIB_CONST(uint, kDenoiseSpecTileTexels, 1) // the tile's texels (1 for the per-tap kernel)
+GIB_CONST(uint, kDenoiseSpecFused, 2)      // bool: both directions in one dispatch (tiled only)
 // The tiled kernel's largest radius: its tile is kDenoiseGroup x (kDenoiseGroup + 2 x radius)
 // texels of 60 bytes (at most 11.3 KB, under Vulkan's guaranteed 16 KB of shared memory); a
 // larger radius runs the per-tap kernel.
 GIB_CONST(uint, kDenoiseTileMaxRadius, 8)
+// The fused kernel's largest radius: its tile is (kDenoiseGroup + 2 x radius)^2 texels (at most
+// 15 KB); each of its threads keeps at most 2 horizontal results. A larger radius runs the two
+// dispatches.
+GIB_CONST(uint, kDenoiseFusedMaxRadius, 4)
 // Edge-stopping weights of a tap q for the centre g (gather pixels; geometry from their
 // representative full-res pixels g * divisor + divisor / 2, as final_gather):
 //   normal    pow(max(0, dot(n_g, n_q)), kDenoiseNormalPower)

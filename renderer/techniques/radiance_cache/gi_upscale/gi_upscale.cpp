@@ -67,10 +67,7 @@ class GiUpscalePass final : public Pass {
                {"gi_history_direct", Access::read_prev},
                {"gi_history_frames", Access::write, frames},
                {"gi_history_frames", Access::read_prev},
-               {"exposure", Access::read},
-               {"gi_irradiance", Access::write, ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values())},
-               {"gi_direct_irradiance", Access::write,
-                ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values())}};
+               {"exposure", Access::read}};
     return d;
   }
 
@@ -104,17 +101,15 @@ class GiUpscalePass final : public Pass {
     image(kUpscaleBindPrevFrames, ctx.prev_image("gi_history_frames"));
     image(kUpscaleBindHistory, ctx.image("gi_history"));
     image(kUpscaleBindFrames, ctx.image("gi_history_frames"));
-    image(kUpscaleBindIrradiance, ctx.image("gi_irradiance"));
     image(kUpscaleBindDirect, ctx.image("gi_direct"));
     image(kUpscaleBindPrevHistoryDirect, ctx.prev_image("gi_history_direct"));
     image(kUpscaleBindHistoryDirect, ctx.image("gi_history_direct"));
-    image(kUpscaleBindDirectIrradiance, ctx.image("gi_direct_irradiance"));
     desc.bindings.push_back({kUpscaleBindExposure, DescriptorKind::storage_buffer});
     binds.push_back({kUpscaleBindExposure, &ctx.buffer("exposure"), nullptr});
     auto pipeline = ctx.gpu.compute_pipeline(desc);
     ctx.cmd.bind(*pipeline, binds, &push, sizeof(push));
-    ctx.cmd.dispatch(div_up(ctx.width("gi_irradiance"), kUpscaleGroup),
-                     div_up(ctx.height("gi_irradiance"), kUpscaleGroup));
+    ctx.cmd.dispatch(div_up(ctx.width("gi_history"), kUpscaleGroup),
+                     div_up(ctx.height("gi_history"), kUpscaleGroup));
   }
 };
 

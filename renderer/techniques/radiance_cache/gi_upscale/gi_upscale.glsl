@@ -18,9 +18,7 @@ layout(set = 0, binding = kUpscaleBindShG, rgba16f) uniform readonly image2D sh_
 layout(set = 0, binding = kUpscaleBindShB, rgba16f) uniform readonly image2D sh_b;
 layout(set = 0, binding = kUpscaleBindPrevFrames, r32f) uniform readonly image2D prev_frames;
 layout(set = 0, binding = kUpscaleBindFrames, r32f) uniform writeonly image2D out_frames;
-layout(set = 0, binding = kUpscaleBindIrradiance, rgba32f) uniform writeonly image2D out_irradiance;
 layout(set = 0, binding = kUpscaleBindDirect, rgba16f) uniform readonly image2D gi_direct;
-layout(set = 0, binding = kUpscaleBindDirectIrradiance, rgba32f) uniform writeonly image2D out_direct_irradiance;
 layout(push_constant) uniform Push { UpscalePush push; };
 // Pre-exposure (exposure pass): the gather SH and the history hold irradiance / pi x P; P_now
 // is this frame's P, P_prev the one last frame's history was stored with.
@@ -82,13 +80,13 @@ GI_HISTORY_IO(prev_history, out_history, kUpscaleBindPrevHistory, kUpscaleBindHi
 GI_HISTORY_IO(prev_history_direct, out_history_direct, kUpscaleBindPrevHistoryDirect, kUpscaleBindHistoryDirect,
               load_history_direct, store_history_direct)
 
-// value (bounce) and direct are pre-exposed (x P_now) and stored so; gi_irradiance and
-// gi_direct_irradiance are in absolute units.
+// value (bounce) and direct are pre-exposed (x P_now) and stored so. The passes after this one
+// read the history back (include/gi_history.glsl) and divide P_now out themselves
+// (gi_composite, gi_resolve): no absolute-unit copy is written here.
 void write_out(ivec2 p, vec3 value, vec3 direct, float frames) {
-  vec3 stored = store_history(p, value), stored_direct = store_history_direct(p, direct);
+  store_history(p, value);
+  store_history_direct(p, direct);
   imageStore(out_frames, p, vec4(frames, 0.0, 0.0, 0.0));
-  imageStore(out_irradiance, p, vec4(stored / exposure[kUpscaleExposureNow], 1.0));
-  imageStore(out_direct_irradiance, p, vec4(stored_direct / exposure[kUpscaleExposureNow], 1.0));
 }
 
 // ---- gather samples: read from the images, or (kTiled) from the group's tile of them.
@@ -329,7 +327,7 @@ bool reproject(vec3 x, vec3 n, out vec3 prev, out vec3 prev_direct, out float fr
 void main() {
   if (kTiled) load_gather_tile();
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(p, imageSize(out_irradiance)))) return;
+  if (any(greaterThanEqual(p, imageSize(out_frames)))) return;
   vec4 pos = imageLoad(gb_position, p);
   if (pos.w == 0.0) {  // sky
     write_out(p, vec3(0.0), vec3(0.0), 0.0);

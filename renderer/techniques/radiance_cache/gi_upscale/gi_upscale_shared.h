@@ -14,12 +14,10 @@ GIB_CONST(uint, kUpscaleBindPrevHistory, 15)  // last frame's gi_history
 GIB_CONST(uint, kUpscaleBindPrevFrames, 16)   // last frame's gi_history_frames
 GIB_CONST(uint, kUpscaleBindHistory, 17)      // gi_history (format: history_format)
 GIB_CONST(uint, kUpscaleBindFrames, 18)       // gi_history_frames (r32f: n)
-GIB_CONST(uint, kUpscaleBindIrradiance, 19)   // gi_irradiance (rgba32f: irradiance / pi)
 GIB_CONST(uint, kUpscaleBindExposure, 20)     // exposure (float[4], exposure_shared.h: P_now, P_prev)
 GIB_CONST(uint, kUpscaleBindDirect, 21)             // gi_direct (gather resolution, rgb)
 GIB_CONST(uint, kUpscaleBindPrevHistoryDirect, 22)  // last frame's gi_history_direct
 GIB_CONST(uint, kUpscaleBindHistoryDirect, 23)      // gi_history_direct (format: history_format)
-GIB_CONST(uint, kUpscaleBindDirectIrradiance, 24)   // gi_direct_irradiance (rgba32f: irradiance / pi)
 GIB_CONST(uint, kUpscaleSpecTiled, 0)     // bool: the group's gather samples preloaded into shared memory
 GIB_CONST(uint, kUpscaleSpecTileSide, 1)  // the tile's side in gather pixels (1 for the per-tap kernel)
 GIB_CONST(uint, kUpscaleExposureNow, 0)

@@ -35,8 +35,13 @@ vec3 iv_fallback_radiance(ProbeHit h, vec3 p, vec3 d) {
 }
 
 // What a probe ray brings: light, nothing (dropped by the NaN guard), or nothing because it hit
-// from inside geometry (rc_probe_ray_inside), which also counts towards the probe being inside.
-const uint kIvRayLit = 0u, kIvRayDropped = 1u, kIvRayInside = 2u;
+// from inside geometry (rc_probe_ray_inside), which also counts towards the probe being inside;
+// kIvRayMissed: its hit has no shaded cell and the fallback is left to another dispatch (the
+// including shader defines IV_DEFER_FALLBACK true for that).
+const uint kIvRayLit = 0u, kIvRayDropped = 1u, kIvRayInside = 2u, kIvRayMissed = 3u;
+#ifndef IV_DEFER_FALLBACK
+#define IV_DEFER_FALLBACK false
+#endif
 
 // The radiance arriving at probe position o of cascade c along ray direction d with hit record
 // h: sky on a miss, the cache cell at the hit, else the fallback; l is 0 unless kIvRayLit.
@@ -47,6 +52,10 @@ uint iv_ray_radiance(ProbeHit h, vec3 o, vec3 d, uint c, out vec3 l) {
   } else if (h.key == 0u) {
     return kIvRayInside;  // probe_trace found the ray inside geometry (rc_probe_ray_inside)
   } else if (!rc_lookup_key(h.key, l)) {
+    if (IV_DEFER_FALLBACK) {
+      l = vec3(0.0);
+      return kIvRayMissed;
+    }
     l = iv_fallback_radiance(h, rc_hit_position(o, d, h.distance), d);
   }
   if (rc.flags.y == 0u || gib_finite(l)) return kIvRayLit;

@@ -19,11 +19,22 @@ GIB_SCENE_BUFFERS(0, kBindSceneFirst)
 #define GIB_ALPHA_SPEC kIvSpecAlpha
 #include "bvh_alpha.glsl"
 layout(constant_id = kIvSpecCacheFallback) const bool kCacheFallback = true;
+// Which probes this dispatch updates and whether it has the cache fallback's code (kIvPass*,
+// irradiance_volume_update_shared.h). The fallback (a surface, a material and a volume sample with
+// up to 8 shadow rays) sets the kernel's register count, although a steady frame's rays all find
+// their cell: kIvPassCached leaves it out, and the few probes that need it run again in
+// kIvPassFallback.
+layout(constant_id = kIvSpecPass) const uint kIvPass = kIvPassAll;
+#define IV_DEFER_FALLBACK (kIvPass == kIvPassCached)
 
 layout(local_size_x = kIvGroup, local_size_y = kIvGroup) in;
 layout(std430, set = 0, binding = kIvBindHits) readonly buffer HitBuffer { ProbeHit probe_hits[]; };
 layout(set = 0, binding = kIvBindIrradiance, r32ui) uniform writeonly uimage2D out_irradiance;
 layout(set = 0, binding = kIvBindVisibility, rg16f) uniform writeonly image2D out_visibility;
+// The probes whose rays missed the cache, this frame's list (kIvPassCached appends, kIvPassFallback
+// reads) and last frame's (kIvPassCached resets it for the next frame). Bound by both passes only.
+layout(std430, set = 0, binding = kIvBindFallback) buffer Fallback { uint iv_fallback[]; };
+layout(std430, set = 0, binding = kIvBindNextFallback) buffer NextFallback { uint iv_next_fallback[]; };
 layout(push_constant) uniform Push { RcParams rc; uvec4 iv_extra; };
 #define RC_PROBE_RAYS
 #include "renderer/techniques/radiance_cache/include/probe_volume.glsl"
@@ -44,6 +55,7 @@ layout(constant_id = kIvSpecRays) const uint kRays = kIvMaxRays;
 shared vec4 s_dir_distance[kRays];
 shared vec4 s_radiance[kRays];
 shared uint s_inside;  // rays of the probe inside geometry (the same for every texel)
+shared uint s_missed;  // kIvPassCached: rays of the probe whose hit has no shaded cell
 shared uint s_irradiance[kTexels];
 shared vec2 s_moments[kTexels];
 
@@ -69,7 +81,8 @@ CarryTexels carry_load(uint g, uint tid) {
                        int(cascade * kProbeAtlasRowsPerCascade + (g / tiles_per_row) * kProbeTileSize));
   for (uint k = 0u; k < kCarryPerThread; ++k) {
     uint t = tid + k * kProbeTileInterior * kProbeTileInterior;
-    c.copy[k] = cascade != kIvNoCarry && t < kProbeTileSize * kProbeTileSize;
+    // The carry is the dispatch over every probe's (one tile per group); the fallback pass has none.
+    c.copy[k] = kIvPass != kIvPassFallback && cascade != kIvNoCarry && t < kProbeTileSize * kProbeTileSize;
     c.at[k] = origin + ivec2(int(t % kProbeTileSize), int(t / kProbeTileSize));
     c.irradiance[k] = c.copy[k] ? rc_probe_irradiance_texel(c.at[k]) : 0u;
     c.moments[k] = c.copy[k] ? rc_probe_visibility_texel(c.at[k]) : vec2(0.0);
@@ -86,8 +99,18 @@ void carry_store(CarryTexels c) {
 }
 
 void main() {
-  uint probe = gl_WorkGroupID.x;
   uint tid = gl_LocalInvocationIndex;
+  if (kIvPass == kIvPassCached && gl_WorkGroupID.x == 0u && tid == 0u) {
+    // This frame's list starts as the previous user of its copy left it (x = 0) or zeroed (the
+    // first frame): y and z of the indirect dispatch are set here; last frame's copy, which no
+    // one reads any more, is reset for the next frame.
+    iv_fallback[1] = 1u;
+    iv_fallback[2] = 1u;
+    iv_next_fallback[0] = 0u;
+    iv_next_fallback[1] = 1u;
+    iv_next_fallback[2] = 1u;
+  }
+  uint probe = kIvPass == kIvPassFallback ? iv_fallback[kIvFallbackListFirst + gl_WorkGroupID.x] : gl_WorkGroupID.x;
   CarryTexels carried = carry_load(probe, tid);
   const uint rays = kRays;  // rc_rays_per_probe(), as a constant
   uint c = rc_updated_cascade();
@@ -96,7 +119,10 @@ void main() {
   mat3 rotation = rc_frame_rotation(rc.misc.x);
   float max_distance = rc_moment_max_distance(c);
 
-  if (tid == 0u) s_inside = 0u;
+  if (tid == 0u) {
+    s_inside = 0u;
+    s_missed = 0u;
+  }
   barrier();
   for (uint r = tid; r < rays; r += kTexels) {
     vec3 d = rc_ray_direction(r, rays, rotation);
@@ -108,9 +134,15 @@ void main() {
     s_dir_distance[r] = vec4(state == kIvRayLit ? d : vec3(0.0), state == kIvRayInside ? -1.0 : min(h.distance, max_distance));
     s_radiance[r] = vec4(l, 0.0);
     if (state == kIvRayInside) atomicAdd(s_inside, 1u);
+    if (state == kIvRayMissed) atomicAdd(s_missed, 1u);
   }
   barrier();
   carry_store(carried);
+  if (kIvPass == kIvPassCached && s_missed != 0u) {
+    // Leave the probe to the fallback pass (the same for every thread of the group).
+    if (tid == 0u) iv_fallback[kIvFallbackListFirst + atomicAdd(iv_fallback[0], 1u)] = probe;
+    return;
+  }
 
   ivec2 texel = ivec2(gl_LocalInvocationID.xy);
   uvec2 origin = rc_tile_origin(c, rc_probe_slot(c, ijk));

@@ -26,6 +26,12 @@ class IrradianceVolumeUpdatePass final : public Pass {
     // the stability scan or a dump then reads zeros, not undefined memory (a fill every frame
     // cost that kernel a 4 MB transfer).
     rays.persistent = true;
+    // The per-probe kernel's list of probes left to its fallback dispatch (volume_fallback 0):
+    // indirect arguments and probe indices. Ping-pong: each frame appends to its copy and resets
+    // last frame's for the next (persistent, so both start zeroed).
+    ResourceDesc fallback{Format::buffer, SizeRule::buffer};
+    fallback.bytes = (glsl::kIvFallbackListFirst + kProbesPerCascade) * sizeof(uint32_t);
+    fallback.persistent = true;
     // The cache is read sparsely (bench's memory time counts what moves): each hit record looks
     // its key up, one slot plus its probing collisions.
     d.slots = {{"probe_hits", Access::read},
@@ -35,7 +41,12 @@ class IrradianceVolumeUpdatePass final : public Pass {
                {"probe_irradiance", Access::write, irr},
                {"probe_visibility", Access::write, vis},
                {"probe_irradiance", Access::read_prev},
-               {"probe_visibility", Access::read_prev}};
+               {"probe_visibility", Access::read_prev},
+               // A few words move: the indirect arguments, the counter, the listed probes.
+               {"iv_fallback", Access::write, fallback,
+                Touched{double(glsl::kIvFallbackListFirst), {}, sizeof(uint32_t), true}},
+               {"iv_fallback", Access::read_prev},  // written: reset for the next frame
+               };
     d.work = {{"probes", kProbesPerCascade}};
     return d;
   }
@@ -77,22 +88,44 @@ class IrradianceVolumeUpdatePass final : public Pass {
     }
     IvPush push{make_rc_params(ctx.settings, ctx.frame), {carried, 0, 0, 0}};
     if (per_probe) {
-      std::vector<SpecConstant> probe_specs = ray_specs;
-      probe_specs.push_back({kIvSpecRays, r.rays_per_probe});  // 1..kIvMaxRays (probe_trace checks)
-      // GPU: one workgroup per probe with its rays in group-shared memory.
-      ctx.cmd.begin_label("irradiance_volume_update/probe");
-      record_compute(ctx, {.shader = "irradiance_volume_probe.comp",
-                           .images = {{kIvBindPrevIrradiance, "probe_irradiance", true},
-                                      {kIvBindPrevVisibility, "probe_visibility", true},
-                                      {kIvBindIrradiance, "probe_irradiance"},
-                                      {kIvBindVisibility, "probe_visibility"}},
-                           .groups_x = kProbesPerCascade,
-                           .push = &push,
-                           .push_bytes = sizeof(push),
-                           .spec_constants = probe_specs,
-                           .buffers = {{kIvBindHits, "probe_hits"}, {kIvBindCells, "rc_cells"}}});
-      ctx.cmd.end_label();
-      return;  // probe_ray_radiance, the split path's, stays as created: zero
+      // GPU: one workgroup per probe with its rays in group-shared memory. With volume_fallback
+      // 0, the probes a ray of which finds no shaded cell are listed by the first dispatch and
+      // updated by the second (indirect: as many groups as listed), the only one with the
+      // fallback's code.
+      const bool deferred = r.volume_fallback == 0;
+      auto probe_dispatch = [&](const char* label, uint32_t pass, uint32_t cache_fallback, const IvPush& p,
+                                bool barrier_after) {
+        std::vector<SpecConstant> specs = ray_specs;
+        specs[0] = {kIvSpecCacheFallback, cache_fallback};
+        specs.push_back({kIvSpecRays, r.rays_per_probe});  // 1..kIvMaxRays (probe_trace checks)
+        specs.push_back({kIvSpecPass, pass});
+        ctx.cmd.begin_label(std::string("irradiance_volume_update/") + label);
+        record_compute(ctx, {.shader = "irradiance_volume_probe.comp",
+                             .images = {{kIvBindPrevIrradiance, "probe_irradiance", true},
+                                        {kIvBindPrevVisibility, "probe_visibility", true},
+                                        {kIvBindIrradiance, "probe_irradiance"},
+                                        {kIvBindVisibility, "probe_visibility"}},
+                             .groups_x = kProbesPerCascade,
+                             .push = &p,
+                             .push_bytes = sizeof(p),
+                             .spec_constants = specs,
+                             .buffers = {{kIvBindHits, "probe_hits"},
+                                         {kIvBindCells, "rc_cells"},
+                                         {kIvBindFallback, "iv_fallback"},
+                                         {kIvBindNextFallback, "iv_fallback", true}},
+                             .indirect = pass == kIvPassFallback ? "iv_fallback" : nullptr,
+                             .barrier_after = barrier_after});
+        ctx.cmd.end_label();
+      };
+      if (!deferred) {
+        probe_dispatch("probe", kIvPassAll, 1, push, false);
+        return;  // probe_ray_radiance, the split path's, stays as created: zero
+      }
+      probe_dispatch("probe", kIvPassCached, 0, push, true);
+      IvPush fallback_push = push;
+      fallback_push.extra.x = kIvNoCarry;  // the first dispatch carried
+      probe_dispatch("fallback", kIvPassFallback, 1, fallback_push, false);
+      return;
     }
     // CPU device: two barrier-free kernels (see irradiance_volume_probe.comp for why).
     ctx.cmd.begin_label("irradiance_volume_update/rays");

@@ -1,0 +1,58 @@
+#include "renderer/techniques/radiance_cache/gi_composite/gi_composite.h"
+
+#include "renderer/techniques/radiance_cache/gi_composite/gi_composite_shared.h"
+#include "renderer/techniques/radiance_cache/gi_upscale/gi_upscale.h"
+#include "renderer/techniques/radiance_cache/radiance_cache.h"
+
+namespace gib {
+namespace {
+
+const char* shader_for(uint32_t history_format) {
+  static const char* const kShaders[] = {"gi_composite_rgb9e5.comp", "gi_composite_rgba16f.comp",
+                                         "gi_composite_r11g11b10f.comp", "gi_composite_rgba32f.comp"};
+  (void)gi_history_format(history_format);  // throws when out of range
+  return kShaders[history_format];
+}
+
+class GiCompositePass final : public Pass {
+ public:
+  PassDecl declare(const Scene&, const Settings&) const override {
+    ResourceDesc color{Format::rgba32_float, SizeRule::render};
+    color.persistent = true;
+    color.values = non_negative_values();
+    PassDecl d;
+    d.name = "gi_composite";
+    d.slots = {{"direct_light", Access::read},
+               {"gbuffer_albedo", Access::read},
+               {"gi_history", Access::read},
+               {"gi_history_direct", Access::read},
+               {"exposure", Access::read},
+               {"final_color", Access::write, color},
+               {"indirect_diffuse", Access::write, ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values())},
+               {"direct_radiance", Access::write, ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values())}};
+    return d;
+  }
+
+  void record(RecordContext& ctx) override {
+    using namespace glsl;
+    const RadianceCacheSettings& r = ctx.settings.params<RadianceCacheSettings>();
+    record_compute(ctx, {.shader = shader_for(r.history_format),
+                         .images = {{kGiCompositeBindDirect, "direct_light"},
+                                    {kGiCompositeBindAlbedo, "gbuffer_albedo"},
+                                    {kGiCompositeBindHistory, "gi_history"},
+                                    {kGiCompositeBindHistoryDirect, "gi_history_direct"},
+                                    {kGiCompositeBindColor, "final_color"},
+                                    {kGiCompositeBindIndirect, "indirect_diffuse"},
+                                    {kGiCompositeBindDirectOut, "direct_radiance"}},
+                         .groups_x = div_up(ctx.width("final_color"), kGiCompositeGroup),
+                         .groups_y = div_up(ctx.height("final_color"), kGiCompositeGroup),
+                         .scene = false,
+                         .buffers = {{kGiCompositeBindExposure, "exposure"}}});
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Pass> make_gi_composite_pass() { return std::make_unique<GiCompositePass>(); }
+
+}  // namespace gib
