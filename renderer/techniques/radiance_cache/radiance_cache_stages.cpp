@@ -66,6 +66,34 @@ std::map<std::string, Bytes> denoise_oracle(const OracleInputs& in) {
   return out;
 }
 
+// gi_composite writes indirect_diffuse = albedo x history / P, direct_radiance and final_color =
+// their sum (alpha 1): the reference's indirect_diffuse in the first, and the seed renders' mean
+// direct_radiance plus it in the last, so next frame's gather reads the same image too.
+std::map<std::string, Bytes> composite_oracle(const OracleInputs& in) {
+  const FloatImage& ref = in.reference.at("indirect_diffuse");
+  if (ref.width != in.width || ref.height != in.height)
+    throw std::runtime_error(fmt::format("radiance-cache oracle: expected a {}x{} reference, got {}x{}", in.width,
+                                         in.height, ref.width, ref.height));
+  const size_t n = size_t(in.width) * in.height;
+  std::vector<float> indirect(n * 4, 1.0f), color(n * 4, 1.0f);
+  for (size_t i = 0; i < n; ++i)
+    for (size_t ch = 0; ch < 3; ++ch) indirect[i * 4 + ch] = ref.pixels[i * ref.channels + ch];
+  std::vector<double> direct(n * 3, 0.0);
+  for (size_t s = 0; s < in.seeds.size(); ++s) {
+    const Bytes& b = oracles::seed_bytes(in, s, "direct_radiance");
+    if (b.size() != n * 16) throw std::runtime_error("radiance-cache oracle: expected an RGBA32F render-size direct_radiance");
+    for (size_t i = 0; i < n; ++i)
+      for (size_t ch = 0; ch < 3; ++ch) {
+        float v;
+        std::memcpy(&v, &b[(i * 4 + ch) * 4], 4);
+        direct[i * 3 + ch] += double(v) / double(in.seeds.size());
+      }
+  }
+  for (size_t i = 0; i < n; ++i)
+    for (size_t ch = 0; ch < 3; ++ch) color[i * 4 + ch] = float(direct[i * 3 + ch]) + indirect[i * 4 + ch];
+  return {{"indirect_diffuse", oracles::floats_to_bytes(indirect)}, {"final_color", oracles::floats_to_bytes(color)}};
+}
+
 }  // namespace
 
 std::vector<TechniqueStage> radiance_cache_stages() {
@@ -87,7 +115,13 @@ std::vector<TechniqueStage> radiance_cache_stages() {
   s[3].seed_reads = {"gather_sh_r", "gather_sh_g", "gather_sh_b", "gather_direct", "exposure"};
   s[3].after_pass_of = {{"exposure", "exposure"}};  // the pass that writes it: the whole frame at that P
   s[3].make = denoise_oracle;
-  s[4] = oracles::exact_gi_irradiance_stage("upscale", {"gi_upscale"}, "gi_upscale");
+  s[4].name = "upscale";
+  s[4].passes = {"gi_upscale", "gi_composite", "gi_resolve"};
+  s[4].oracle = "exact: the reference's indirect_diffuse (and final_color = the seeds' mean direct_radiance + it)";
+  s[4].after_pass = "gi_composite";
+  s[4].seed_reads = {"direct_radiance"};
+  s[4].reference_aovs = {"indirect_diffuse"};
+  s[4].make = composite_oracle;
   return s;
 }
 

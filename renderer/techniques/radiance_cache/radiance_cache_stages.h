@@ -15,8 +15,10 @@
 //                                                      pre-exposure P and written at their mean P,
 //                                                      which it writes into `exposure` after the
 //                                                      exposure pass (the whole frame at that P)
-//   upscale             gi_upscale                     exact: the reference's indirect_diffuse over
-//                                                      the G-buffer albedo (gi_irradiance)
+//   upscale             gi_upscale, gi_composite,      exact: the reference's indirect_diffuse in
+//                       gi_resolve                     gi_composite's indirect_diffuse, and the
+//                                                      seeds' mean direct_radiance plus it in its
+//                                                      final_color (next frame's gather reads it)
 #pragma once
 #include <vector>
 
