@@ -173,5 +173,33 @@ TEST_F(DirectLightModesGpu, UnoccludedSkyMatchesTracedSkyInTheOpen) {
   }
 }
 
+// direct_light's alpha (direct_lighting): the share of the pixel's sky rays that met a surface,
+// what a GI technique gathers its bounce over (voxel-clipmap's irradiance_shade). Under a sky,
+// the open floor's rays meet nothing (0), the floor beside the box and the box's faces beside
+// the floor some (k / 16 with 16 rays); the shadow_mapped mode traces none (0 everywhere).
+TEST_F(DirectLightModesGpu, AlphaIsTheShareOfSkyRaysThatMetASurface) {
+  json doc = sunlit_doc(true);
+  doc["sky"] = {{"type", "constant"}, {"radiance", {1, 1, 1}}};
+  Scene scene = parse_scene(doc, "sunlit-box-sky");
+  const Technique& t = find_technique("direct");
+  FloatImage traced = render_direct(gpu(), t, scene, mode_settings(t, 0, {{"sky_rays", 16}}));
+  FloatImage mapped = render_direct(gpu(), t, scene, mode_settings(t, 1, {{"sky_rays", 16}}));
+  uint32_t open = 0, partly = 0, off_grid = 0, mapped_nonzero = 0;
+  for (uint32_t y = 0; y < kH; ++y)
+    for (uint32_t x = 0; x < kW; ++x) {
+      const float a = traced.at(x, y, 3);
+      open += a == 0.0f;
+      partly += a > 0.0f && a <= 1.0f;
+      off_grid += std::fabs(a * 16.0f - std::round(a * 16.0f)) > 1e-4f || a < 0.0f || a > 1.0f;
+      mapped_nonzero += mapped.at(x, y, 3) != 0.0f;
+    }
+  std::printf("direct_light alpha, 16 sky rays: %u pixels 0, %u in (0, 1]; shadow_mapped: %u non-zero\n", open, partly,
+              mapped_nonzero);
+  EXPECT_GT(open, kW * kH / 4) << "the open floor and the sky meet nothing";
+  EXPECT_GT(partly, kW * kH / 50) << "the floor beside the box and the box's faces meet the other";
+  EXPECT_EQ(off_grid, 0u) << "a share of 16 rays";
+  EXPECT_EQ(mapped_nonzero, 0u) << "the shadow_mapped mode traces no sky ray";
+}
+
 }  // namespace
 }  // namespace gib

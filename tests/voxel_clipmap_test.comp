@@ -39,8 +39,9 @@ void main() {
     r.i = ivec4(vc_origin_around(t.p0.xyz, vc_voxel_size(1u), vc_n()), 0);
   } else if (mode.x == kVcTestCube) {
     vec3 b, s;
-    vc_cube_eval(uint(t.a.x), t.p0.xyz, b, s);
-    r.f0 = vec4(b, 0.0);
+    float h;
+    vc_cube_eval(uint(t.a.x), t.p0.xyz, b, s, h);
+    r.f0 = vec4(b, h);
     r.f1 = vec4(s, 0.0);
   } else if (mode.x == kVcTestOverlap) {
     r.u.x = vc_triangle_box_overlap(t.p0.xyz, t.p1.xyz, t.p2.xyz, t.p3.xyz, vec3(t.p3.w)) ? 1u : 0u;

@@ -57,6 +57,7 @@ CubeValue vc_cube_eval(const AmbientAxis& x, const AmbientAxis& y, const Ambient
       *b[ch] += w * (*axes[a])[o + ch];
       *s[ch] += w * (*axes[a])[o + 6 + ch];
     }
+    v.hit += w * (*axes[a])[c[a] >= 0.0f ? 12 : 13];
   }
   return v;
 }

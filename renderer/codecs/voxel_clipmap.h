@@ -32,13 +32,14 @@ Int3 vc_origin_around(Float3 x, float size, int32_t n);
 // Finest level whose box (origins[l], n voxels of voxel_size x 2^l) holds x; `levels` when none.
 uint32_t vc_voxel_level(Float3 x, const Int3* origins, uint32_t levels, float voxel_size, int32_t n);
 
-// One cell's ambient cube: per axis (x, y, z) 12 floats: bounce +axis rgb, bounce -axis rgb, sky
-// +axis rgb, sky -axis rgb (voxel_clipmap_shared.h).
-using AmbientAxis = std::array<float, 12>;
+// One cell's ambient cube: per axis (x, y, z) 14 floats: bounce +axis rgb, bounce -axis rgb, sky
+// +axis rgb, sky -axis rgb, hit share +axis, -axis (voxel_clipmap_shared.h).
+using AmbientAxis = std::array<float, 14>;
 struct CubeValue {
   Float3 bounce, sky;
+  float hit = 0;
 };
-// sum over axes of n_a^2 x the value of the direction on n's side.
+// sum over axes of n_a^2 x the value of the direction on n's side (colours and hit share).
 CubeValue vc_cube_eval(const AmbientAxis& x, const AmbientAxis& y, const AmbientAxis& z, Float3 n);
 
 // The voxel opacity byte: opacity x 255 rounded half up, clamped to [1, 255] (0 is "no geometry").

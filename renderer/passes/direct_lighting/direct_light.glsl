@@ -18,6 +18,10 @@
 //   compiled without it agrees bit for bit on opaque pixels. cloth_path false skips the sheen
 //   lobe of the cloth BRDF class (G-buffer: sheen in gb_albedo.a, roughness in gb_normal.a);
 //   likewise the same value wherever the pixel's sheen is 0.
+// The overload with `out float sky_hits` also returns the fraction of the pixel's sky rays that
+// met a surface (0 where it traced none: sky pixels, sky_rays 0, no sky or emitter in the
+// scene, the shadow_mapped mode's unoccluded sky). A GI technique that adds bounce light to this
+// pixel gathers it from those directions only: the rays that escaped have counted the sky there.
 #ifndef GIB_DIRECT_LIGHT_GLSL
 #define GIB_DIRECT_LIGHT_GLSL
 #include "brdf.glsl"
@@ -31,7 +35,9 @@ vec3 diffuse_response(vec3 albedo, float translucency, vec3 n, vec3 wi) {
   return c > 0.0 ? albedo * (1.0 - translucency) * c / GIB_PI : albedo * translucency * (-c) / GIB_PI;
 }
 
-vec3 gib_direct_light(ivec2 p, uint sky_rays, bool nan_guards, bool translucent_path, bool cloth_path) {
+vec3 gib_direct_light(ivec2 p, uint sky_rays, bool nan_guards, bool translucent_path, bool cloth_path,
+                      out float sky_hits) {
+  sky_hits = 0.0;
   vec4 pos = imageLoad(gb_position, p);
   if (pos.w == 0.0) {
     vec3 o, d;
@@ -101,6 +107,7 @@ vec3 gib_direct_light(ivec2 p, uint sky_rays, bool nan_guards, bool translucent_
       ng = gib_face_normal_facing(ids - 1u, d, n);
     }
     vec3 sky = vec3(0.0), sheen_sky = vec3(0.0);
+    uint hits = 0u;
     for (uint i = 0u; i < sky_rays; ++i) {
       bool back = translucency > 0.0 && gib_next(rng) < translucency;
       vec3 side = back ? -n : n, side_g = back ? -ng : ng;
@@ -115,9 +122,12 @@ vec3 gib_direct_light(ivec2 p, uint sky_rays, bool nan_guards, bool translucent_
         } else {
           GibSurface s = gib_surface(hit.triangle, hit.u, hit.v, nan_guards);
           found = gib_material_emissive(gib_materials[s.material], s.uv);
+          ++hits;
         }
       } else if (!trace_any(gib_offset_ray(x, side_g), wi, 0.0, kShadowMax)) {
         found = gib_sky_radiance(wi);
+      } else {
+        ++hits;
       }
       sky += found;
       // Cosine-sampled: a ray's weight for the lobe is pi x lobe (cloth has no back side).
@@ -125,6 +135,7 @@ vec3 gib_direct_light(ivec2 p, uint sky_rays, bool nan_guards, bool translucent_
     }
     result += albedo * sky / float(sky_rays);
     if (sheen > 0.0) result += sheen_sky / float(sky_rays);
+    sky_hits = float(hits) / float(sky_rays);
   }
   if (kHasLocal) {
     for (uint i = 0u; i < gib_light_count(); ++i) {
@@ -140,6 +151,11 @@ vec3 gib_direct_light(ivec2 p, uint sky_rays, bool nan_guards, bool translucent_
     }
   }
   return result;
+}
+
+vec3 gib_direct_light(ivec2 p, uint sky_rays, bool nan_guards, bool translucent_path, bool cloth_path) {
+  float sky_hits;
+  return gib_direct_light(p, sky_rays, nan_guards, translucent_path, cloth_path, sky_hits);
 }
 
 #endif

@@ -37,5 +37,8 @@ layout(set = 0, binding = kDirectBindSunVisibility, r32f) uniform readonly image
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(p, imageSize(out_direct)))) return;
-  imageStore(out_direct, p, vec4(gib_direct_light(p, push.sky_rays, push.nan_guards != 0u, true, true), 1.0));
+  // Alpha: the fraction of the pixel's sky rays that met a surface (direct_light.glsl).
+  float sky_hits;
+  vec3 direct = gib_direct_light(p, push.sky_rays, push.nan_guards != 0u, true, true, sky_hits);
+  imageStore(out_direct, p, vec4(direct, sky_hits));
 }

@@ -8,7 +8,7 @@ GIB_CONST(uint, kDirectBindAlbedo, 8)
 GIB_CONST(uint, kDirectBindNormal, 9)
 GIB_CONST(uint, kDirectBindPosition, 10)
 GIB_CONST(uint, kDirectBindEmissive, 11)
-GIB_CONST(uint, kDirectBindOut, 12)  // rgba32f direct radiance (HDR)
+GIB_CONST(uint, kDirectBindOut, 12)  // rgba32f direct radiance (HDR); alpha: the share of the sky rays that met a surface
 GIB_CONST(uint, kDirectBindVbuffer, 13)  // triangle ids: the face normal for sky rays
 GIB_CONST(uint, kDirectBindSunVisibility, 14)  // r32f sun visibility (DirectLightingParams::sun_visibility)
 // Specialization constants: which light types the scene has (dead code elimination).

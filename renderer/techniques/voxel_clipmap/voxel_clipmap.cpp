@@ -26,7 +26,7 @@ namespace {
 // The seed's ranges: up to 32768 feed pixels per frame ("we have chosen this number to be
 // 32768 or smaller"; ultra takes 65536, still below its "hundred thousand pixels" timing),
 // queue A 512-1024 and queue B 64-128 cells; A' is an eighth of A. Levels and grid set the
-// memory (voxels 16 bytes, cells 148 bytes); rays per cell are one workgroup; direct_lighting's
+// memory (voxels 16 bytes, cells 172 bytes); rays per cell are one workgroup; direct_lighting's
 // sky rays follow the ladder of the other techniques.
 struct Preset {
   const char* name;

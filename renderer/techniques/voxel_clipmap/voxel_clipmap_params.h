@@ -40,7 +40,14 @@ inline void check_vc_settings(const VoxelClipmapSettings& p) {
   if (p.queue_a + p.queue_b == 0) throw GraphError("voxel-clipmap: queue_a + queue_b must be at least 1");
 }
 
-inline glsl::VcParams make_vc_params(const Settings& s, uint32_t frame) {
+// Whether direct_lighting's rays give every pixel its share of sky rays that met a surface
+// (direct_light's alpha): sky rays traced through the BVH in a scene with a sky or emitters.
+inline bool vc_pixel_sky_hits(const Scene& scene, const VoxelClipmapSettings& p) {
+  const SceneFeatures f = scene.features();
+  return p.sky_rays > 0 && !sky_unoccluded(p) && (f.has(Feature::sky) || f.has(Feature::emissive));
+}
+
+inline glsl::VcParams make_vc_params(const Scene& scene, const Settings& s, uint32_t frame) {
   const VoxelClipmapSettings& p = s.params<VoxelClipmapSettings>();
   check_vc_settings(p);
   using namespace glsl;
@@ -48,7 +55,8 @@ inline glsl::VcParams make_vc_params(const Settings& s, uint32_t frame) {
                          (p.geometry_fill ? kVcFlagGeometryFill : 0) | (p.semi_transparent ? kVcFlagSemiTransparent : 0) |
                          (p.sky_rays == 0 ? kVcFlagSkyFromCubes : 0) | (p.invalidate ? kVcFlagInvalidate : 0) |
                          (p.multi_bounce ? kVcFlagMultiBounce : 0) | (p.select_per_queue ? kVcFlagSelectPerQueue : 0) |
-                         (p.geometry_light ? kVcFlagGeometryLight : 0);
+                         (p.geometry_light ? kVcFlagGeometryLight : 0) |
+                         (vc_pixel_sky_hits(scene, p) ? kVcFlagPixelSkyHits : 0);
   VcParams r{};
   r.grid = {p.grid, p.levels, frame, flags};
   r.sizes = {p.voxel_size, p.feed_weight, p.history_frames, 0};

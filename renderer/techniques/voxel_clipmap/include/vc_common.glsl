@@ -109,8 +109,9 @@ vec3 vc_march(vec3 o, vec3 d, bool semi, out vec3 emitted, out float transmittan
 
 #ifdef VC_HAS_CUBES
 // Ambient cube of cell `cell` towards normal n (the seed's 5.1; Half-Life 2's ambient cube):
-// sum over axes of n_a^2 x the value of the direction on n's side.
-void vc_cube_eval(uint cell, vec3 n, out vec3 bounce, out vec3 sky) {
+// sum over axes of n_a^2 x the value of the direction on n's side. `hit`: the same sum of the
+// directions' hit shares (the cosine-weighted share of the cell's rays that met a voxel).
+void vc_cube_eval(uint cell, vec3 n, out vec3 bounce, out vec3 sky, out float hit) {
   vec3 w = n * n;
   uint base = cell * kVcCellFloats;
   uint ox = base + (n.x >= 0.0 ? 0u : 3u), oy = base + (n.y >= 0.0 ? 0u : 3u), oz = base + (n.z >= 0.0 ? 0u : 3u);
@@ -120,6 +121,8 @@ void vc_cube_eval(uint cell, vec3 n, out vec3 bounce, out vec3 sky) {
   sky = w.x * vec3(vc_cube_x[ox + 6u], vc_cube_x[ox + 7u], vc_cube_x[ox + 8u]) +
         w.y * vec3(vc_cube_y[oy + 6u], vc_cube_y[oy + 7u], vc_cube_y[oy + 8u]) +
         w.z * vec3(vc_cube_z[oz + 6u], vc_cube_z[oz + 7u], vc_cube_z[oz + 8u]);
+  uint hx = base + (n.x >= 0.0 ? 12u : 13u), hy = base + (n.y >= 0.0 ? 12u : 13u), hz = base + (n.z >= 0.0 ? 12u : 13u);
+  hit = w.x * vc_cube_x[hx] + w.y * vc_cube_y[hy] + w.z * vc_cube_z[hz];
 }
 
 #ifdef VC_CONVEX_VOXELS
@@ -144,7 +147,7 @@ bool vc_cell_behind_wall(uint l, vec3 q, ivec3 k) {
 // none either, so a surface near
 // a room's corner does not blend in the cells outside it. Returns the weight found (0: nothing
 // usable).
-float vc_cubes_trilinear(uint l, vec3 x, vec3 n, bool convex, out vec3 bounce, out vec3 sky) {
+float vc_cubes_trilinear(uint l, vec3 x, vec3 n, bool convex, out vec3 bounce, out vec3 sky, out float hit) {
   float c = vc_cell_size(l);
   vec3 q = convex ? x + n * (0.5 * c) : x;
   vec3 u = q / c - 0.5;
@@ -152,6 +155,7 @@ float vc_cubes_trilinear(uint l, vec3 x, vec3 n, bool convex, out vec3 bounce, o
   vec3 f = u - vec3(k0);
   bounce = vec3(0.0);
   sky = vec3(0.0);
+  hit = 0.0;
   float wsum = 0.0;
   for (int i = 0; i < 8; ++i) {
     ivec3 o = ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
@@ -167,45 +171,67 @@ float vc_cubes_trilinear(uint l, vec3 x, vec3 n, bool convex, out vec3 bounce, o
     float w = t.x * t.y * t.z;
     if (w <= 0.0) continue;
     vec3 b, s;
-    vc_cube_eval(cell, n, b, s);
+    float h;
+    vc_cube_eval(cell, n, b, s, h);
     bounce += w * b;
     sky += w * s;
+    hit += w * h;
     wsum += w;
   }
   if (wsum > 1e-6) {
     bounce /= wsum;
     sky /= wsum;
+    hit /= wsum;
   }
   return wsum;
 }
 
-// Irradiance / pi at x for normal n, bounce and direct (sky, emitters) parts (the seed's 5.1): the finest level whose cell box holds the
-// filter footprint, blended with the next coarser one over the two cells next to its border.
-void vc_irradiance(vec3 x, vec3 n, bool convex, out vec3 bounce, out vec3 sky) {
+// Irradiance / pi at x for normal n, bounce and direct (sky, emitters) parts (the seed's 5.1),
+// and the hit share the bounce was gathered over (vc_cube_eval): the finest level whose cell box
+// holds the filter footprint, blended with the next coarser one over the two cells next to its
+// border.
+void vc_irradiance(vec3 x, vec3 n, bool convex, out vec3 bounce, out vec3 sky, out float hit) {
   bounce = vec3(0.0);
   sky = vec3(0.0);
+  hit = 0.0;
   float m = float(vc_m());
   for (uint l = 0u; l < vc_levels(); ++l) {
     vec3 q = x / vc_cell_size(l) - vec3(vc_cell_origin(l));
     float border = min(min(min(q.x, q.y), q.z), min(min(m - q.x, m - q.y), m - q.z)) - 1.0;
     if (border < 0.0) continue;
     vec3 b, s;
-    if (vc_cubes_trilinear(l, x, n, convex, b, s) <= 0.0) continue;
+    float h;
+    if (vc_cubes_trilinear(l, x, n, convex, b, s, h) <= 0.0) continue;
     float w = clamp(border / 2.0, 0.0, 1.0);
     if (w < 1.0) {
       for (uint c = l + 1u; c < vc_levels(); ++c) {
         vec3 cb, cs;
-        if (vc_cubes_trilinear(c, x, n, convex, cb, cs) > 0.0) {
+        float ch;
+        if (vc_cubes_trilinear(c, x, n, convex, cb, cs, ch) > 0.0) {
           b = mix(cb, b, w);
           s = mix(cs, s, w);
+          h = mix(ch, h, w);
           break;
         }
       }
     }
     bounce = b;
     sky = s;
+    hit = h;
     return;
   }
+}
+
+// The bounce light (irradiance / pi) a surface point takes whose own sky rays (direct_lighting)
+// counted the sky and emitters in the directions they escaped or met an emitter: the clipmap's
+// bounce is the mean radiance of the voxels its rays met times the share of rays that met one,
+// so the point takes that mean times its own share of rays that met a surface (`pixel_hits`,
+// direct_light's alpha). Each direction of the point's hemisphere is then counted once: by the
+// point's rays where they see the sky, by the clipmap where they meet a surface. (A cell off the
+// surface sees the object's own voxels in directions whose sky the point's rays already counted.)
+// No hit in the cells: nothing to take the mean radiance from; the bounce is left as it is (0).
+vec3 vc_bounce_for_pixel(vec3 bounce, float cube_hits, float pixel_hits) {
+  return cube_hits > 1e-4 ? bounce * (pixel_hits / cube_hits) : bounce;
 }
 #endif
 

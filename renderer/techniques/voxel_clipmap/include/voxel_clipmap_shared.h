@@ -31,11 +31,13 @@ GIB_CONST(uint, kVcFillTriangleMask, 0x7fffff)
 
 // Irradiance cells (buffers irradiance_x / _y / _z, irradiance_cell_state): level l holds M^3
 // cells, M = N / 2, of size 2 x voxel size; toroidal like the voxels. Each axis buffer holds
-// the +/- pair of that axis' ambient-cube directions as 12 floats per cell: bounce (light
+// the +/- pair of that axis' ambient-cube directions as 14 floats per cell: bounce (light
 // voxels reflect) towards +axis rgb, towards -axis rgb, then direct (sky through ray misses,
-// emission of the voxels hit) towards +axis rgb, -axis rgb. Values are the cosine-weighted mean incoming radiance around the direction
-// (irradiance / pi), so a surface facing +axis reflects albedo x value.
-GIB_CONST(uint, kVcCellFloats, 12)
+// emission of the voxels hit) towards +axis rgb, -axis rgb, then the hit share towards +axis,
+// -axis (the cosine-weighted share of the rays that met voxels: 1 - transmittance). Colour
+// values are the cosine-weighted mean incoming radiance around the direction (irradiance / pi),
+// so a surface facing +axis reflects albedo x value.
+GIB_CONST(uint, kVcCellFloats, 14)
 // irradiance_cell_state: uint per cell: age in frames (bits 0-15, saturating), flags.
 GIB_CONST(uint, kVcAgeMask, 0xffff)
 GIB_CONST(uint, kVcCellUpdated, 0x10000)    // holds irradiance (relit, or inherited from the coarser level)
@@ -53,6 +55,10 @@ GIB_CONST(uint, kVcFlagInvalidate, 32)
 GIB_CONST(uint, kVcFlagMultiBounce, 64)    // the feed adds albedo x the clipmap's bounce (0: one bounce, a control)
 GIB_CONST(uint, kVcFlagSelectPerQueue, 128)  // irradiance_select keeps one P for cells with geometry, one for empty cells
 GIB_CONST(uint, kVcFlagGeometryLight, 256)   // scene_voxel_light lights voxels no pixel fed from their triangle
+// direct_lighting traced sky rays per pixel (traced mode, a sky or emitters in the scene):
+// direct_light's alpha is each pixel's share of rays that met a surface, and the pixel's bounce
+// is gathered over that share only (vc_bounce_for_pixel).
+GIB_CONST(uint, kVcFlagPixelSkyHits, 512)
 
 struct VcParams {
   uvec4 grid;    // x: N voxels per axis per level, y: levels, z: frame, w: kVcFlag*

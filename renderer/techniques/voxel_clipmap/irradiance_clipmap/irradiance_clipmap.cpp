@@ -24,7 +24,7 @@ class IrradianceClipmapPass final : public Pass {
   void record(RecordContext& ctx) override {
     using namespace glsl;
     const VoxelClipmapSettings& p = ctx.settings.params<VoxelClipmapSettings>();
-    IrrClipmapPush push{make_vc_params(ctx.settings, ctx.frame)};
+    IrrClipmapPush push{make_vc_params(ctx.scene, ctx.settings, ctx.frame)};
     auto dispatch = [&](uint32_t kernel, const char* label, uint32_t groups) {
       record_compute(ctx, {.shader = "irradiance_clipmap.comp",
                            .groups_x = groups,

@@ -24,8 +24,9 @@ VC_CUBE_BUFFERS(kIrrRelightBindX, kIrrRelightBindY, kIrrRelightBindZ, kIrrReligh
 #include "renderer/techniques/voxel_clipmap/include/vc_common.glsl"
 
 shared vec4 s_bounce[kVcMaxRays];  // rgb: radiance x weight, a: weight
-shared vec4 s_sky[kVcMaxRays];   // rgb: radiance x weight
+shared vec4 s_sky[kVcMaxRays];     // rgb: radiance x weight, a: weight of a ray that met voxels (1 - transmittance)
 shared vec3 s_result[12];          // per direction (+x, -x, +y, -y, +z, -z): bounce, then direct (sky, emitters)
+shared float s_hit[6];             // per direction: the cosine-weighted share of rays that met voxels
 
 void main() {
   uint cell = entries[gl_WorkGroupID.x];
@@ -59,11 +60,12 @@ void main() {
     hit = vec3(0.0);
     sky = vec3(0.0);
   }
+  float met = 1.0 - T;
 
   for (uint dir = 0u; dir < 6u; ++dir) {
     float w = max((dir & 1u) == 0u ? d[dir >> 1u] : -d[dir >> 1u], 0.0);
     s_bounce[tid] = vec4(hit * w, w);
-    s_sky[tid] = vec4(sky * w, 0.0);
+    s_sky[tid] = vec4(sky * w, met * w);
     barrier();
     for (uint stride = rays / 2u; stride > 0u; stride /= 2u) {
       if (tid < stride) {
@@ -76,20 +78,26 @@ void main() {
       float wsum = max(s_bounce[0].a, 1e-6);
       s_result[dir] = s_bounce[0].rgb / wsum;
       s_result[6u + dir] = s_sky[0].rgb / wsum;
+      s_hit[dir] = s_sky[0].a / wsum;
     }
     barrier();
   }
 
-  // 36 floats to write: (axis, float f of the axis buffer's 12).
+  // 3 x kVcCellFloats floats to write: (axis, float f of the axis buffer's 14).
   uint state = vc_cell_state[cell];
   bool relit = (state & kVcCellRelit) != 0u;
   float w = relit ? clamp(float(state & kVcAgeMask) / vc.sizes.z, 1.0 / vc.sizes.z, 1.0) : 1.0;
-  for (uint t = tid; t < 36u; t += rays) {
-    uint axis = t / 12u, f = t % 12u;
-    // f: 0-2 bounce +axis, 3-5 bounce -axis, 6-8 direct +axis, 9-11 direct -axis.
-    uint dir = 2u * axis + ((f / 3u) & 1u);
-    vec3 v = f < 6u ? s_result[dir] : s_result[6u + dir];
-    float value = v[f % 3u];
+  for (uint t = tid; t < 3u * kVcCellFloats; t += rays) {
+    uint axis = t / kVcCellFloats, f = t % kVcCellFloats;
+    // f: 0-2 bounce +axis, 3-5 bounce -axis, 6-8 direct +axis, 9-11 direct -axis, 12-13 hit +/-axis.
+    float value;
+    if (f < 12u) {
+      uint dir = 2u * axis + ((f / 3u) & 1u);
+      vec3 v = f < 6u ? s_result[dir] : s_result[6u + dir];
+      value = v[f % 3u];
+    } else {
+      value = s_hit[2u * axis + (f - 12u)];
+    }
     uint at = cell * kVcCellFloats + f;
     if (axis == 0u) vc_cube_x[at] = mix(vc_cube_x[at], value, w);
     else if (axis == 1u) vc_cube_y[at] = mix(vc_cube_y[at], value, w);

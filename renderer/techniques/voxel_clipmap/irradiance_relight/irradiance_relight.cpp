@@ -25,7 +25,7 @@ class IrradianceRelightPass final : public Pass {
 
   void record(RecordContext& ctx) override {
     using namespace glsl;
-    IrrRelightPush push{make_vc_params(ctx.settings, ctx.frame)};
+    IrrRelightPush push{make_vc_params(ctx.scene, ctx.settings, ctx.frame)};
     record_compute(ctx, {.shader = "irradiance_relight.comp",
                          .push = &push,
                          .push_bytes = sizeof(push),

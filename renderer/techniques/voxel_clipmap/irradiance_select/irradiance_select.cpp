@@ -24,7 +24,7 @@ class IrradianceSelectPass final : public Pass {
 
   void record(RecordContext& ctx) override {
     using namespace glsl;
-    IrrSelectPush push{make_vc_params(ctx.settings, ctx.frame)};
+    IrrSelectPush push{make_vc_params(ctx.scene, ctx.settings, ctx.frame)};
     record_compute(ctx, {.shader = "irradiance_select.comp",
                          .groups_x = 1,
                          .push = &push,

@@ -11,6 +11,7 @@ VC_CUBE_BUFFERS(kIrrShadeBindX, kIrrShadeBindY, kIrrShadeBindZ, kIrrShadeBindCel
 VC_VOXEL_BUFFER(kIrrShadeBindVoxels, readonly)
 layout(set = 0, binding = kIrrShadeBindNormal, rgba16f) uniform readonly image2D gb_normal;
 layout(set = 0, binding = kIrrShadeBindPosition, rgba32f) uniform readonly image2D gb_position;
+layout(set = 0, binding = kIrrShadeBindDirect, rgba32f) uniform readonly image2D direct_light;
 layout(set = 0, binding = kIrrShadeBindBounce, rgba32f) uniform writeonly image2D out_bounce;
 layout(set = 0, binding = kIrrShadeBindSky, rgba32f) uniform writeonly image2D out_sky;
 #define VC_HAS_STATE
@@ -32,7 +33,10 @@ void main() {
       gib_camera_ray(vec2(p) + 0.5, o, d);
       n = -d;
     }
-    vc_irradiance(pos.xyz, normalize(n), vc_flag(kVcFlagConvexOffset), bounce, sky);
+    float hit;
+    vc_irradiance(pos.xyz, normalize(n), vc_flag(kVcFlagConvexOffset), bounce, sky, hit);
+    // The pixel's sky rays counted the sky where they escaped: bounce over the share that met a surface.
+    if (vc_flag(kVcFlagPixelSkyHits)) bounce = vc_bounce_for_pixel(bounce, hit, imageLoad(direct_light, p).a);
   }
   imageStore(out_bounce, p, vec4(bounce, 1.0));
   imageStore(out_sky, p, vec4(vc_flag(kVcFlagSkyFromCubes) ? sky : vec3(0.0), 1.0));

@@ -16,16 +16,18 @@ class IrradianceShadePass final : public Pass {
                {"irradiance_y", Access::read},          {"irradiance_z", Access::read},
                {"irradiance_cell_state", Access::read}, {"scene_voxel_data", Access::read},
                {"gbuffer_normal", Access::read},        {"gbuffer_position", Access::read},
+               {"direct_light", Access::read},
                {"gi_irradiance", Access::write, out},   {"gi_direct_irradiance", Access::write, out}};
     return d;
   }
 
   void record(RecordContext& ctx) override {
     using namespace glsl;
-    IrrShadePush push{make_vc_params(ctx.settings, ctx.frame)};
+    IrrShadePush push{make_vc_params(ctx.scene, ctx.settings, ctx.frame)};
     record_compute(ctx, {.shader = "irradiance_shade.comp",
                          .images = {{kIrrShadeBindNormal, "gbuffer_normal"},
                                     {kIrrShadeBindPosition, "gbuffer_position"},
+                                    {kIrrShadeBindDirect, "direct_light"},
                                     {kIrrShadeBindBounce, "gi_irradiance"},
                                     {kIrrShadeBindSky, "gi_direct_irradiance"}},
                          .groups_x = div_up(ctx.width("gi_irradiance"), kIrrShadeGroup),

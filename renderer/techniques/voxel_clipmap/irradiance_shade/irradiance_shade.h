@@ -6,9 +6,11 @@
 // cell along the normal and drops corner cells behind the surface's plane, so a wall's far side
 // does not leak into its near side. Writes gi_irradiance (bounce light, the AOV contract's
 // indirect) and gi_direct_irradiance (the cubes' sky part, direct light, when direct_lighting
-// traces no sky rays; else 0), both irradiance / pi, for composite.
+// traces no sky rays; else 0), both irradiance / pi, for composite. Where the pixel's sky rays
+// counted the sky (direct_light's alpha: the share of them that met a surface), the bounce is
+// gathered over that share only, so no direction is counted twice (vc_bounce_for_pixel).
 // Slots: read voxel_clip_state, irradiance_x/_y/_z, irradiance_cell_state, gbuffer_normal,
-// gbuffer_position, scene_voxel_data (ordering only: the feed's voxels are this frame's);
+// gbuffer_position, direct_light, scene_voxel_data (ordering only: the feed's voxels are this frame's);
 // writes gi_irradiance, gi_direct_irradiance.
 // Limits: no SSAO or specular term (5.2).
 #pragma once

@@ -74,12 +74,17 @@ void main() {
   vec3 emitted = imageLoad(gb_emissive, p).rgb;
   // direct_light holds the emission too; the voxel keeps it apart (relit cells count it as
   // direct light, the AOV contract's: emission reaching a surface with no further bounce).
-  vec3 direct = max(imageLoad(direct_light, p).rgb - emitted, vec3(0.0));
+  vec4 direct_hits = imageLoad(direct_light, p);
+  vec3 direct = max(direct_hits.rgb - emitted, vec3(0.0));
   if (vc_flag(kVcFlagNanGuards) && !gib_finite(direct)) return;
   vec3 bounce, sky;
   // With the wall test of VC_CONVEX_VOXELS (geometry_light): it reads the geometry flag, which
   // this kernel keeps, not the opacities it writes, so thread timing does not matter.
-  vc_irradiance(x, n, vc_flag(kVcFlagConvexOffset), bounce, sky);
+  float hit;
+  vc_irradiance(x, n, vc_flag(kVcFlagConvexOffset), bounce, sky, hit);
+  // The pixel's sky rays counted the sky where they escaped: bounce over the share that met a
+  // surface (as irradiance_shade), so the voxel holds the pixel's radiance with no direction twice.
+  if (vc_flag(kVcFlagPixelSkyHits)) bounce = vc_bounce_for_pixel(bounce, hit, direct_hits.a);
   if (!vc_flag(kVcFlagMultiBounce)) bounce = vec3(0.0);
   vec3 radiance = direct + albedo * (bounce + (vc_flag(kVcFlagSkyFromCubes) ? sky : vec3(0.0)));
   if (vc_flag(kVcFlagNanGuards) && !(gib_finite(radiance) && gib_finite(emitted))) return;

@@ -33,7 +33,7 @@ class SceneVoxelFeedPass final : public Pass {
     using namespace glsl;
     const VoxelClipmapSettings& p = ctx.settings.params<VoxelClipmapSettings>();
     ScFeedPush push{};
-    push.vc = make_vc_params(ctx.settings, ctx.frame);
+    push.vc = make_vc_params(ctx.scene, ctx.settings, ctx.frame);
     uint32_t ids[kScFeedMaxMoving];
     for (uint32_t& id : ids) id = 0xffffffffu;
     uint32_t n = 0;

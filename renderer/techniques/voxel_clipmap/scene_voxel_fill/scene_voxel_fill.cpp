@@ -22,7 +22,7 @@ class SceneVoxelFillPass final : public Pass {
   void record(RecordContext& ctx) override {
     using namespace glsl;
     const VoxelClipmapSettings& p = ctx.settings.params<VoxelClipmapSettings>();
-    ScFillPush push{make_vc_params(ctx.settings, ctx.frame)};
+    ScFillPush push{make_vc_params(ctx.scene, ctx.settings, ctx.frame)};
     ctx.cmd.barrier(kStageCompute, kStageTransfer);
     ctx.cmd.fill(ctx.buffer("voxel_geometry"), 0);
     ctx.cmd.barrier(kStageTransfer, kStageCompute);

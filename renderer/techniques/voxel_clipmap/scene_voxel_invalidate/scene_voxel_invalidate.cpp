@@ -70,7 +70,7 @@ class SceneVoxelInvalidatePass final : public Pass {
     const std::vector<Box> boxes = moved_boxes(ctx.scene, ctx.frame, ctx.settings.world_offset);
     if (boxes.empty()) return;
     ScInvalidatePush push{};
-    push.vc = make_vc_params(ctx.settings, ctx.frame);
+    push.vc = make_vc_params(ctx.scene, ctx.settings, ctx.frame);
     for (size_t i = 0; i < boxes.size(); ++i) {
       push.box_min[i] = {boxes[i].lo.x, boxes[i].lo.y, boxes[i].lo.z, 0};
       push.box_max[i] = {boxes[i].hi.x, boxes[i].hi.y, boxes[i].hi.z, 0};

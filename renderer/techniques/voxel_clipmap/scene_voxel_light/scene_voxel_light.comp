@@ -82,7 +82,8 @@ void main() {
   vec3 albedo = gib_material_albedo(m, surf.uv);
   vec3 emitted = gib_material_emissive(m, surf.uv);
   vec3 bounce, sky;
-  vc_irradiance(surf.position, surf.normal, vc_flag(kVcFlagConvexOffset), bounce, sky);
+  float hit;
+  vc_irradiance(surf.position, surf.normal, vc_flag(kVcFlagConvexOffset), bounce, sky, hit);
   if (!vc_flag(kVcFlagMultiBounce)) bounce = vec3(0.0);
   vec3 radiance = albedo * (direct_light(surf.position, surf.normal) / GIB_PI + bounce + sky);
   if (vc_flag(kVcFlagNanGuards) && !(gib_finite(radiance) && gib_finite(emitted))) return;

@@ -28,7 +28,7 @@ class SceneVoxelLightPass final : public Pass {
     using namespace glsl;
     const VoxelClipmapSettings& p = ctx.settings.params<VoxelClipmapSettings>();
     const uint32_t visits = vc_lit_visits(p);
-    ScLightPush push{make_vc_params(ctx.settings, ctx.frame)};
+    ScLightPush push{make_vc_params(ctx.scene, ctx.settings, ctx.frame)};
     const SceneFeatures f = ctx.scene.features();
     record_compute(ctx, {.shader = "scene_voxel_light.comp",
                          .groups_x = div_up(visits, kScLightGroup),

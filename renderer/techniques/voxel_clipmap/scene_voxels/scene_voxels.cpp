@@ -22,7 +22,7 @@ class SceneVoxelsPass final : public Pass {
   void record(RecordContext& ctx) override {
     using namespace glsl;
     const VoxelClipmapSettings& p = ctx.settings.params<VoxelClipmapSettings>();
-    ScVoxelsPush push{make_vc_params(ctx.settings, ctx.frame)};
+    ScVoxelsPush push{make_vc_params(ctx.scene, ctx.settings, ctx.frame)};
     auto dispatch = [&](uint32_t kernel, const char* label, uint32_t groups) {
       record_compute(ctx, {.shader = "scene_voxels.comp",
                            .groups_x = groups,
