@@ -8,18 +8,13 @@ namespace {
 class CompositePass final : public Pass {
  public:
   PassDecl declare(const Scene&, const Settings&) const override {
-    ResourceDesc color{Format::rgba32_float, SizeRule::render};
-    color.persistent = true;
-    color.values = non_negative_values();
     PassDecl d;
     d.name = "composite";
     d.slots = {{"direct_light", Access::read},
                {"gbuffer_albedo", Access::read},
                {"gi_irradiance", Access::read},
-               {"gi_direct_irradiance", Access::read},
-               {"final_color", Access::write, color},
-               {"indirect_diffuse", Access::write, ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values())},
-               {"direct_radiance", Access::write, ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values())}};
+               {"gi_direct_irradiance", Access::read}};
+    for (Slot& s : composite_output_slots()) d.slots.push_back(std::move(s));
     return d;
   }
 
@@ -40,6 +35,16 @@ class CompositePass final : public Pass {
 };
 
 }  // namespace
+
+std::vector<Slot> composite_output_slots() {
+  ResourceDesc color{Format::rgba32_float, SizeRule::render};
+  color.persistent = true;
+  color.values = non_negative_values();
+  const ResourceDesc aov = ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values());
+  return {{"final_color", Access::write, color},
+          {"indirect_diffuse", Access::write, aov},
+          {"direct_radiance", Access::write, aov}};
+}
 
 std::unique_ptr<Pass> make_composite_pass() { return std::make_unique<CompositePass>(); }
 

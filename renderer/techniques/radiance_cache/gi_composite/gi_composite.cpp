@@ -1,5 +1,6 @@
 #include "renderer/techniques/radiance_cache/gi_composite/gi_composite.h"
 
+#include "renderer/passes/composite/composite.h"
 #include "renderer/techniques/radiance_cache/gi_composite/gi_composite_shared.h"
 #include "renderer/techniques/radiance_cache/gi_upscale/gi_upscale.h"
 #include "renderer/techniques/radiance_cache/radiance_cache.h"
@@ -17,19 +18,14 @@ const char* shader_for(uint32_t history_format) {
 class GiCompositePass final : public Pass {
  public:
   PassDecl declare(const Scene&, const Settings&) const override {
-    ResourceDesc color{Format::rgba32_float, SizeRule::render};
-    color.persistent = true;
-    color.values = non_negative_values();
     PassDecl d;
     d.name = "gi_composite";
     d.slots = {{"direct_light", Access::read},
                {"gbuffer_albedo", Access::read},
                {"gi_history", Access::read},
                {"gi_history_direct", Access::read},
-               {"exposure", Access::read},
-               {"final_color", Access::write, color},
-               {"indirect_diffuse", Access::write, ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values())},
-               {"direct_radiance", Access::write, ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values())}};
+               {"exposure", Access::read}};
+    for (Slot& s : composite_output_slots()) d.slots.push_back(std::move(s));
     return d;
   }
 
