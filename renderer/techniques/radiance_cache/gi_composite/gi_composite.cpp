@@ -8,13 +8,6 @@
 namespace gib {
 namespace {
 
-const char* shader_for(uint32_t history_format) {
-  static const char* const kShaders[] = {"gi_composite_rgb9e5.comp", "gi_composite_rgba16f.comp",
-                                         "gi_composite_r11g11b10f.comp", "gi_composite_rgba32f.comp"};
-  (void)gi_history_format(history_format);  // throws when out of range
-  return kShaders[history_format];
-}
-
 class GiCompositePass final : public Pass {
  public:
   PassDecl declare(const Scene&, const Settings&) const override {
@@ -32,7 +25,7 @@ class GiCompositePass final : public Pass {
   void record(RecordContext& ctx) override {
     using namespace glsl;
     const RadianceCacheSettings& r = ctx.settings.params<RadianceCacheSettings>();
-    record_compute(ctx, {.shader = shader_for(r.history_format),
+    record_compute(ctx, {.shader = gi_history_shader("gi_composite", r.history_format),
                          .images = {{kGiCompositeBindDirect, "direct_light"},
                                     {kGiCompositeBindAlbedo, "gbuffer_albedo"},
                                     {kGiCompositeBindHistory, "gi_history"},

@@ -7,13 +7,6 @@
 namespace gib {
 namespace {
 
-const char* shader_for(uint32_t history_format) {
-  static const char* const kShaders[] = {"gi_resolve_rgb9e5.comp", "gi_resolve_rgba16f.comp",
-                                         "gi_resolve_r11g11b10f.comp", "gi_resolve_rgba32f.comp"};
-  (void)gi_history_format(history_format);  // throws when out of range
-  return kShaders[history_format];
-}
-
 class GiResolvePass final : public Pass {
  public:
   PassDecl declare(const Scene&, const Settings&) const override {
@@ -31,7 +24,7 @@ class GiResolvePass final : public Pass {
   void record(RecordContext& ctx) override {
     using namespace glsl;
     const RadianceCacheSettings& r = ctx.settings.params<RadianceCacheSettings>();
-    record_compute(ctx, {.shader = shader_for(r.history_format),
+    record_compute(ctx, {.shader = gi_history_shader("gi_resolve", r.history_format),
                          .images = {{kGiResolveBindHistory, "gi_history"},
                                     {kGiResolveBindHistoryDirect, "gi_history_direct"},
                                     {kGiResolveBindIrradiance, "gi_irradiance"},

@@ -20,6 +20,12 @@ Format gi_history_format(uint32_t history_format) {
                                "or 3 (rgba32f), got {}", history_format));
 }
 
+std::string gi_history_shader(const std::string& stem, uint32_t history_format) {
+  static const char* const kSuffixes[] = {"_rgb9e5.comp", "_rgba16f.comp", "_r11g11b10f.comp", "_rgba32f.comp"};
+  (void)gi_history_format(history_format);  // throws when out of range
+  return stem + kSuffixes[history_format];
+}
+
 namespace {
 
 // The side of the gather-pixel tile an 8x8 group of full-res pixels reads (gi_upscale.glsl,
@@ -32,13 +38,6 @@ uint32_t upscale_tile_side(uint32_t divisor) {
     return int(std::floor((float(p) - float(divisor / 2)) / float(divisor)));
   };
   return uint32_t((first_tap(glsl::kUpscaleGroup - 1) + 2) - (first_tap(0) - 1) + 1);
-}
-
-const char* shader_for(uint32_t history_format) {
-  static const char* const kShaders[] = {"gi_upscale_rgb9e5.comp", "gi_upscale_rgba16f.comp",
-                                         "gi_upscale_r11g11b10f.comp", "gi_upscale_rgba32f.comp"};
-  (void)gi_history_format(history_format);  // throws when out of range
-  return kShaders[history_format];
 }
 
 class GiUpscalePass final : public Pass {
@@ -79,7 +78,7 @@ class GiUpscalePass final : public Pass {
                      ctx.frame, 0};
     static_assert(sizeof(push) == 32, "UpscalePush must match gi_upscale.glsl's push block");
     ComputePipelineDesc desc;
-    desc.shader = shader_for(r.history_format);
+    desc.shader = gi_history_shader("gi_upscale", r.history_format);
     desc.bindings = scene_bindings();
     desc.push_constant_bytes = sizeof(push);
     const bool tiled = r.upscale_kernel == 0;

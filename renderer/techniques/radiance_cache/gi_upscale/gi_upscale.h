@@ -38,6 +38,7 @@
 // (a pixel whose history is all rejected restarts its frame counter).
 #pragma once
 #include <memory>
+#include <string>
 
 #include "renderer/graph/pass.h"
 
@@ -45,4 +46,7 @@ namespace gib {
 std::unique_ptr<Pass> make_gi_upscale_pass();
 // The storage format of gi_history for RadianceCacheSettings::history_format (0..3).
 Format gi_history_format(uint32_t history_format);
+// The kernel `stem` compiled for that history format: "<stem>_rgb9e5.comp", "_rgba16f",
+// "_r11g11b10f" or "_rgba32f" (gi_upscale, gi_composite and gi_resolve each have the four).
+std::string gi_history_shader(const std::string& stem, uint32_t history_format);
 }
