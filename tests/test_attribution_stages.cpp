@@ -70,6 +70,40 @@ TEST(TechniqueStages, StagesCoverThePassesInOrder) {
   EXPECT_GE(with_stages, 3u);  // probe-volume, radiance-cache, voxel-clipmap
 }
 
+TEST(ProbeVolumeStages, DenoiseOracleIsTheSeedMeanOfTheDecodedSh) {
+  const codecs::YcocgSh a = {0.5f, 0.1f, -0.2f, 0.05f, 0.02f, -0.01f}, b = {0.25f, -0.1f, 0.1f, 0.0f, -0.02f, 0.03f};
+  OracleInputs in;
+  for (const codecs::YcocgSh& v : {a, b}) {
+    const std::array<uint32_t, 2> w = codecs::pack_ycocg_sh(v);
+    std::vector<uint8_t> bytes(8);
+    std::memcpy(bytes.data(), w.data(), 8);
+    in.seeds.push_back({{"pixel_sh", bytes}});
+  }
+  const auto out = stage("denoise").make(in);
+  const std::vector<float> y = as_floats(out.at("pixel_gi_y")), c = as_floats(out.at("pixel_gi_c"));
+  const codecs::YcocgSh da = codecs::unpack_ycocg_sh(codecs::pack_ycocg_sh(a));
+  const codecs::YcocgSh db = codecs::unpack_ycocg_sh(codecs::pack_ycocg_sh(b));
+  ASSERT_EQ(y.size(), 4u);
+  for (int j = 0; j < 4; ++j) EXPECT_FLOAT_EQ(y[j], 0.5f * (da[j] + db[j])) << j;
+  EXPECT_FLOAT_EQ(c[0], 0.5f * (da[4] + db[4]));
+  EXPECT_FLOAT_EQ(c[1], 0.5f * (da[5] + db[5]));
+}
+
+TEST(ProbeVolumeStages, ProbesOracleIsTheSeedMeanOfTheHalfTexels) {
+  OracleInputs in;
+  for (float base : {1.0f, 3.0f}) {
+    std::vector<uint8_t> bytes(4);
+    const uint16_t h[2] = {codecs::float_to_half(base), codecs::float_to_half(base + 1.0f)};
+    std::memcpy(bytes.data(), h, 4);
+    in.seeds.push_back({{"probe_irradiance", bytes}, {"probe_radiance", bytes}});
+  }
+  const auto out = stage("probes").make(in);
+  uint16_t h[2];
+  std::memcpy(h, out.at("probe_irradiance").data(), 4);
+  EXPECT_EQ(codecs::half_to_float(h[0]), 2.0f);
+  EXPECT_EQ(codecs::half_to_float(h[1]), 3.0f);
+}
+
 TEST(StageOracles, Rgb9e5MeanIsTheMeanOfTheDecodedTexelsReencoded) {
   OracleInputs in;
   for (float base : {1.0f, 2.0f}) {
