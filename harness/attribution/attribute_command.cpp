@@ -100,10 +100,9 @@ int cmd_attribute(const AttributeOptions& o) {
   return 0;
 }
 
-nlohmann::json attribute_row(Gpu& gpu_ref, const Case& c, Tier tier, const TechniqueRun& run, const std::string& preset,
+nlohmann::json attribute_row(Gpu& gpu, const Case& c, Tier tier, const TechniqueRun& run, const std::string& preset,
                              const AttributionSettings& st, const SuiteOptions& suite, bool verbose) {
-  Gpu* gpu = &gpu_ref;
-  const DeviceInfo& dev = gpu->info();
+  const DeviceInfo& dev = gpu.info();
   const Technique& t = find_technique(run.technique);
   if (std::none_of(t.stages.begin(), t.stages.end(), [](const TechniqueStage& x) { return bool(x.make); }))
     throw std::invalid_argument(fmt::format("attribute: technique '{}' declares no stage with an oracle "
@@ -116,7 +115,7 @@ nlohmann::json attribute_row(Gpu& gpu_ref, const Case& c, Tier tier, const Techn
   const bool analytic = c.reference_spp == 0 && c.analytic_value.has_value();
   const std::string cache_root = tier == Tier::gpu ? reference_cache_root(suite.reference_cache) : "";
   const GoldenStore store =
-      analytic ? GoldenStore(suite.goldens_dir, c.name) : prepare_references(*gpu, suite.goldens_dir, cache_root, c, tier).store;
+      analytic ? GoldenStore(suite.goldens_dir, c.name) : prepare_references(gpu, suite.goldens_dir, cache_root, c, tier).store;
   if (verbose)
     fmt::print("attribute {} {} {} ({}x{}, {} frames, compared: {}) on {} ({}), tier {}\n", c.name, run.name(), preset,
              c.width, c.height, run.frames ? run.frames : c.frames, aov, dev.name, dev.driver_info, tier_name(tier));
@@ -126,7 +125,7 @@ nlohmann::json attribute_row(Gpu& gpu_ref, const Case& c, Tier tier, const Techn
   one.frames = 1;
   TechniqueRun one_run = run;
   one_run.frames = 1;
-  const Plan plan = render_case_hooked(*gpu, one, one_run, preset, 1000, {}).plan;
+  const Plan plan = render_case_hooked(gpu, one, one_run, preset, 1000, {}).plan;
   std::vector<size_t> game;  // indices into t.stages of the stages whose oracle plays
   std::map<size_t, std::string> excluded;  // stages with an oracle that cannot play here, and why
   for (size_t i = 0; i < t.stages.size(); ++i) {
@@ -164,7 +163,7 @@ nlohmann::json attribute_row(Gpu& gpu_ref, const Case& c, Tier tier, const Techn
   const auto t0 = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   for (uint32_t s = 0; s < st.oracle_seeds; ++s) {
-    CaseRender r = render_case_hooked(*gpu, c, run, preset, 1000 + s, reads);
+    CaseRender r = render_case_hooked(gpu, c, run, preset, 1000 + s, reads);
     for (const std::string& name : reads.read) {
       const ResolvedResource* res = r.plan.find(name);
       in.formats[name] = res->desc.format;
@@ -211,7 +210,7 @@ nlohmann::json attribute_row(Gpu& gpu_ref, const Case& c, Tier tier, const Techn
     opts.noise_floor.assign(rois.size(), 0.0);
     if (verbose) fmt::print("  reference: the analytic value {} (no noise floor)\n", *c.analytic_value);
   } else {
-    opts.noise_floor = reference_noise(*gpu, c, aov, st.noise_spp, committed_spp, rois);
+    opts.noise_floor = reference_noise(gpu, c, aov, st.noise_spp, committed_spp, rois);
     if (verbose)
       fmt::print("  reference noise floor from two {}-spp renders, scaled to the reference's {} spp ({:.0f} s)\n",
                st.noise_spp, committed_spp, elapsed());
@@ -222,7 +221,7 @@ nlohmann::json attribute_row(Gpu& gpu_ref, const Case& c, Tier tier, const Techn
     RunHooks hooks;
     for (size_t i = 0; i < oracles.size(); ++i)
       if (mask & (1u << i)) hooks.overrides.insert(hooks.overrides.end(), oracles[i].begin(), oracles[i].end());
-    FloatImage img = render_case_hooked(*gpu, c, run, preset, seed, hooks).image;
+    FloatImage img = render_case_hooked(gpu, c, run, preset, seed, hooks).image;
     ++done;
     if (verbose)
       fmt::print("  render {}/{}: oracles {{{}}} seed {} ({:.0f} s)\n", done, total, attribution::mask_names(names, mask),

@@ -20,9 +20,13 @@ const Bytes& seed_bytes(const OracleInputs& in, size_t seed, const std::string& 
 
 namespace {
 
-// The seeds' mean of `name`, read and written `Size` bytes per value through decode / encode.
+// The seeds' mean of `name`, read and written `Size` bytes per value through decode / encode;
+// seed s's values times seed_scale[s] when given.
 template <size_t Size, class Word, class Decode, class Encode>
-Bytes mean_of(const OracleInputs& in, const std::string& name, Decode decode, Encode encode) {
+Bytes mean_of(const OracleInputs& in, const std::string& name, Decode decode, Encode encode,
+              const std::vector<double>& seed_scale = {}) {
+  if (!seed_scale.empty() && seed_scale.size() != in.seeds.size())
+    throw std::runtime_error(fmt::format("stage oracle: '{}': expected a scale per seed", name));
   const size_t values = seed_bytes(in, 0, name).size() / Size;
   constexpr size_t kChannels = std::tuple_size_v<decltype(decode(Word{}))>;
   std::vector<double> sum(values * kChannels, 0.0);
@@ -33,7 +37,8 @@ Bytes mean_of(const OracleInputs& in, const std::string& name, Decode decode, En
       Word w;
       std::memcpy(&w, &b[i * Size], Size);
       const auto v = decode(w);
-      for (size_t c = 0; c < kChannels; ++c) sum[i * kChannels + c] += v[c];
+      for (size_t c = 0; c < kChannels; ++c)
+        sum[i * kChannels + c] += seed_scale.empty() ? double(v[c]) : double(v[c]) * seed_scale[s];
     }
   }
   Bytes out(values * Size);
@@ -49,10 +54,10 @@ Bytes mean_of(const OracleInputs& in, const std::string& name, Decode decode, En
 
 }  // namespace
 
-Bytes mean_halves(const OracleInputs& in, const std::string& name) {
+Bytes mean_halves(const OracleInputs& in, const std::string& name, const std::vector<double>& seed_scale) {
   return mean_of<2, uint16_t>(
       in, name, [](uint16_t h) { return std::array<float, 1>{codecs::half_to_float(h)}; },
-      [](const std::array<float, 1>& m) { return codecs::float_to_half(m[0]); });
+      [](const std::array<float, 1>& m) { return codecs::float_to_half(m[0]); }, seed_scale);
 }
 
 Bytes mean_floats(const OracleInputs& in, const std::string& name) {
@@ -75,6 +80,24 @@ Bytes floats_to_bytes(const std::vector<float>& v) {
   Bytes b(v.size() * 4);
   std::memcpy(b.data(), v.data(), b.size());
   return b;
+}
+
+Bytes reference_rgba32f(const OracleInputs& in, const std::string& aov, const Bytes* alpha_from) {
+  const FloatImage& ref = in.reference.at(aov);
+  if (ref.width != in.width || ref.height != in.height)
+    throw std::runtime_error(fmt::format("stage oracle: expected a {}x{} reference '{}', got {}x{}", in.width,
+                                         in.height, aov, ref.width, ref.height));
+  const size_t n = size_t(in.width) * in.height;
+  if (alpha_from && alpha_from->size() != n * 16)
+    throw std::runtime_error("stage oracle: expected an RGBA32F render-size image to keep the alpha of");
+  std::vector<float> v(n * 4, 1.0f);
+  for (uint32_t y = 0; y < in.height; ++y)
+    for (uint32_t x = 0; x < in.width; ++x) {
+      const size_t i = size_t(y) * in.width + x;
+      for (uint32_t ch = 0; ch < 3; ++ch) v[i * 4 + ch] = ref.at(x, y, ch);
+      if (alpha_from) std::memcpy(&v[i * 4 + 3], &(*alpha_from)[i * 16 + 12], 4);
+    }
+  return floats_to_bytes(v);
 }
 
 std::map<std::string, Bytes> exact_gi_irradiance(const OracleInputs& in) {

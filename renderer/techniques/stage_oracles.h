@@ -18,12 +18,17 @@ using Bytes = std::vector<uint8_t>;
 const Bytes& seed_bytes(const OracleInputs& in, size_t seed, const std::string& name);
 
 // The seeds' mean of a resource stored as 16-bit halves, 32-bit floats or RGB9E5 words (each
-// rounded back to its encoding; RGB9E5 by round to nearest).
-Bytes mean_halves(const OracleInputs& in, const std::string& name);
+// rounded back to its encoding; RGB9E5 by round to nearest). mean_halves: seed s's values times
+// seed_scale[s] when given (one per seed).
+Bytes mean_halves(const OracleInputs& in, const std::string& name, const std::vector<double>& seed_scale = {});
 Bytes mean_floats(const OracleInputs& in, const std::string& name);
 Bytes mean_rgb9e5(const OracleInputs& in, const std::string& name);
 
 Bytes floats_to_bytes(const std::vector<float>& v);
+
+// The reference's `aov` as render-size RGBA32F texels; alpha 1, or that of `alpha_from` (an
+// RGBA32F render-size image) when given. An error when the reference is another size.
+Bytes reference_rgba32f(const OracleInputs& in, const std::string& aov, const Bytes* alpha_from = nullptr);
 
 // gi_irradiance (rgba32f, E / pi) that makes the shared composite's indirect_diffuse the
 // reference's: the reference indirect_diffuse over the G-buffer albedo, 0 where the albedo is.

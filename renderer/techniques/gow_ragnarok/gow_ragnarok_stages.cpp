@@ -1,37 +1,12 @@
 #include "renderer/techniques/gow_ragnarok/gow_ragnarok_stages.h"
 
-#include <fmt/format.h>
-
-#include <cstring>
-#include <stdexcept>
-
 #include "renderer/techniques/stage_oracles.h"
 
 namespace gib {
 
 namespace {
-
 using oracles::Bytes;
-
-// `aov` of the reference as RGBA32F texels; alpha from `alpha_from` (same size) or 1.
-Bytes reference_rgba32f(const OracleInputs& in, const std::string& aov, const Bytes* alpha_from) {
-  const FloatImage& ref = in.reference.at(aov);
-  if (ref.width != in.width || ref.height != in.height)
-    throw std::runtime_error(fmt::format("gow-ragnarok oracle: expected a {}x{} reference '{}', got {}x{}", in.width,
-                                         in.height, aov, ref.width, ref.height));
-  const size_t n = size_t(in.width) * in.height;
-  if (alpha_from && alpha_from->size() != n * 16)
-    throw std::runtime_error("gow-ragnarok oracle: expected an RGBA32F render-size image to keep the alpha of");
-  std::vector<float> v(n * 4, 1.0f);
-  for (uint32_t y = 0; y < in.height; ++y)
-    for (uint32_t x = 0; x < in.width; ++x) {
-      const size_t i = size_t(y) * in.width + x;
-      for (uint32_t ch = 0; ch < 3; ++ch) v[i * 4 + ch] = ref.at(x, y, ch);
-      if (alpha_from) std::memcpy(&v[i * 4 + 3], &(*alpha_from)[i * 16 + 12], 4);
-    }
-  return oracles::floats_to_bytes(v);
-}
-
+using oracles::reference_rgba32f;
 }  // namespace
 
 std::vector<TechniqueStage> gow_ragnarok_stages() {
@@ -42,7 +17,7 @@ std::vector<TechniqueStage> gow_ragnarok_stages() {
   s[0].after_pass = "direct_lighting";
   s[0].reference_aovs = {"direct"};
   s[0].make = [](const OracleInputs& in) {
-    return std::map<std::string, Bytes>{{"direct_light", reference_rgba32f(in, "direct", nullptr)}};
+    return std::map<std::string, Bytes>{{"direct_light", reference_rgba32f(in, "direct")}};
   };
   s[1].name = "ssgi";
   s[1].passes = {"ssdo", "ssgi", "ssdo_ssgi"};

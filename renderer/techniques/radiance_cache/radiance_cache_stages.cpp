@@ -1,12 +1,9 @@
 #include "renderer/techniques/radiance_cache/radiance_cache_stages.h"
 
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <cstring>
 #include <stdexcept>
 
-#include "renderer/codecs/half.h"
 #include "renderer/techniques/radiance_cache/exposure/exposure_shared.h"
 #include "renderer/techniques/stage_oracles.h"
 
@@ -31,34 +28,20 @@ float exposure_now(const Bytes& exposure) {
 // gather holds irradiance / pi x P (pre-exposure, P from the exposure pass, which follows the
 // image): each read is brought to absolute units by its own P, averaged, and written at a fixed
 // P, the reads' mean, which the oracle also writes into `exposure` (this frame's and last
-// frame's P, after the exposure pass: the whole frame runs at that P) for gi_upscale; without that, an oracle brighter than the technique lowers the
-// next frame's P and gi_upscale divides the frozen values by it: a feedback that drifts.
+// frame's P, after the exposure pass: the whole frame runs at that P) for gi_upscale. Without
+// that, an oracle brighter than the technique lowers the next frame's P and gi_upscale divides
+// the frozen values by it: a feedback that drifts.
 std::map<std::string, Bytes> denoise_oracle(const OracleInputs& in) {
+  std::vector<double> p(in.seeds.size());
   double p_sum = 0.0;
-  for (size_t s = 0; s < in.seeds.size(); ++s) p_sum += exposure_now(oracles::seed_bytes(in, s, "exposure"));
+  for (size_t s = 0; s < in.seeds.size(); ++s) p_sum += p[s] = exposure_now(oracles::seed_bytes(in, s, "exposure"));
   const float p_fixed = float(p_sum / double(in.seeds.size()));
+  std::vector<double> scale(in.seeds.size());
+  for (size_t s = 0; s < in.seeds.size(); ++s) scale[s] = p_fixed / std::max(float(p[s]), 1e-30f);
   std::map<std::string, Bytes> out;
   for (const auto& [from, to] : {std::pair{"gather_sh_r", "gi_sh_r"}, std::pair{"gather_sh_g", "gi_sh_g"},
-                                 std::pair{"gather_sh_b", "gi_sh_b"}, std::pair{"gather_direct", "gi_direct"}}) {
-    const size_t halves = oracles::seed_bytes(in, 0, from).size() / 2;
-    std::vector<double> sum(halves, 0.0);
-    for (size_t s = 0; s < in.seeds.size(); ++s) {
-      const Bytes& b = oracles::seed_bytes(in, s, from);
-      if (b.size() != halves * 2) throw std::runtime_error(fmt::format("radiance-cache oracle: '{}' differs in size", from));
-      const double scale = p_fixed / std::max(exposure_now(oracles::seed_bytes(in, s, "exposure")), 1e-30f);
-      for (size_t i = 0; i < halves; ++i) {
-        uint16_t h;
-        std::memcpy(&h, &b[i * 2], 2);
-        sum[i] += codecs::half_to_float(h) * scale;
-      }
-    }
-    Bytes& o = out[to];
-    o.resize(halves * 2);
-    for (size_t i = 0; i < halves; ++i) {
-      const uint16_t h = codecs::float_to_half(float(sum[i] / double(in.seeds.size())));
-      std::memcpy(&o[i * 2], &h, 2);
-    }
-  }
+                                 std::pair{"gather_sh_b", "gi_sh_b"}, std::pair{"gather_direct", "gi_direct"}})
+    out[to] = oracles::mean_halves(in, from, scale);
   Bytes exposure = oracles::seed_bytes(in, 0, "exposure");
   std::memcpy(&exposure.at(size_t(glsl::kExposureNow) * 4), &p_fixed, 4);
   std::memcpy(&exposure.at(size_t(glsl::kExposurePrev) * 4), &p_fixed, 4);
@@ -70,28 +53,20 @@ std::map<std::string, Bytes> denoise_oracle(const OracleInputs& in) {
 // their sum (alpha 1): the reference's indirect_diffuse in the first, and the seed renders' mean
 // direct_radiance plus it in the last, so next frame's gather reads the same image too.
 std::map<std::string, Bytes> composite_oracle(const OracleInputs& in) {
-  const FloatImage& ref = in.reference.at("indirect_diffuse");
-  if (ref.width != in.width || ref.height != in.height)
-    throw std::runtime_error(fmt::format("radiance-cache oracle: expected a {}x{} reference, got {}x{}", in.width,
-                                         in.height, ref.width, ref.height));
-  const size_t n = size_t(in.width) * in.height;
-  std::vector<float> indirect(n * 4, 1.0f), color(n * 4, 1.0f);
-  for (size_t i = 0; i < n; ++i)
-    for (size_t ch = 0; ch < 3; ++ch) indirect[i * 4 + ch] = ref.pixels[i * ref.channels + ch];
-  std::vector<double> direct(n * 3, 0.0);
-  for (size_t s = 0; s < in.seeds.size(); ++s) {
-    const Bytes& b = oracles::seed_bytes(in, s, "direct_radiance");
-    if (b.size() != n * 16) throw std::runtime_error("radiance-cache oracle: expected an RGBA32F render-size direct_radiance");
-    for (size_t i = 0; i < n; ++i)
-      for (size_t ch = 0; ch < 3; ++ch) {
-        float v;
-        std::memcpy(&v, &b[(i * 4 + ch) * 4], 4);
-        direct[i * 3 + ch] += double(v) / double(in.seeds.size());
-      }
+  Bytes indirect = oracles::reference_rgba32f(in, "indirect_diffuse");
+  const Bytes direct = oracles::mean_floats(in, "direct_radiance");
+  if (direct.size() != indirect.size())
+    throw std::runtime_error("radiance-cache oracle: expected an RGBA32F render-size direct_radiance");
+  Bytes color = indirect;
+  for (size_t i = 0; i < color.size() / 4; ++i) {
+    if (i % 4 == 3) continue;  // alpha 1, as gi_composite writes it
+    float c, d;
+    std::memcpy(&c, &color[i * 4], 4);
+    std::memcpy(&d, &direct[i * 4], 4);
+    c += d;
+    std::memcpy(&color[i * 4], &c, 4);
   }
-  for (size_t i = 0; i < n; ++i)
-    for (size_t ch = 0; ch < 3; ++ch) color[i * 4 + ch] = float(direct[i * 3 + ch]) + indirect[i * 4 + ch];
-  return {{"indirect_diffuse", oracles::floats_to_bytes(indirect)}, {"final_color", oracles::floats_to_bytes(color)}};
+  return {{"indirect_diffuse", std::move(indirect)}, {"final_color", std::move(color)}};
 }
 
 }  // namespace
