@@ -24,6 +24,12 @@ bool per_frame_references(const Case& c) {
 }
 
 namespace {
+uint32_t g_frames_per_submission = 64;
+}  // namespace
+
+void set_frames_per_submission(uint32_t n) { g_frames_per_submission = std::max(1u, n); }
+
+namespace {
 
 // `budget`: a path tracer's samples per pixel, split over frames (0: the case's frames at the
 // preset's samples per frame, like any technique).
@@ -84,27 +90,41 @@ CaseRender render(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::s
       if (roi.name == c.convergence->roi) curve_roi = metrics::Roi{roi.x0, roi.y0, roi.x1, roi.y1};
   }
   const uint32_t keep_last = spp_budget ? 0 : c.flicker_frames;
-  for (uint32_t f = 1; f <= frames; ++f) {
-    results.push_back(ex.run_frame());
-    if (progress) progress(f, frames);
-    if (hooks && !hooks->read.empty() && f < frames && f + hooks->read_frames > frames) {
+  const bool track_nan = c.track_nan;  // the reference too: its accumulation is temporal
+  auto hook_read_after = [&](uint32_t f) {
+    return hooks && !hooks->read.empty() && f < frames && f + hooks->read_frames > frames;
+  };
+  auto eval_after = [&](uint32_t f) { return std::find(eval.begin(), eval.end(), f) != eval.end(); };
+  auto keep_after = [&](uint32_t f) { return keep_last && f + keep_last > frames; };
+  // Frames after which the host reads something end a submission (Executor::run_frames); the
+  // others are submitted together, up to g_frames_per_submission at a time.
+  auto host_reads_after = [&](uint32_t f) {
+    return hook_read_after(f) || eval_after(f) || keep_after(f) || curve_roi || track_nan;
+  };
+  for (uint32_t done = 0; done < frames;) {
+    uint32_t n = 1;
+    while (done + n < frames && n < g_frames_per_submission && !host_reads_after(done + n)) ++n;
+    for (FrameResult& fr : ex.run_frames(n)) results.push_back(std::move(fr));
+    if (progress)
+      for (uint32_t k = 1; k <= n; ++k) progress(done + k, frames);
+    done += n;
+    const uint32_t f = done;  // the frame just run (1-based)
+    if (hook_read_after(f)) {
       auto& reads = r.read_before.emplace_back();
       for (const std::string& name : hooks->read) reads[name] = ex.read_bytes(name);
     }
-    bool eval_here = std::find(eval.begin(), eval.end(), f) != eval.end();
-    bool keep = keep_last && f + keep_last > frames;
-    const bool track_nan = c.track_nan;  // the reference too: its accumulation is temporal
+    const bool eval_here = eval_after(f), keep = keep_after(f);
     if (!eval_here && !keep && !curve_roi && !track_nan) continue;
     FloatImage img = ex.read(out_name);
     if (track_nan) {
-      size_t n = 0;
+      size_t bad_pixels = 0;
       for (uint32_t y = 0; y < img.height; ++y)
         for (uint32_t x = 0; x < img.width; ++x) {
           bool bad = false;
           for (uint32_t ch = 0; ch < img.channels; ++ch) bad |= std::isnan(img.at(x, y, ch));
-          n += bad;
+          bad_pixels += bad;
         }
-      r.nan_pixels.push_back(double(n));
+      r.nan_pixels.push_back(double(bad_pixels));
     }
     if (curve_roi) r.curve.push_back(metrics::roi_mean_luminance(img, *curve_roi));
     if (keep) r.last_frames.push_back(img);

@@ -52,6 +52,11 @@ struct RunHooks {
   uint32_t read_frames = 1;
 };
 
+// Frames a row records into one GPU submission at most (Executor::run_frames), process-wide
+// (`gibench run --frames-per-submission`; default 64). A frame whose output the host reads
+// (an evaluated frame, a curve point, a hook) always ends a submission. At least 1.
+void set_frames_per_submission(uint32_t n);
+
 // `progress` (may be empty) is called after each frame with (frames done, frames in all).
 using FrameProgress = std::function<void(uint32_t done, uint32_t total)>;
 

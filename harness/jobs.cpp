@@ -136,6 +136,7 @@ std::vector<std::string> worker_args(const SuiteOptions& o, const std::string& t
   if (!device.empty()) a.insert(a.end(), {"--device", device});
   if (!o.reference_cache.empty()) a.insert(a.end(), {"--reference-cache", o.reference_cache});
   if (!o.stability_scan) a.push_back("--no-stability-scan");
+  a.insert(a.end(), {"--frames-per-submission", std::to_string(o.frames_per_submission)});
   if (o.validate) a.push_back("--validate");
   for (auto& g : o.case_globs) a.insert(a.end(), {"--case", g});
   for (auto& t : o.techniques) a.insert(a.end(), {"--technique", t});

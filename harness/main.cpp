@@ -74,6 +74,10 @@ int main(int argc, char** argv) {
   run->add_option("-j,--jobs", run_opts.jobs,
                   "rows rendered at once, one worker process each (default 0: one per core on a CPU device, "
                   "8 on a GPU; --device 0,1 spreads them over GPUs)");
+  run->add_option("--frames-per-submission", run_opts.frames_per_submission,
+                  "GPU: frames of a row recorded into one submission between the host's reads of its output "
+                  "(default 64; 1: a submit-and-wait per frame; same output at any value)")
+      ->check(CLI::Range(1u, 4096u));
   run->add_flag("--record-timings", run_opts.record_timings,
                 "write each row's wall seconds into cases/timings/lavapipe.json (the quick profile's costs; CPU device)");
   run->add_flag("--dry-run", run_opts.dry_run,

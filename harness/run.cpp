@@ -15,6 +15,7 @@
 #include <set>
 
 #include "harness/attribution/suite_attribution.h"
+#include "harness/case_render.h"
 #include "harness/jobs.h"
 #include "harness/plan.h"
 #include "harness/progress.h"
@@ -183,6 +184,7 @@ int report_run(const std::string& out, const nlohmann::json& j, const RunPlan& r
 }  // namespace
 
 int cmd_run(const SuiteOptions& o) {
+  set_frames_per_submission(o.frames_per_submission);
   if (o.worker) return run_worker(o);
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // a row's line reaches a log as soon as it ends
   const std::vector<std::string> devices = split_devices(o.device);

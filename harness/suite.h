@@ -48,6 +48,9 @@ struct SuiteOptions {
   // run: rows rendered at once, each worker a process of its own (jobs.h); 0: by device (one
   // per core on a CPU device, kGpuJobs per GPU otherwise).
   unsigned jobs = 1;
+  // run: frames recorded into one GPU submission between the host's reads of a row's output
+  // (Executor::run_frames; 1 = a submit-and-wait per frame). Output is the same at any value.
+  unsigned frames_per_submission = 64;
   // run: write each finished row's wall seconds into cases/timings/lavapipe.json (plan.h
   // RowSeconds; rows of other cases keep theirs). Only on a CPU device.
   bool record_timings = false;

@@ -615,72 +615,85 @@ TEST_F(StabilityScan, ReportsThePassFrameAndPixelThatFirstProducedEachCategory) 
   Settings s;
   s.width = 12;
   s.height = 10;
-  std::vector<std::unique_ptr<Pass>> passes;
-  // stability_inject writes a NaN at (5, 7) on frame 2; stability_forward copies it on (same
-  // frame, later pass) and writes its own +Inf at (2, 3) on frame 1. Both histories keep what
-  // they accumulate, so the bad values live on in later frames.
-  passes.push_back(std::make_unique<InjectPass>("stability_inject", "", "inject_out", "inject_history", 2, 5, 7,
-                                                0x7fc00000u));
-  passes.push_back(std::make_unique<InjectPass>("stability_forward", "inject_out", "forward_out", "forward_history", 1,
-                                                2, 3, 0x7f800000u));
-  Executor ex(gpu(), scene, s, std::move(passes), {"forward_out"});
-  ex.enable_stability_scan();
-  EXPECT_TRUE(ex.stability().clean());
-  for (int f = 0; f < 4; ++f) {
-    FrameResult fr = ex.run_frame();
-    EXPECT_EQ(fr.scan_dispatches, 4u);
-    EXPECT_EQ(fr.passes.size(), 2u);
+  for (bool batched : {false, true}) {
+    SCOPED_TRACE(batched ? "frames in one submission" : "a submission per pass");
+    std::vector<std::unique_ptr<Pass>> passes;
+    // stability_inject writes a NaN at (5, 7) on frame 2; stability_forward copies it on (same
+    // frame, later pass) and writes its own +Inf at (2, 3) on frame 1. Both histories keep what
+    // they accumulate, so the bad values live on in later frames.
+    passes.push_back(std::make_unique<InjectPass>("stability_inject", "", "inject_out", "inject_history", 2, 5, 7,
+                                                  0x7fc00000u));
+    passes.push_back(std::make_unique<InjectPass>("stability_forward", "inject_out", "forward_out", "forward_history", 1,
+                                                  2, 3, 0x7f800000u));
+    Executor ex(gpu(), scene, s, std::move(passes), {"forward_out"});
+    ex.enable_stability_scan();
+    EXPECT_TRUE(ex.stability().clean());
+    // One submission a pass (host-timed, lavapipe's default) or the four frames in one
+    // submission (a GPU's): the scans of each frame land in its own results, read in frame order.
+    std::vector<FrameResult> frames;
+    if (batched) {
+      ex.time_passes_on_host(false);
+      frames = ex.run_frames(4);
+    } else {
+      for (int f = 0; f < 4; ++f) frames.push_back(ex.run_frame());
+    }
+    ASSERT_EQ(frames.size(), 4u);
+    for (uint32_t f = 0; f < 4; ++f) {
+      EXPECT_EQ(frames[f].frame, f);
+      EXPECT_EQ(frames[f].scan_dispatches, 4u);
+      EXPECT_EQ(frames[f].passes.size(), 2u);
+    }
+    const StabilityReport& rep = ex.stability();
+    EXPECT_EQ(rep.frames, 4u);
+    EXPECT_EQ(rep.dispatches_per_frame, 4u);
+    EXPECT_FALSE(rep.clean());
+
+    const StabilityRecord* nan = rep.first(StabilityCategory::nan);
+    ASSERT_NE(nan, nullptr);
+    EXPECT_EQ(nan->pass, "stability_inject");
+    EXPECT_EQ(nan->resource, "inject_out");
+    EXPECT_EQ(nan->first_frame, 2u);
+    EXPECT_EQ(nan->first_x, 5u);
+    EXPECT_EQ(nan->first_y, 7u);
+    EXPECT_EQ(nan->count, 1u);
+    EXPECT_EQ(nan->frames_with_issue, 1u);
+    // Carried on, not produced: the forward pass's copy (same frame, later pass) and the
+    // histories (frames 2 and 3) come after it.
+    const StabilityRecord* copied = rep.find("stability_forward", "forward_out", StabilityCategory::nan);
+    ASSERT_NE(copied, nullptr);
+    EXPECT_EQ(copied->first_frame, 2u);
+    const StabilityRecord* hist = rep.find("stability_inject", "inject_history", StabilityCategory::nan);
+    ASSERT_NE(hist, nullptr);
+    EXPECT_EQ(hist->first_frame, 2u);
+    EXPECT_EQ(hist->frames_with_issue, 2u);
+    EXPECT_EQ(hist->count, 2u);
+    EXPECT_EQ(hist->first_x, 5u);
+    EXPECT_EQ(hist->first_y, 7u);
+
+    // +Inf: produced a frame earlier by the later pass.
+    const StabilityRecord* inf = rep.first(StabilityCategory::pos_inf);
+    ASSERT_NE(inf, nullptr);
+    EXPECT_EQ(inf->pass, "stability_forward");
+    EXPECT_EQ(inf->resource, "forward_out");
+    EXPECT_EQ(inf->first_frame, 1u);
+    EXPECT_EQ(inf->first_x, 2u);
+    EXPECT_EQ(inf->first_y, 3u);
+    const StabilityRecord* inf_hist = rep.find("stability_forward", "forward_history", StabilityCategory::pos_inf);
+    ASSERT_NE(inf_hist, nullptr);
+    EXPECT_EQ(inf_hist->frames_with_issue, 3u);
+    EXPECT_EQ(rep.first(StabilityCategory::neg_inf), nullptr);
+    EXPECT_EQ(rep.first(StabilityCategory::negative), nullptr);
+    EXPECT_EQ(rep.first(StabilityCategory::above_max), nullptr);
+
+    std::vector<std::string> lines = rep.first_offender_lines();
+    ASSERT_EQ(lines.size(), 2u);
+    EXPECT_EQ(lines[0], "NaN first produced by stability_inject writing inject_out at frame 2, pixel (5, 7) (1 texel)");
+    EXPECT_EQ(lines[1], "+Inf first produced by stability_forward writing forward_out at frame 1, pixel (2, 3) (1 texel)");
+    EXPECT_EQ(describe(*hist),
+              "NaN first produced by stability_inject writing inject_history at frame 2, pixel (5, 7) (1 texel; 2 in 2 "
+              "frames in all)");
+    for (auto& l : lines) std::printf("%s\n", l.c_str());
   }
-  const StabilityReport& rep = ex.stability();
-  EXPECT_EQ(rep.frames, 4u);
-  EXPECT_EQ(rep.dispatches_per_frame, 4u);
-  EXPECT_FALSE(rep.clean());
-
-  const StabilityRecord* nan = rep.first(StabilityCategory::nan);
-  ASSERT_NE(nan, nullptr);
-  EXPECT_EQ(nan->pass, "stability_inject");
-  EXPECT_EQ(nan->resource, "inject_out");
-  EXPECT_EQ(nan->first_frame, 2u);
-  EXPECT_EQ(nan->first_x, 5u);
-  EXPECT_EQ(nan->first_y, 7u);
-  EXPECT_EQ(nan->count, 1u);
-  EXPECT_EQ(nan->frames_with_issue, 1u);
-  // Carried on, not produced: the forward pass's copy (same frame, later pass) and the
-  // histories (frames 2 and 3) come after it.
-  const StabilityRecord* copied = rep.find("stability_forward", "forward_out", StabilityCategory::nan);
-  ASSERT_NE(copied, nullptr);
-  EXPECT_EQ(copied->first_frame, 2u);
-  const StabilityRecord* hist = rep.find("stability_inject", "inject_history", StabilityCategory::nan);
-  ASSERT_NE(hist, nullptr);
-  EXPECT_EQ(hist->first_frame, 2u);
-  EXPECT_EQ(hist->frames_with_issue, 2u);
-  EXPECT_EQ(hist->count, 2u);
-  EXPECT_EQ(hist->first_x, 5u);
-  EXPECT_EQ(hist->first_y, 7u);
-
-  // +Inf: produced a frame earlier by the later pass.
-  const StabilityRecord* inf = rep.first(StabilityCategory::pos_inf);
-  ASSERT_NE(inf, nullptr);
-  EXPECT_EQ(inf->pass, "stability_forward");
-  EXPECT_EQ(inf->resource, "forward_out");
-  EXPECT_EQ(inf->first_frame, 1u);
-  EXPECT_EQ(inf->first_x, 2u);
-  EXPECT_EQ(inf->first_y, 3u);
-  const StabilityRecord* inf_hist = rep.find("stability_forward", "forward_history", StabilityCategory::pos_inf);
-  ASSERT_NE(inf_hist, nullptr);
-  EXPECT_EQ(inf_hist->frames_with_issue, 3u);
-  EXPECT_EQ(rep.first(StabilityCategory::neg_inf), nullptr);
-  EXPECT_EQ(rep.first(StabilityCategory::negative), nullptr);
-  EXPECT_EQ(rep.first(StabilityCategory::above_max), nullptr);
-
-  std::vector<std::string> lines = rep.first_offender_lines();
-  ASSERT_EQ(lines.size(), 2u);
-  EXPECT_EQ(lines[0], "NaN first produced by stability_inject writing inject_out at frame 2, pixel (5, 7) (1 texel)");
-  EXPECT_EQ(lines[1], "+Inf first produced by stability_forward writing forward_out at frame 1, pixel (2, 3) (1 texel)");
-  EXPECT_EQ(describe(*hist),
-            "NaN first produced by stability_inject writing inject_history at frame 2, pixel (5, 7) (1 texel; 2 in 2 "
-            "frames in all)");
-  for (auto& l : lines) std::printf("%s\n", l.c_str());
 }
 
 TEST_F(StabilityScan, DirectTechniqueHasNoOffendersAndIsUnchangedByTheScan) {

@@ -96,6 +96,7 @@ Executor::Executor(Gpu& gpu, const Scene& scene, Settings settings, std::vector<
       settings_(std::move(settings)),
       passes_(std::move(passes)),
       average_opacity_(bake_average_opacity(scene_)) {
+  host_timed_passes_ = gpu_.info().is_software();
   for (auto& p : passes_) decls_.push_back(p->declare(scene_, settings_));
   CompileOptions opts;
   opts.features = scene_.features();
@@ -301,16 +302,18 @@ void Executor::plan_stability_scan() {
 
 // Records the scans of running pass `running_index` into cmd; the first of a frame also resets
 // the result buffer. Returns the number of dispatches.
-uint32_t Executor::record_scans(Cmd& cmd, size_t running_index, bool& reset) {
+uint32_t Executor::record_scans(Cmd& cmd, size_t running_index, bool& reset, uint32_t slot) {
   const auto& targets = scan_of_pass_[running_index];
   if (targets.empty()) return 0;
-  if (!scan_results_) {
+  if (scan_results_.size() <= slot) scan_results_.resize(slot + 1);
+  std::shared_ptr<Buffer>& results = scan_results_[slot];
+  if (!results) {
     uint64_t bytes = uint64_t(scan_targets_.size()) * glsl::kStabilityRecordWords * 4;
-    scan_results_ = gpu_.create_buffer(bytes, BufferUsage::storage, "stability_scan_results");
+    results = gpu_.create_buffer(bytes, BufferUsage::storage, "stability_scan_results");
   }
   cmd.begin_label("stability_scan");
   if (!reset) {
-    cmd.fill(*scan_results_, 0);
+    cmd.fill(*results, 0);
     reset = true;
   }
   // The pass's writes (any kind) and the reset before the scan's reads.
@@ -325,7 +328,7 @@ uint32_t Executor::record_scans(Cmd& cmd, size_t running_index, bool& reset) {
                      {glsl::kStabilityScanBindSource, t.source_kind}};
     desc.push_constant_bytes = sizeof(t.push);
     auto pipeline = gpu_.compute_pipeline(desc);
-    Bind binds[2] = {{glsl::kStabilityScanBindResults, scan_results_.get(), nullptr},
+    Bind binds[2] = {{glsl::kStabilityScanBindResults, results.get(), nullptr},
                      {glsl::kStabilityScanBindSource, a.buffer[cur].get(), a.image[cur].get()}};
     cmd.bind(*pipeline, binds, &t.push, sizeof(t.push));
     cmd.dispatch(t.groups_x, t.groups_y);
@@ -336,10 +339,10 @@ uint32_t Executor::record_scans(Cmd& cmd, size_t running_index, bool& reset) {
   return uint32_t(targets.size());
 }
 
-void Executor::collect_scan_results() {
+void Executor::collect_scan_results(uint32_t slot, uint32_t frame) {
   const uint32_t n = uint32_t(scan_targets_.size());
   std::vector<uint32_t> words(size_t(n) * glsl::kStabilityRecordWords);
-  gpu_.download(*scan_results_, words.data(), words.size() * 4);
+  gpu_.download(*scan_results_.at(slot), words.data(), words.size() * 4);
   ++stability_.frames;
   // Scan targets are in execution order then slot order, so appending in this order keeps
   // records in order of first offence.
@@ -368,7 +371,7 @@ void Executor::collect_scan_results() {
         nr.pass = target.pass;
         nr.resource = target.resource;
         nr.category = StabilityCategory(c);
-        nr.first_frame = frame_;
+        nr.first_frame = frame;
         nr.first_count = count;
         nr.first_index = uint32_t(index);
         nr.buffer = target.buffer;
@@ -529,112 +532,176 @@ std::vector<DispatchTiming> resolve_dispatches(Gpu& gpu, const std::vector<Logge
 
 }  // namespace
 
-FrameResult Executor::run_frame() {
-  float time = settings_.scene_time >= 0.0f ? settings_.scene_time : float(frame_) * scene_.frame_time;
+float Executor::frame_time() const {
+  return settings_.scene_time >= 0.0f ? settings_.scene_time : float(frame_) * scene_.frame_time;
+}
+
+// Records running pass i between its timestamp pair (queries q, q + 1; q advances past them and
+// past any dispatch stamps of the profile), then the overrides after it.
+void Executor::record_pass(Cmd& cmd, size_t i, uint32_t& q, uint32_t profile_query_limit,
+                           std::vector<LoggedDispatch>& logged) {
+  const PlannedPass* pp = plan_.running()[i];
+  const PassDecl& decl = decls_[pp->decl_index];
+  if (!pp->barrier_before.resources.empty()) cmd.barrier(pp->barrier_before.src_kinds, pp->barrier_before.dst_kind);
+  cmd.begin_label(decl.name);
+  cmd.timestamp(q++);
+  if (profile_dispatches_) {
+    DispatchLogCmd log(cmd, q, profile_query_limit, profile_query_limit > q);
+    RecordContext ctx(gpu_, log, scene_, scene_gpu_, settings_, frame_, decl.name, bind_slots(decl));
+    passes_[pp->decl_index]->record(ctx);
+    logged = log.dispatches();
+  } else {
+    RecordContext ctx(gpu_, cmd, scene_, scene_gpu_, settings_, frame_, decl.name, bind_slots(decl));
+    passes_[pp->decl_index]->record(ctx);
+  }
+  cmd.timestamp(q++);
+  cmd.end_label();
+  record_overrides(cmd, i);
+}
+
+FrameResult Executor::run_frame() { return run_frames(1).front(); }
+
+std::vector<FrameResult> Executor::run_frames(uint32_t n) {
+  std::vector<FrameResult> out;
+  out.reserve(n);
+  // A moving scene is uploaded before each of its frames, outside any command buffer, so its
+  // frames are submitted one at a time.
+  const bool moving = scene_.features().has(Feature::motion);
+  while (out.size() < n) {
+    if (host_timed_passes_) {
+      out.push_back(run_frame_host_timed());
+      continue;
+    }
+    const uint32_t batch = moving ? 1u : n - uint32_t(out.size());
+    for (FrameResult& fr : run_batch(batch)) out.push_back(std::move(fr));
+  }
+  return out;
+}
+
+// On a CPU device (lavapipe) timestamps inside one submission misattribute work: llvmpipe
+// runs dispatches and draws lazily, so a pass's cost shows up in a later pass or between
+// passes. There every pass is submitted alone and timed by the host clock around its
+// submit-and-wait, which on a CPU device is the time the device spent on it. Stability scans
+// run in a submission of their own after the pass's, so pass timings never include them.
+FrameResult Executor::run_frame_host_timed() {
+  const float time = frame_time();
   if (!scene_uploaded_ || scene_.features().has(Feature::motion)) {
     upload_scene(time);
     scene_uploaded_ = true;
   }
   auto running = plan_.running();
-  // On a CPU device (lavapipe) timestamps inside one submission misattribute work: llvmpipe
-  // runs dispatches and draws lazily, so a pass's cost shows up in a later pass or between
-  // passes. There every pass is submitted alone and timed by the host clock around its
-  // submit-and-wait, which on a CPU device is the time the device spent on it. A GPU records
-  // the whole frame in one submission with a timestamp pair around every pass.
-  const bool per_pass_submit = gpu_.info().is_software();
-  // Stability scans: after each pass's end timestamp (GPU), or in a submission of their own
-  // after the pass's host-timed one (CPU device), so pass timings never include them.
   const bool scan = scan_enabled_ && !scan_targets_.empty();
   bool scan_reset = false;
-  std::vector<bool> scanned_after(running.size(), false);
   FrameResult fr;
   fr.frame = frame_;
-  std::unique_ptr<Cmd> cmd;
-  uint32_t q = 0;
-  std::vector<double> ns;
   auto t_frame = std::chrono::steady_clock::now();
-  // Dispatch profile: timestamps after each dispatch (GPU only), up to kProfileQueries a frame.
-  constexpr uint32_t kProfileQueries = 2048;
-  const bool dispatch_timestamps = profile_dispatches_ && !per_pass_submit;
-  const uint32_t query_count = per_pass_submit ? 2u
-                                               : static_cast<uint32_t>(running.size() * 2 + (scan ? 1 : 0)) +
-                                                     (dispatch_timestamps ? kProfileQueries : 0u);
-  // Each pass's start and end queries (GPU): dispatch stamps of the profile lie between them.
-  std::vector<uint32_t> pass_query(running.size(), 0), pass_end_query(running.size(), 0);
-  std::vector<std::vector<LoggedDispatch>> logged(running.size());
   for (size_t i = 0; i < running.size(); ++i) {
-    const PlannedPass* pp = running[i];
-    if (!cmd) {
-      cmd = gpu_.begin(query_count);
-      if (i == 0) record_frame_constants(*cmd, time);
-    }
-    const PassDecl& decl = decls_[pp->decl_index];
-    if (!pp->barrier_before.resources.empty())
-      cmd->barrier(pp->barrier_before.src_kinds, pp->barrier_before.dst_kind);
-    cmd->begin_label(decl.name);
-    pass_query[i] = q;
-    cmd->timestamp(q++);
-    if (profile_dispatches_) {
-      // Leave the queries this pass's end, every later pass and the closing scan stamp need.
-      const uint32_t reserved = 1u + 2u * static_cast<uint32_t>(running.size() - 1 - i) + (scan ? 1u : 0u);
-      DispatchLogCmd log(*cmd, q, dispatch_timestamps ? query_count - reserved : 0u, dispatch_timestamps);
-      RecordContext ctx(gpu_, log, scene_, scene_gpu_, settings_, frame_, decl.name, bind_slots(decl));
-      passes_[pp->decl_index]->record(ctx);
-      logged[i] = log.dispatches();
-    } else {
-      RecordContext ctx(gpu_, *cmd, scene_, scene_gpu_, settings_, frame_, decl.name, bind_slots(decl));
-      passes_[pp->decl_index]->record(ctx);
-    }
-    pass_end_query[i] = q;
-    cmd->timestamp(q++);
-    cmd->end_label();
-    record_overrides(*cmd, i);
-    if (per_pass_submit) {
-      auto t0 = std::chrono::steady_clock::now();
-      gpu_.submit(std::move(cmd));
-      double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-      fr.passes.push_back({decl.name, ms, {}});
-      fr.passes.back().dispatches = resolve_dispatches(gpu_, logged[i], {}, 0);
-      q = 0;
-      if (scan && !scan_of_pass_[i].empty()) {
-        auto t1 = std::chrono::steady_clock::now();
-        auto scan_cmd = gpu_.begin();
-        fr.scan_dispatches += record_scans(*scan_cmd, i, scan_reset);
-        gpu_.submit(std::move(scan_cmd));
-        fr.scan_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count();
-      }
-    } else if (scan) {
-      const uint32_t d = record_scans(*cmd, i, scan_reset);
-      fr.scan_dispatches += d;
-      scanned_after[i] = d > 0;
+    auto cmd = gpu_.begin(2);
+    if (i == 0) record_frame_constants(*cmd, time);
+    uint32_t q = 0;
+    std::vector<LoggedDispatch> logged;
+    record_pass(*cmd, i, q, 0, logged);
+    auto t0 = std::chrono::steady_clock::now();
+    gpu_.submit(std::move(cmd));
+    double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    fr.passes.push_back({running[i]->name, ms, resolve_dispatches(gpu_, logged, {}, 0)});
+    if (scan && !scan_of_pass_[i].empty()) {
+      auto t1 = std::chrono::steady_clock::now();
+      auto scan_cmd = gpu_.begin();
+      fr.scan_dispatches += record_scans(*scan_cmd, i, scan_reset, 0);
+      gpu_.submit(std::move(scan_cmd));
+      fr.scan_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count();
     }
   }
-  if (per_pass_submit) {
-    fr.total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_frame).count() -
-                  fr.scan_ms;
-  } else if (cmd) {
-    if (scan) cmd->timestamp(q++);  // closes the last pass's scans
-    ns = gpu_.submit(std::move(cmd));
-    const size_t n = running.size();
-    for (size_t i = 0; i < n; ++i) {
-      fr.passes.push_back({running[i]->name, (ns[pass_end_query[i]] - ns[pass_query[i]]) * 1e-6, {}});
-      fr.passes.back().dispatches = resolve_dispatches(gpu_, logged[i], ns, ns[pass_query[i]]);
+  fr.total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_frame).count() -
+                fr.scan_ms;
+  if (scan_reset) collect_scan_results(0, frame_);
+  ++frame_;
+  return fr;
+}
+
+// A GPU records `n` frames in one submission, each pass between a timestamp pair, with a full
+// barrier between frames (what the next frame reads was written by any pass of the last). The
+// commands and their order are those of n single-frame submissions, so the output is the same
+// bit for bit; the host pays one submit-and-wait for the n frames. Stability scans are
+// recorded after each pass's end timestamp into the frame's own results buffer, and collected
+// in frame order after the submission.
+std::vector<FrameResult> Executor::run_batch(uint32_t n) {
+  if (!scene_uploaded_ || scene_.features().has(Feature::motion)) {
+    upload_scene(frame_time());
+    scene_uploaded_ = true;
+  }
+  auto running = plan_.running();
+  const size_t passes = running.size();
+  const bool scan = scan_enabled_ && !scan_targets_.empty();
+  // Dispatch profile: timestamps after each dispatch, up to kProfileQueries a frame.
+  constexpr uint32_t kProfileQueries = 2048;
+  const uint32_t per_frame = uint32_t(passes * 2 + (scan ? 1 : 0)) + (profile_dispatches_ ? kProfileQueries : 0u);
+  struct Recorded {
+    FrameResult fr;
+    uint32_t first_query = 0;
+    std::vector<uint32_t> pass_query, pass_end_query;
+    std::vector<std::vector<LoggedDispatch>> logged;
+    std::vector<bool> scanned_after;
+    bool scan_reset = false;
+  };
+  std::vector<Recorded> rec(n);
+  std::unique_ptr<Cmd> cmd = passes ? gpu_.begin(per_frame * n) : nullptr;
+  for (uint32_t k = 0; k < n; ++k) {
+    Recorded& r = rec[k];
+    r.fr.frame = frame_;
+    r.first_query = k * per_frame;
+    r.pass_query.resize(passes);
+    r.pass_end_query.resize(passes);
+    r.logged.resize(passes);
+    r.scanned_after.assign(passes, false);
+    if (cmd) {
+      if (k) cmd->barrier(kStageCompute | kStageGraphics | kStageTransfer, kStageCompute | kStageGraphics | kStageTransfer);
+      record_frame_constants(*cmd, frame_time());
     }
-    if (n && ns.size() > pass_end_query[n - 1]) {
+    uint32_t q = r.first_query;
+    for (size_t i = 0; i < passes; ++i) {
+      // The profile's dispatch stamps stop short of the queries this pass's end, every later
+      // pass and the closing scan stamp need.
+      const uint32_t reserved = 1u + 2u * uint32_t(passes - 1 - i) + (scan ? 1u : 0u);
+      const uint32_t limit = profile_dispatches_ ? r.first_query + per_frame - reserved : 0u;
+      r.pass_query[i] = q;
+      record_pass(*cmd, i, q, limit, r.logged[i]);
+      r.pass_end_query[i] = q - 1;
+      if (scan) {
+        const uint32_t d = record_scans(*cmd, i, r.scan_reset, k);
+        r.fr.scan_dispatches += d;
+        r.scanned_after[i] = d > 0;
+      }
+    }
+    if (cmd && scan) cmd->timestamp(q++);  // closes the last pass's scans
+    ++frame_;
+  }
+  std::vector<double> ns;
+  if (cmd) ns = gpu_.submit(std::move(cmd));
+  std::vector<FrameResult> out;
+  for (uint32_t k = 0; k < n; ++k) {
+    Recorded& r = rec[k];
+    FrameResult& fr = r.fr;
+    for (size_t i = 0; i < passes; ++i) {
+      fr.passes.push_back({running[i]->name, (ns[r.pass_end_query[i]] - ns[r.pass_query[i]]) * 1e-6, {}});
+      fr.passes.back().dispatches = resolve_dispatches(gpu_, r.logged[i], ns, ns[r.pass_query[i]]);
+    }
+    if (passes && ns.size() > r.pass_end_query[passes - 1]) {
       // The scans after pass i lie between its end timestamp and the next pass's start; the
       // last pass's, between its end and the closing stamp, outside the frame's span.
       double between = 0;
-      for (size_t i = 0; i + 1 < n; ++i)
-        if (scanned_after[i]) between += (ns[pass_query[i + 1]] - ns[pass_end_query[i]]) * 1e-6;
-      const size_t last = pass_end_query[n - 1];
-      const double last_pass_scan = scanned_after[n - 1] && ns.size() > last + 1 ? (ns[last + 1] - ns[last]) * 1e-6 : 0.0;
+      for (size_t i = 0; i + 1 < passes; ++i)
+        if (r.scanned_after[i]) between += (ns[r.pass_query[i + 1]] - ns[r.pass_end_query[i]]) * 1e-6;
+      const size_t last = r.pass_end_query[passes - 1];
+      const double last_pass_scan = r.scanned_after[passes - 1] && ns.size() > last + 1 ? (ns[last + 1] - ns[last]) * 1e-6 : 0.0;
       fr.scan_ms += between + last_pass_scan;
-      fr.total_ms = (ns[last] - ns[0]) * 1e-6 - between;
+      fr.total_ms = (ns[last] - ns[r.first_query]) * 1e-6 - between;
     }
+    if (r.scan_reset) collect_scan_results(k, fr.frame);
+    out.push_back(std::move(fr));
   }
-  if (scan_reset) collect_scan_results();
-  ++frame_;
-  return fr;
+  return out;
 }
 
 std::vector<std::string> Executor::image_names() const {

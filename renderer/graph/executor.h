@@ -13,6 +13,8 @@
 
 namespace gib {
 
+struct LoggedDispatch;
+
 // One compute dispatch of a pass, with the executor's dispatch profile on.
 struct DispatchTiming {
   uint64_t threads = 0;  // groups x workgroup size (indirect: the groups read back after the frame)
@@ -61,6 +63,13 @@ class Executor {
   const Settings& settings() const { return settings_; }
   Gpu& gpu() const { return gpu_; }
   FrameResult run_frame();
+  // `n` frames; on a GPU in one submission (one host wait for all), a moving scene's frames one
+  // at a time (each uploads the scene first). Same commands and output as n run_frame calls.
+  std::vector<FrameResult> run_frames(uint32_t n);
+  // Whether passes are timed by the host clock around one submission each (the default on a
+  // CPU device, where in-submission timestamps misattribute work; frames then run one at a
+  // time) or by GPU timestamps in a submission per frame batch (the default on a GPU).
+  void time_passes_on_host(bool on) { host_timed_passes_ = on; }
   uint32_t frames_run() const { return frame_; }
   // Bytes of the packed image-texture buffer (tables, every texture and mip; 0 before the
   // first frame uploads it).
@@ -95,8 +104,14 @@ class Executor {
   struct ScanTarget;
   void plan_stability_scan();
   void zero_persistent();
-  uint32_t record_scans(Cmd& cmd, size_t running_index, bool& reset);
-  void collect_scan_results();
+  // Scans after a pass into results buffer `slot` (a frame's place in its batch).
+  uint32_t record_scans(Cmd& cmd, size_t running_index, bool& reset, uint32_t slot);
+  void collect_scan_results(uint32_t slot, uint32_t frame);
+  float frame_time() const;
+  void record_pass(Cmd& cmd, size_t running_index, uint32_t& query, uint32_t profile_query_limit,
+                   std::vector<LoggedDispatch>& logged);
+  FrameResult run_frame_host_timed();
+  std::vector<FrameResult> run_batch(uint32_t n);
   void upload_scene(float time);
   // The frame's constants, written by the frame's first command buffer (no upload of its own).
   void record_frame_constants(Cmd& cmd, float time);
@@ -125,6 +140,7 @@ class Executor {
   uint32_t frame_ = 0;
   bool scene_uploaded_ = false;
   bool scan_enabled_ = false;
+  bool host_timed_passes_ = false;
   bool profile_dispatches_ = false;
   struct Override {
     size_t running_index = 0;
@@ -136,7 +152,7 @@ class Executor {
   void record_overrides(Cmd& cmd, size_t running_index);
   std::vector<ScanTarget> scan_targets_;       // execution order, slot order
   std::vector<std::vector<size_t>> scan_of_pass_;  // per running pass: indices into scan_targets_
-  std::shared_ptr<Buffer> scan_results_;
+  std::vector<std::shared_ptr<Buffer>> scan_results_;  // per frame of a batch
   StabilityReport stability_;
   float prev_view_proj_[16] = {};
 };
