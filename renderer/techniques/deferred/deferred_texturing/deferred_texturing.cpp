@@ -52,12 +52,13 @@ class DeferredTexturingPass final : public Pass {
                            .push_bytes = sizeof(push)});
       return;
     }
-    // Sky pixels are in no list: the G-buffer starts cleared, as the uber kernel writes them.
-    ctx.cmd.barrier(kStageCompute | kStageGraphics, kStageTransfer);
-    const float zero[4] = {0, 0, 0, 0};
-    for (const char* name : {"gbuffer_albedo", "gbuffer_normal", "gbuffer_position", "gbuffer_emissive"})
-      ctx.cmd.clear(ctx.image(name), zero);
-    ctx.cmd.barrier(kStageTransfer, kStageCompute);
+    // Sky pixels are in no list: the sky kernel writes them zero, as the uber kernel does.
+    record_compute(ctx, {.shader = "deferred_texturing_sky.comp",
+                         .images = images,
+                         .groups_x = div_up(w, 8),
+                         .groups_y = div_up(h, 8),
+                         .push = &push,
+                         .push_bytes = sizeof(push)});
     const DeviceInfo& dev = ctx.gpu.info();
     const bool subgroups = dev.subgroup_vote && dev.subgroup_ballot && dev.subgroup_arithmetic;
     const bool uniform = subgroups && ds.uniform_permutation;
