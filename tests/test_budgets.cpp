@@ -100,7 +100,7 @@ TEST(Budgets, ShippedFileMatchesTheSeed) {
   // are Shadows; the filtered shadow resolve ("DeferredShadows"), SSDO/SSGI and the
   // reflections (SSR and the environment maps are Lighting in the talk) are Lighting.
   for (const char* pass : {"shadow_maps", "shadow_minmax"}) EXPECT_EQ(b.pass_category.at(pass), "shadows") << pass;
-  for (const char* pass : {"shadows_pcf", "shadows_contact_hardening", "ssdo_ssgi", "ssdo", "ssgi", "direct_lighting",
+  for (const char* pass : {"shadows_pcf", "shadows_contact_hardening", "ssdo_ssgi", "ssdo", "ssgi", "direct_aov", "direct_lighting",
                            "cubemap_capture", "reflections_rt_cubemap", "reflections_resolve"})
     EXPECT_EQ(b.pass_category.at(pass), "lighting") << pass;
   for (const char* pass : {"visibility", "gbuffer"}) EXPECT_EQ(b.pass_category.at(pass), "art") << pass;

@@ -189,7 +189,8 @@ TEST_F(GowSsGpu, OpenFloorIsUnoccluded) {
   Scene scene = room_scene(light);
   for (double combined : {1.0, 0.0}) {
     for (double on : {1.0, 0.0}) {
-      auto img = render_gow(gpu(), scene, ss_settings({{"ssdo", on}, {"ss_combined", combined}}),
+      // ss_cone 1: the combined pass writes the debug view only when asked for.
+      auto img = render_gow(gpu(), scene, ss_settings({{"ssdo", on}, {"ss_combined", combined}, {"ss_cone", 1}}),
                             {"ssdo_cone", "ssdo_local_light", "gbuffer_position"});
       double worst = 0, lo = 1;
       uint32_t floor_px = 0;
@@ -324,6 +325,31 @@ TEST(GowSsGraph, SsdoCulledWithoutUnshadowedLocalLights) {
   EXPECT_FALSE(runs(plan_of(dark, s), "ssdo", &why));
   EXPECT_NE(why.find("local_lights"), std::string::npos) << why;
   EXPECT_TRUE(runs(plan_of(dark, s), "ssgi"));
+}
+
+// ssdo_ssgi moves 8 bytes a pixel fewer for its histories in RGBA16F, and writes the debug view
+// ssdo_cone only when option ss_cone asks for it (else the plan has no such image).
+TEST(GowSsGraph, HalfHistoriesAndTheConeOnlyWhenAskedFor) {
+  const Technique& t = find_technique("gow-ragnarok");
+  auto plan_of = [&](const Settings& s, std::vector<std::string> outputs) {
+    const Scene scene = room_scene({0, 1, 0});
+    std::vector<PassDecl> decls;
+    for (auto& p : make_passes(t)) decls.push_back(p->declare(scene, s));
+    CompileOptions o;
+    o.features = scene.features();
+    o.outputs = std::move(outputs);
+    return compile(decls, o);
+  };
+  const Settings s = apply_preset(t, "medium", Settings{});
+  const Plan plain = plan_of(s, {"gow_radiance", "gow_direct", "ssgi_indirect"});
+  EXPECT_EQ(plain.find("ssdo_cone"), nullptr);
+  for (const char* history : {"ssgi_indirect", "ssdo_local_light"}) {
+    ASSERT_NE(plain.find(history), nullptr) << history;
+    EXPECT_EQ(plain.find(history)->desc.format, Format::rgba16_float) << history;
+  }
+  EXPECT_THROW(plan_of(s, {"gow_radiance", "ssdo_cone"}), GraphError);
+  const Plan asked = plan_of(apply_options(t, s, {{"ss_cone", 1}}), {"gow_radiance", "ssdo_cone"});
+  ASSERT_NE(asked.find("ssdo_cone"), nullptr);
 }
 
 }  // namespace

@@ -620,9 +620,10 @@ TEST(PerfPlan, ReflectionPassesArePlannedInAGlossySceneAndCulledWithAReasonElsew
 
 // What planning every contract AOV changes for bench's frame totals: in every scene of
 // cases/scenes, the only running passes that feed no radiance are gow-ragnarok's reflection
-// passes in glossy scenes; every other technique plans the same passes as with radiance alone
+// passes in glossy scenes and its direct_aov (the `direct` AOV of the combined screen-space
+// pass) in every scene; every other technique plans the same passes as with radiance alone
 // (bench/README.md "What is planned"; update it with this list).
-TEST(PerfPlan, OnlyGowReflectionPassesAreAovOnlyInAnyScene) {
+TEST(PerfPlan, OnlyGowReflectionAndDirectAovPassesAreAovOnlyInAnyScene) {
   namespace fs = std::filesystem;
   std::set<std::string> aov_only;
   for (auto& e : fs::directory_iterator(std::string(GIB_SOURCE_DIR) + "/cases/scenes")) {
@@ -643,7 +644,8 @@ TEST(PerfPlan, OnlyGowReflectionPassesAreAovOnlyInAnyScene) {
     }
   }
   EXPECT_EQ(aov_only, (std::set<std::string>{"gow-ragnarok/cubemap_capture", "gow-ragnarok/reflections_rt_cubemap",
-                                             "gow-ragnarok/reflections_resolve"}));
+                                             "gow-ragnarok/reflections_resolve", "gow-ragnarok/direct_aov",
+                                             "gow-ragnarok/direct_aov (not glossy)"}));
 }
 
 // PassDecl::traces_rays is declared by exactly the passes whose own shaders (the pass's folder)

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <stdexcept>
@@ -98,6 +99,27 @@ Bytes reference_rgba32f(const OracleInputs& in, const std::string& aov, const By
       if (alpha_from) std::memcpy(&v[i * 4 + 3], &(*alpha_from)[i * 16 + 12], 4);
     }
   return floats_to_bytes(v);
+}
+
+Bytes reference_rgba16f(const OracleInputs& in, const std::string& aov, const Bytes* alpha_from) {
+  const size_t n = size_t(in.width) * in.height;
+  if (alpha_from && alpha_from->size() != n * 8)
+    throw std::runtime_error("stage oracle: expected an RGBA16F render-size image to keep the alpha of");
+  const Bytes full = reference_rgba32f(in, aov);
+  std::vector<float> v(n * 4);
+  std::memcpy(v.data(), full.data(), full.size());
+  std::vector<uint16_t> h(n * 4);
+  for (size_t i = 0; i < n; ++i) {
+    for (uint32_t ch = 0; ch < 3; ++ch)
+      h[i * 4 + ch] = codecs::float_to_half(std::clamp(v[i * 4 + ch], -codecs::kHalfMax, codecs::kHalfMax));
+    if (alpha_from)
+      std::memcpy(&h[i * 4 + 3], &(*alpha_from)[i * 8 + 6], 2);
+    else
+      h[i * 4 + 3] = codecs::float_to_half(1.0f);
+  }
+  Bytes b(h.size() * 2);
+  std::memcpy(b.data(), h.data(), b.size());
+  return b;
 }
 
 std::map<std::string, Bytes> exact_gi_irradiance(const OracleInputs& in) {

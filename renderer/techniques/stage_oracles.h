@@ -29,6 +29,9 @@ Bytes floats_to_bytes(const std::vector<float>& v);
 // The reference's `aov` as render-size RGBA32F texels; alpha 1, or that of `alpha_from` (an
 // RGBA32F render-size image) when given. An error when the reference is another size.
 Bytes reference_rgba32f(const OracleInputs& in, const std::string& aov, const Bytes* alpha_from = nullptr);
+// The same as RGBA16F texels (each channel rounded to nearest, clamped to the half's largest
+// value as a history store clamps it); alpha 1, or that of `alpha_from` (RGBA16F, render size).
+Bytes reference_rgba16f(const OracleInputs& in, const std::string& aov, const Bytes* alpha_from = nullptr);
 
 // gi_irradiance (rgba32f, E / pi) that makes the shared composite's indirect_diffuse the
 // reference's: the reference indirect_diffuse over the G-buffer albedo, 0 where the albedo is.

@@ -11,6 +11,7 @@
 #include "renderer/passes/gbuffer/gbuffer.h"
 #include "renderer/passes/visibility/visibility.h"
 #include "renderer/techniques/gow_ragnarok/cubemap_capture/cubemap_capture.h"
+#include "renderer/techniques/gow_ragnarok/direct_aov/direct_aov.h"
 #include "renderer/techniques/gow_ragnarok/reflections_resolve/reflections_resolve.h"
 #include "renderer/techniques/gow_ragnarok/reflections_rt_cubemap/reflections_rt_cubemap.h"
 #include "renderer/techniques/gow_ragnarok/reflections_rt_cubemap/reflections_rt_cubemap_shared.h"
@@ -21,6 +22,7 @@
 #include "renderer/techniques/gow_ragnarok/include/gow_screen_space_shared.h"
 #include "renderer/techniques/gow_ragnarok/ssdo/ssdo.h"
 #include "renderer/techniques/gow_ragnarok/ssdo_ssgi/ssdo_ssgi.h"
+#include "renderer/techniques/gow_ragnarok/ssdo_ssgi/ssdo_ssgi_shared.h"
 #include "renderer/techniques/gow_ragnarok/ssgi/ssgi.h"
 #include "renderer/techniques/direct_light_modes.h"
 #include "renderer/techniques/technique.h"
@@ -79,6 +81,7 @@ Technique gow_ragnarok_technique() {
               {"ssdo", make_ssdo_pass},
               {"ssgi", make_ssgi_pass},
               {"ssdo_ssgi", make_ssdo_ssgi_pass},
+              {"direct_aov", make_direct_aov_pass},
               {"cubemap_capture", make_cubemap_capture_pass},
               {"reflections_rt_cubemap", make_reflections_rt_cubemap_pass},
               {"reflections_resolve", make_reflections_resolve_pass}};
@@ -152,8 +155,12 @@ Technique gow_ragnarok_technique() {
                  "SSDO and SSGI: 1 one pass sharing G-buffer reads and marches (ssdo_ssgi, as shipped), 0 the separate "
                  "ssdo and ssgi passes",
                  0, 1, &G::ss_combined),
-          option("ss_history", "frames ssdo_ssgi's temporal accumulation averages at most (1: this frame alone)", 1, 4096,
-                 &G::ss_history),
+          option("ss_history", "frames ssdo_ssgi's temporal accumulation averages at most (1: this frame alone)", 1,
+                 glsl::kSsMaxHistory, &G::ss_history),
+          option("ss_cone",
+                 "ssdo_ssgi writes the debug view ssdo_cone (bent normal, open fraction; scenes with unshadowed "
+                 "local lights): 0 not written, 1 written (8 bytes a pixel)",
+                 0, 1, &G::ss_cone),
           option("ssdo", "screen-space directional occlusion of the unshadowed local lights (0: they leak)", 0, 1,
                  &G::ssdo),
           option("ssdo_radius", "metres ssdo marches per direction", 0.01, 100, &G::ssdo_radius),

@@ -19,6 +19,7 @@ struct GowRagnarokSettings : TechniqueSettingsOf<GowRagnarokSettings>, DirectLig
   // them through its directional occlusion.
   bool ss_combined = true;           // ssdo_ssgi (one pass, as shipped); false: the separate ssdo and ssgi passes
   uint32_t ss_history = 16;          // ssdo_ssgi: frames its temporal accumulation averages at most (1: none)
+  bool ss_cone = false;              // ssdo_ssgi writes the ssdo_cone debug view (8 bytes a pixel)
   bool ssdo = true;                  // off: unshadowed local lights light everything in reach (the leak)
   float ssdo_radius = 1.0f;          // m marched per direction
   float ssdo_thickness = 1.0f;       // m: a depth-buffer surface nearer than this in front of the march blocks it

@@ -6,6 +6,7 @@ namespace gib {
 
 namespace {
 using oracles::Bytes;
+using oracles::reference_rgba16f;
 using oracles::reference_rgba32f;
 }  // namespace
 
@@ -21,13 +22,16 @@ std::vector<TechniqueStage> gow_ragnarok_stages() {
   };
   s[1].name = "ssgi";
   s[1].passes = {"ssdo", "ssgi", "ssdo_ssgi"};
-  s[1].oracle = "exact: the reference's indirect_diffuse (ssgi_indirect after the combined pass)";
+  s[1].oracle = "exact: the reference's indirect_diffuse (ssgi_indirect after the combined pass, in its format)";
   s[1].after_pass = "ssdo_ssgi";
   s[1].seed_reads = {"ssgi_indirect"};
   s[1].reference_aovs = {"indirect_diffuse"};
   s[1].make = [](const OracleInputs& in) {
-    return std::map<std::string, Bytes>{
-        {"ssgi_indirect", reference_rgba32f(in, "indirect_diffuse", &oracles::seed_bytes(in, 0, "ssgi_indirect"))}};
+    // RGBA16F from the combined pass (its history), RGBA32F from the separate ssgi pass.
+    const Bytes& seed = oracles::seed_bytes(in, 0, "ssgi_indirect");
+    const bool halves = seed.size() == size_t(in.width) * in.height * 8;
+    return std::map<std::string, Bytes>{{"ssgi_indirect", halves ? reference_rgba16f(in, "indirect_diffuse", &seed)
+                                                                  : reference_rgba32f(in, "indirect_diffuse", &seed)}};
   };
   s[2].name = "reflections";
   s[2].passes = {"cubemap_capture", "reflections_rt_cubemap", "reflections_resolve"};

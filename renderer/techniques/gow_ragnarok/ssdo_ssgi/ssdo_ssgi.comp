@@ -13,19 +13,19 @@ GIB_SCENE_BUFFERS(0, kBindSceneFirst)
 #include "finite.glsl"
 layout(constant_id = kSsCombinedSpecLocal) const bool kHasLocal = true;
 layout(constant_id = kSsCombinedSpecDirections) const uint kDirections = kSsMaxDirections;
+layout(constant_id = kSsCombinedSpecCone) const bool kWriteCone = false;
 layout(local_size_x = kSsGroup, local_size_y = kSsGroup) in;
 layout(set = 0, binding = kSsCombinedBindPosition, rgba32f) uniform readonly image2D gb_position;
 layout(set = 0, binding = kSsCombinedBindNormal, rgba16f) uniform readonly image2D gb_normal;
 layout(set = 0, binding = kSsCombinedBindAlbedo, rgba16f) uniform readonly image2D gb_albedo;
 layout(set = 0, binding = kSsCombinedBindEmissive, rgba16f) uniform readonly image2D gb_emissive;
 layout(set = 0, binding = kSsCombinedBindDirect, rgba32f) uniform readonly image2D direct_light;
-layout(set = 0, binding = kSsCombinedBindLocalPrev, rgba32f) uniform readonly image2D local_prev;
-layout(set = 0, binding = kSsCombinedBindLocal, rgba32f) uniform writeonly image2D out_local;
+layout(set = 0, binding = kSsCombinedBindLocalPrev, rgba16f) uniform readonly image2D local_prev;
+layout(set = 0, binding = kSsCombinedBindLocal, rgba16f) uniform writeonly image2D out_local;
 layout(set = 0, binding = kSsCombinedBindCone, rgba16f) uniform writeonly image2D out_cone;
-layout(set = 0, binding = kSsCombinedBindOutDirect, rgba32f) uniform writeonly image2D out_direct;
-layout(set = 0, binding = kSsCombinedBindOutIndirect, rgba32f) uniform writeonly image2D out_indirect;
+layout(set = 0, binding = kSsCombinedBindOutIndirect, rgba16f) uniform writeonly image2D out_indirect;
 layout(set = 0, binding = kSsCombinedBindOutRadiance, rgba32f) uniform writeonly image2D out_radiance;
-layout(set = 0, binding = kSsCombinedBindIndirectPrev, rgba32f) uniform readonly image2D indirect_prev;
+layout(set = 0, binding = kSsCombinedBindIndirectPrev, rgba16f) uniform readonly image2D indirect_prev;
 layout(set = 0, binding = kSsCombinedBindSurfaces, rg32ui) uniform readonly uimage2D surfaces;
 layout(push_constant) uniform Push { SsCombinedPush push; };
 #include "renderer/techniques/gow_ragnarok/include/gow_screen_space.glsl"
@@ -137,6 +137,14 @@ void accumulate(vec3 x, inout vec3 local, inout vec3 indirect, out float count) 
   count = min(prev_indirect.a + 1.0, float(push.frame.y));
   local = mix(prev_local.rgb, local, 1.0 / count);
   indirect = mix(prev_indirect.rgb, indirect, 1.0 / count);
+}
+
+// A history texel as the RGBA16F image keeps it: clamped to the half's largest value (a NaN
+// kept for the guards to see), rounded to nearest even by packHalf2x16 (lavapipe and NVIDIA), so
+// every device stores it exactly and this frame's outputs add what the history holds.
+vec3 history_value(vec3 v) {
+  v = gib_clamp_keep_nan(vec4(v, 0.0), -65504.0, 65504.0).rgb;
+  return vec3(unpackHalf2x16(packHalf2x16(v.rg)), unpackHalf2x16(packHalf2x16(vec2(v.b, 0.0))).x);
 }
 
 // The unshadowed local lights through SSDO's visibility, as gow_ss_local_light
@@ -255,11 +263,14 @@ void main() {
       uvec2 q = lt >> 1u;
       cone = vec4(n, 1.0);
       if (ssdo_on() && known != 0u) {
-        // The mean open direction: the sum of the open directions, turned into n's frame once.
-        vec3 open_sum = vec3(0.0);
-        for (uint bits = open_all; bits != 0u; bits &= bits - 1u) open_sum += s_local[q.y][q.x][findLSB(bits)];
-        vec3 bent = pt * open_sum.x + pb * open_sum.y + n * open_sum.z;
-        cone = vec4(dot(bent, bent) > 0.0 ? normalize(bent) : n, float(bitCount(open_all)) / marched_count);
+        cone.w = float(bitCount(open_all)) / marched_count;
+        if (kWriteCone) {
+          // The mean open direction: the sum of the open directions, turned into n's frame once.
+          vec3 open_sum = vec3(0.0);
+          for (uint bits = open_all; bits != 0u; bits &= bits - 1u) open_sum += s_local[q.y][q.x][findLSB(bits)];
+          vec3 bent = pt * open_sum.x + pb * open_sum.y + n * open_sum.z;
+          if (dot(bent, bent) > 0.0) cone.xyz = normalize(bent);
+        }
       }
       vec3 albedo = imageLoad(gb_albedo, p).rgb;
       if (kHasLocal) local = local_light(pos.xyz, n, pt, pb, albedo, open_all, known, q, cone.w);
@@ -268,11 +279,10 @@ void main() {
     }
     float count = 0.0;
     if (pos.w != 0.0) accumulate(pos.xyz, local, indirect, count);
-    if (kHasLocal) {
-      imageStore(out_local, p, vec4(local, 1.0));
-      imageStore(out_cone, p, cone);
-    }
-    imageStore(out_direct, p, vec4(direct + local, 1.0));
+    local = history_value(local);
+    indirect = history_value(indirect);
+    if (kHasLocal) imageStore(out_local, p, vec4(local, 1.0));
+    if (kHasLocal && kWriteCone) imageStore(out_cone, p, cone);
     imageStore(out_indirect, p, vec4(indirect, count));
     imageStore(out_radiance, p, vec4(direct + local + indirect, 1.0));
   }

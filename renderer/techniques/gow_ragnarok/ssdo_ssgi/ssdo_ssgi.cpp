@@ -29,22 +29,29 @@ class SsdoSsgiPass final : public Pass {
     d.name = "ssdo_ssgi";
     if (!g.ss_combined) return d;  // the separate passes run: nothing to write, culled
     const ResourceDesc out = ResourceDesc{Format::rgba32_float, SizeRule::render}.with(non_negative_values());
+    // gow_direct (the `direct` AOV, direct_light + ssdo_local_light) is direct_aov's: nothing
+    // in the frame reads it, so it costs only where it is asked for.
     d.slots = {{"gbuffer_position", Access::read}, {"gbuffer_normal", Access::read},
                {"gbuffer_albedo", Access::read},   {"gbuffer_emissive", Access::read},
-               {"direct_light", Access::read},     {"gow_direct", Access::write, out},
-               {"gow_radiance", Access::write, out}};
+               {"direct_light", Access::read},     {"gow_radiance", Access::write, out}};
     // Each 2x2 block's surface, the one the marches' depth tests read (ssdo_ssgi_surfaces.comp).
     d.slots.push_back({"ss_surfaces", Access::write, ResourceDesc{Format::rg32_uint, SizeRule::half}});
-    ResourceDesc history = out;
-    history.persistent = true;  // the temporal accumulation's history
+    // The temporal accumulation's histories, in 16-bit floats (8 bytes a pixel where 32-bit took
+    // 16, each written and read back every frame): radiance in W/(m^2 sr), stored rounded to
+    // nearest and clamped to the half's largest value (the stability scan counts a clamped
+    // texel as saturated). Sun-lit surfaces under a 1e5 W/m^2 sun reflect at most 1e5 / pi.
+    ResourceDesc history = ResourceDesc{Format::rgba16_float, SizeRule::render}.with(non_negative_values());
+    history.persistent = true;
     d.slots.push_back({"ssgi_indirect", Access::write, history});
     d.slots.push_back({"ssgi_indirect", Access::read_prev});
     if (gow_unshadowed_local_lights(scene, s)) {
       // Last frame's: the bounce's local light and the accumulation's history.
       d.slots.push_back({"ssdo_local_light", Access::write, history});
       d.slots.push_back({"ssdo_local_light", Access::read_prev});
-      d.slots.push_back({"ssdo_cone", Access::write,
-                         ResourceDesc{Format::rgba16_float, SizeRule::render}.with(finite_values())});
+      // The debug view only when asked for (option ss_cone): 8 bytes a pixel nothing else reads.
+      if (g.ss_cone)
+        d.slots.push_back({"ssdo_cone", Access::write,
+                           ResourceDesc{Format::rgba16_float, SizeRule::render}.with(finite_values())});
     }
     const CombinedMarch m = combined_march(g);
     const double blocks = std::ceil(s.width / 2.0) * std::ceil(s.height / 2.0);
@@ -70,17 +77,18 @@ class SsdoSsgiPass final : public Pass {
                          .groups_y = div_up(ctx.height("ss_surfaces"), kSsSurfacesGroup),
                          .label = "ssdo_ssgi/surfaces",
                          .barrier_after = true});
-    // Without local lights the local bindings hold images the pass reads or writes anyway, unused.
+    const bool cone = local && g.ss_cone;
+    // Without local lights (or the cone) those bindings hold an RGBA16F image the pass reads or
+    // writes anyway, unused.
     record_compute(ctx, {.shader = "ssdo_ssgi.comp",
                          .images = {{kSsCombinedBindPosition, "gbuffer_position"},
                                     {kSsCombinedBindNormal, "gbuffer_normal"},
                                     {kSsCombinedBindAlbedo, "gbuffer_albedo"},
                                     {kSsCombinedBindEmissive, "gbuffer_emissive"},
                                     {kSsCombinedBindDirect, "direct_light"},
-                                    {kSsCombinedBindLocalPrev, local ? "ssdo_local_light" : "direct_light", local},
-                                    {kSsCombinedBindLocal, local ? "ssdo_local_light" : "gow_direct"},
-                                    {kSsCombinedBindCone, local ? "ssdo_cone" : "gow_direct"},
-                                    {kSsCombinedBindOutDirect, "gow_direct"},
+                                    {kSsCombinedBindLocalPrev, local ? "ssdo_local_light" : "ssgi_indirect", true},
+                                    {kSsCombinedBindLocal, local ? "ssdo_local_light" : "ssgi_indirect"},
+                                    {kSsCombinedBindCone, cone ? "ssdo_cone" : "ssgi_indirect"},
                                     {kSsCombinedBindOutIndirect, "ssgi_indirect"},
                                     {kSsCombinedBindOutRadiance, "gow_radiance"},
                                     {kSsCombinedBindIndirectPrev, "ssgi_indirect", true},
@@ -89,7 +97,9 @@ class SsdoSsgiPass final : public Pass {
                          .groups_y = div_up(div_up(ctx.height("gow_radiance"), kSsCombinedBlock), kSsGroup),
                          .push = &push,
                          .push_bytes = sizeof(push),
-                         .spec_constants = {{kSsCombinedSpecLocal, local}, {kSsCombinedSpecDirections, m.directions}}});
+                         .spec_constants = {{kSsCombinedSpecLocal, local},
+                                            {kSsCombinedSpecDirections, m.directions},
+                                            {kSsCombinedSpecCone, cone}}});
   }
 };
 

@@ -10,8 +10,10 @@
 // writes it to ss_surfaces (half size, 8 bytes a texel: distance, normal, which pixel), which
 // the marches' depth tests read in place of the full-size G-buffer (ssdo_ssgi.comp). The bounce at a hit reads direct_light and last frame's ssdo_local_light (this
 // frame's is being computed here). Outputs as the separate passes (ssdo/, ssgi/: option
-// ss_combined 0, kept for comparison): ssdo_local_light and ssdo_cone where the scene has
-// unshadowed local lights, gow_direct, ssgi_indirect and gow_radiance.
+// ss_combined 0, kept for comparison): ssdo_local_light where the scene has unshadowed local
+// lights, ssgi_indirect and gow_radiance; the debug view ssdo_cone only with option ss_cone 1.
+// gow_direct (the `direct` AOV) is written by direct_aov, only where it is asked for. The two histories (ssdo_local_light, ssgi_indirect) are RGBA16F, the separate
+// passes' images RGBA32F.
 // Seed: God of War Ragnarök, "Raytraced Cubemaps" profile: "SSR, SSDO and SSGI: 4.23ms,
 // combined to avoid sampling G-Buffer data twice" (PS5, 4K); SSR stays in reflections_rt_cubemap.
 // Limits: as ssdo and ssgi, plus: the results are shared over 4x4 pixels (blocky noise where

@@ -10,16 +10,19 @@ GIB_CONST(uint, kSsCombinedBindNormal, 9)     // gbuffer_normal (rgba16f)
 GIB_CONST(uint, kSsCombinedBindAlbedo, 10)    // gbuffer_albedo (rgba16f)
 GIB_CONST(uint, kSsCombinedBindEmissive, 11)  // gbuffer_emissive (rgba16f)
 GIB_CONST(uint, kSsCombinedBindDirect, 12)    // direct_light (rgba32f)
-GIB_CONST(uint, kSsCombinedBindLocalPrev, 13) // last frame's ssdo_local_light (direct_light when absent)
-GIB_CONST(uint, kSsCombinedBindLocal, 14)     // out: ssdo_local_light (gow_direct when absent, unwritten)
-GIB_CONST(uint, kSsCombinedBindCone, 15)      // out: ssdo_cone (gow_direct when absent, unwritten)
-GIB_CONST(uint, kSsCombinedBindOutDirect, 16)    // out: gow_direct
-GIB_CONST(uint, kSsCombinedBindOutIndirect, 17)  // out: ssgi_indirect
+GIB_CONST(uint, kSsCombinedBindLocalPrev, 13) // last frame's ssdo_local_light (rgba16f; ssgi_indirect's when absent)
+GIB_CONST(uint, kSsCombinedBindLocal, 14)     // out: ssdo_local_light (rgba16f; ssgi_indirect when absent, unwritten)
+GIB_CONST(uint, kSsCombinedBindCone, 15)      // out: ssdo_cone (rgba16f; ssgi_indirect when not asked for, unwritten)
+// 16: unused (gow_direct is direct_aov's)
+GIB_CONST(uint, kSsCombinedBindOutIndirect, 17)  // out: ssgi_indirect (rgba16f history; alpha: frames averaged)
 GIB_CONST(uint, kSsCombinedBindOutRadiance, 18)  // out: gow_radiance
-GIB_CONST(uint, kSsCombinedBindIndirectPrev, 19) // last frame's ssgi_indirect (its history)
+GIB_CONST(uint, kSsCombinedBindIndirectPrev, 19) // last frame's ssgi_indirect (its history, rgba16f)
 GIB_CONST(uint, kSsCombinedBindSurfaces, 20)    // ss_surfaces (rg32ui, half size): each block's surface for the march
 GIB_CONST(uint, kSsCombinedSpecLocal, 0)         // 1: the scene has unshadowed local lights
 GIB_CONST(uint, kSsCombinedSpecDirections, 1)    // the direction set's size (sizes the shared direction table)
+GIB_CONST(uint, kSsCombinedSpecCone, 2)          // 1: write ssdo_cone (option ss_cone, with local lights)
+// The histories' frame count rides in ssgi_indirect's 16-bit alpha, exact up to 2048.
+GIB_CONST(uint, kSsMaxHistory, 2048)
 struct SsCombinedPush {
   vec4 radius;   // x: ssdo radius, y: ssgi radius, z: step length (m), w: unused
   vec4 thickness;  // x: ssdo thickness, y: ssgi thickness, z, w: unused
