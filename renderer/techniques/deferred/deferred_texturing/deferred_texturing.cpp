@@ -43,22 +43,15 @@ class DeferredTexturingPass final : public Pass {
                                         {kTexBindBaryDeriv, "vis_bary_deriv"}, {kTexBindTangentFrame, "vis_tangent_frame"},
                                         {kTexBindAlbedo, "gbuffer_albedo"},    {kTexBindNormal, "gbuffer_normal"},
                                         {kTexBindPosition, "gbuffer_position"}, {kTexBindEmissive, "gbuffer_emissive"}};
-    if (!ds.classify_materials) {
-      record_compute(ctx, {.shader = "deferred_texturing_uber.comp",
-                           .images = images,
-                           .groups_x = div_up(w, 8),
-                           .groups_y = div_up(h, 8),
-                           .push = &push,
-                           .push_bytes = sizeof(push)});
-      return;
-    }
-    // Sky pixels are in no list: the sky kernel writes them zero, as the uber kernel does.
-    record_compute(ctx, {.shader = "deferred_texturing_sky.comp",
+    // The uber kernel (every pixel), or the sky kernel: sky pixels are in no list, and it writes
+    // them zero as the uber kernel does. Both run over 8x8-pixel workgroups.
+    record_compute(ctx, {.shader = ds.classify_materials ? "deferred_texturing_sky.comp" : "deferred_texturing_uber.comp",
                          .images = images,
                          .groups_x = div_up(w, 8),
                          .groups_y = div_up(h, 8),
                          .push = &push,
                          .push_bytes = sizeof(push)});
+    if (!ds.classify_materials) return;
     const DeviceInfo& dev = ctx.gpu.info();
     const bool subgroups = dev.subgroup_vote && dev.subgroup_ballot && dev.subgroup_arithmetic;
     const bool uniform = subgroups && ds.uniform_permutation;
