@@ -41,8 +41,7 @@ class MaterialClassifyPass final : public Pass {
     const std::vector<BufferBinding> buffers = {{kMatBindSegments, "material_segments"}, {kMatBindCommands, "pixel_commands"}};
     const std::vector<BufferBinding> scan_buffers = {{kMatBindSegments, "material_segments"},
                                                      {kMatBindBlocks, "material_scan_blocks"}};
-    const bool ballot = ctx.gpu.info().subgroup_ballot;
-    record_compute(ctx, {.shader = ballot ? "material_classify_count_subgroup.comp" : "material_classify_count.comp",
+    record_compute(ctx, {.shader = "material_classify_count.comp",
                          .images = {{kMatBindVbuffer, "vbuffer"}},
                          .groups_x = div_up(w, kMatClassifyGroup),
                          .groups_y = div_up(h, kMatClassifyGroup),
