@@ -141,11 +141,11 @@ TEST(CaseLoad, WhiteFurnace) {
   // The reference's row, then voxel-clipmap's (per-pixel sky rays, and sky through its clipmap),
   // which converge over frames: held to the analytic value in both ROIs; then gow-ragnarok's
   // (one frame: SSGI must add no energy), held to the same band; then voxel-clipmap's
-  // geometry-light row, held to it too.
+  // no-geometry-light row, held to it too.
   ASSERT_EQ(c.techniques.size(), 5u);
   EXPECT_EQ(c.techniques[3].technique, "gow-ragnarok");
   EXPECT_EQ(c.techniques[3].thresholds[0].against, "analytic");
-  EXPECT_EQ(c.techniques[4].options.at("geometry_light"), 1.0);
+  EXPECT_EQ(c.techniques[4].options.at("geometry_light"), 0.0);
   for (size_t i : {1u, 2u, 4u}) {
     EXPECT_EQ(c.techniques[i].technique, "voxel-clipmap");
     EXPECT_EQ(c.techniques[i].frames, 256u);

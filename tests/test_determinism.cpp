@@ -97,8 +97,9 @@ TEST_F(Determinism, FramesInOneSubmissionAreTheFramesSubmittedOneByOne) {
   }
 }
 
-// voxel-clipmap with geometry_light (off by default, so the test above does not run it):
-// scene_voxel_light's lit voxels, the out-of-view cells and the wall test of the cube lookups.
+// voxel-clipmap with geometry_light (on by default) in a thin-wall room: scene_voxel_light's lit
+// voxels, the out-of-view cells and the wall test of the cube lookups (its DDA reads the
+// triangles the fill kept while the feed writes the voxels).
 TEST_F(Determinism, VoxelClipmapGeometryLightIsBitIdenticalRunToRun) {
   const Config cfg{"voxel-clipmap", "medium", {{"geometry_light", 1}}};
   Scene scene = load_scene(std::string(GIB_SOURCE_DIR) + "/cases/scenes/thin_wall_005.json");

@@ -471,13 +471,13 @@ TEST_F(VoxelClipmapEnergy, VoxelsReflectAlbedoTimesTheCubes) {
     worst = std::min(worst, r);
     ++count;
     dark += r < 0.05;
-    if (r < 0.05 && std::getenv("GIB_VC_ENERGY_VERBOSE")) {
+    if (r < 0.95 && std::getenv("GIB_VC_ENERGY_VERBOSE")) {
       const int32_t n = int32_t(p().grid);
       const uint32_t slot = idx % uint32_t(n * n * n);
       const glsl::VcState st = state(*ex);
       const Int3 g = vc_slot_world({int32_t(slot) % n, (int32_t(slot) / n) % n, int32_t(slot) / (n * n)},
                                    {st.voxel_origin[0].x, st.voxel_origin[0].y, st.voxel_origin[0].z}, n);
-      std::printf("  dark voxel %d %d %d flags %x r %.4f\n", g.x, g.y, g.z, vox[idx * 4 + 1], r);
+      std::printf("  voxel below 0.95: %d %d %d flags %x r %.4f\n", g.x, g.y, g.z, vox[idx * 4 + 1], r);
     }
     if ((vox[idx * 4 + 1] & glsl::kVcVoxelFed) != 0) {
       ++fed;
@@ -488,15 +488,14 @@ TEST_F(VoxelClipmapEnergy, VoxelsReflectAlbedoTimesTheCubes) {
   ASSERT_GT(fed, 100u);
   std::printf("voxels: %u inner wall voxels: mean %.4f, worst %.4f of a (e + B); %u fed: mean %.4f; %u lit: mean %.4f; %u dark\n",
               count, sum / count, worst, fed, sum_fed / fed, count - fed, (sum - sum_fed) / std::max(1u, count - fed), dark);
-  // A loss-free stage gives 1 for every voxel. Measured (lavapipe, medium): voxels lit from their
-  // triangle 0.971 (a 3 % loss per bounce: near a room's edge the wall test rejects every
-  // corner cell, the adjacent wall's voxel layer lying halfway; with the untested cells as a
-  // fallback there they read 0.998), pixel-fed voxels 0.818 with 88 of the 430 at a e only
-  // (no bounce; the back wall's rim, GIB_VC_ENERGY_VERBOSE=1 lists them; not isolated): the closed
-  // box's known failure (cases/white-furnace-closed-box.json). These bounds guard the measured
-  // state until the causes are fixed; then they become 1 within RGB9E5's precision.
-  EXPECT_GT((sum - sum_fed) / std::max(1u, count - fed), 0.96) << "voxels lit from their triangle";
-  EXPECT_GT(sum / count, 0.84) << "light lost from the cubes to the voxels per bounce";
+  // A loss-free stage gives 1 for every voxel. Measured (lavapipe, medium): pixel-fed voxels
+  // 0.9997, voxels lit from their triangle 0.973: those on a room's edges (two walls in one voxel,
+  // GIB_VC_ENERGY_VERBOSE=1 lists them) read about 0.78, because a voxel keeps one triangle and
+  // the wall test cannot see the other wall there, so the lookup blends in cells outside the room
+  // (here 0). The lit bound guards that measured state; fed voxels are at 1.
+  EXPECT_GT(sum_fed / fed, 0.998) << "pixel-fed voxels";
+  EXPECT_GT((sum - sum_fed) / std::max(1u, count - fed), 0.965) << "voxels lit from their triangle";
+  EXPECT_GT(sum / count, 0.98) << "light lost from the cubes to the voxels per bounce";
   EXPECT_LT(sum / count, 1.005) << "light gained from the cubes to the voxels per bounce";
 }
 
@@ -513,6 +512,15 @@ TEST_F(VoxelClipmapEnergy, CubesSeeTheWallsRadiance) {
     }
   ex->add_override({"scene_voxel_light", "scene_voxel_data", as_bytes(vox)});
   for (int f = 0; f < 3; ++f) ex->run_frame();
+  // Every voxel a pixel gave opacity holds voxelised geometry (and so the injected R): the fill
+  // reaches the voxels on both sides of a wall on a voxel boundary, the far walls' inner ones too.
+  {
+    const auto v2 = as_words(ex->read_buffer("scene_voxel_data"));
+    uint32_t without_geometry = 0;
+    for (size_t i = 0; i < v2.size() / 4; ++i)
+      without_geometry += (v2[i * 4 + 1] & glsl::kVcOpacityMask) != 0 && (v2[i * 4 + 1] & glsl::kVcVoxelGeometry) == 0;
+    EXPECT_EQ(without_geometry, 0u) << "voxels with opacity but no voxelised geometry";
+  }
   const auto cx = ex->read_buffer("irradiance_x"), cy = ex->read_buffer("irradiance_y"), cz = ex->read_buffer("irradiance_z");
   const float* axes[3] = {reinterpret_cast<const float*>(cx.data()), reinterpret_cast<const float*>(cy.data()),
                           reinterpret_cast<const float*>(cz.data())};
@@ -538,13 +546,8 @@ TEST_F(VoxelClipmapEnergy, CubesSeeTheWallsRadiance) {
   ASSERT_GT(count, 1000u);
   std::printf("cubes: %u cell directions: bounce mean %.4f, worst %.4f of R; direct mean %.4f of e; hit share %.4f\n",
               count, sum / count, worst, direct / count, hits / count);
-  // Loss-free: every direction of every cell sees R. Measured (lavapipe, medium): bounce 0.863 of
-  // R while the direct part (the emission of the same voxels hit) is 1.001 of e: the rays meet
-  // wall voxels, but some of those return less than R (voxels with opacity the feed wrote but no
-  // voxelised geometry keep their own radiance; not isolated). A guard of the measured state,
-  // as above.
-  EXPECT_GT(sum / count, 0.85) << "light lost from the voxels to the cubes per bounce";
-  EXPECT_LT(sum / count, 1.005) << "light gained from the voxels to the cubes per bounce";
+  // Loss-free: every direction of every cell sees R (measured 1.0000 on lavapipe, medium).
+  EXPECT_NEAR(sum / count, 1.0, 0.002) << "light lost or gained from the voxels to the cubes per bounce";
   EXPECT_NEAR(direct / count, 1.0, 0.01);
   // Inside a closed box every ray meets a wall: the hit share the pixels' bounce is divided by is 1.
   EXPECT_NEAR(hits / count, 1.0, 0.01);

@@ -75,8 +75,8 @@ std::vector<TechniqueOption> own_options() {
       option("geometry_light",
              "voxels no pixel has fed are lit at their triangle (direct light, emission, albedo x the irradiance "
              "clipmap), cells with geometry out of view take queue A's spare capacity, cube lookups skip cells behind "
-             "another wall (0, the default until its goldens are re-recorded: unfed voxels keep a coarser voxel's "
-             "radiance or stay black)",
+             "another wall (0: unfed voxels keep a coarser voxel's radiance or stay black, and a closed room no pixel "
+             "sees all of goes dark)",
              0, 1, &S::geometry_light),
       option("lit_voxels", "voxels scene_voxel_light visits per frame (a window moving over the clipmap atlas)", 1,
              16777216, &S::lit_voxels),

@@ -26,7 +26,7 @@ struct VoxelClipmapSettings : TechniqueSettingsOf<VoxelClipmapSettings>, DirectL
   bool invalidate = true;         // voxels in the box of moved geometry are cleared and refilled
   bool semi_transparent = true;   // alpha-tested surfaces give voxels their mean opacity (< 1)
   bool multi_bounce = true;       // fed pixels add albedo x the irradiance clipmap's bounce (0: one bounce)
-  bool geometry_light = false;    // voxels no pixel fed are lit from their triangle (4.2's "actual rendering models")
+  bool geometry_light = true;     // voxels no pixel fed are lit from their triangle (4.2's "actual rendering models")
   uint32_t lit_voxels = 32768;    // voxels scene_voxel_light visits per frame (a window moving over the atlas)
   // ---- irradiance clipmap (3.1)
   uint32_t queue_a = 1024;        // capacity of queue A (cells with geometry), A' included

@@ -126,16 +126,70 @@ void vc_cube_eval(uint cell, vec3 n, out vec3 bounce, out vec3 sky, out float hi
 }
 
 #ifdef VC_CONVEX_VOXELS
-// Whether the level-l voxel halfway between q and the centre of cell k holds voxelised geometry
-// (scene_voxel_fill's flag): a wall lies between them. q is 1.5 voxels off the surface: a
-// surface on a voxel boundary is voxelised into the voxels on both sides, so a point one voxel
-// off it lies in a voxel that touches it. The flag, not the opacity: the feed writes opacities
-// while it runs this test, and keeps the flag as it was, so the result does not depend on
-// thread timing. Needs the voxel buffer (VC_VOXEL_BUFFER).
-bool vc_cell_behind_wall(uint l, vec3 q, ivec3 k) {
-  vec3 mid = 0.5 * (q + (vec3(k) + 0.5) * vc_cell_size(l));
-  ivec3 g = ivec3(floor(mid / vc_voxel_size(l)));
-  return vc_in_box(g, vc_voxel_origin(l), vc_n()) && (vc_voxels[vc_voxel_index(l, g)].y & kVcVoxelGeometry) != 0u;
+// Whether the segment from a to b crosses the plane of the triangle scene_voxel_fill kept for
+// level-l voxel g (through point p0 with unit normal nrm) inside that voxel (grown by a
+// hundredth of it). The plane, not the triangle: a crossing just past a triangle's edge, where
+// a wall meets a floor, is still the wall.
+bool vc_crosses_voxel_plane(vec3 a, vec3 b, vec3 p0, vec3 nrm, ivec3 g, float s) {
+  float d0 = dot(a - p0, nrm), d1 = dot(b - p0, nrm);
+  if ((d0 > 0.0) == (d1 > 0.0) || d0 == d1) return false;
+  vec3 c = mix(a, b, d0 / (d0 - d1));
+  vec3 lo = vec3(g) * s - 0.01 * s, hi = vec3(g + 1) * s + 0.01 * s;
+  return all(greaterThanEqual(c, lo)) && all(lessThanEqual(c, hi));
+}
+
+// Whether a wall lies between surface point x (normal n) and the centre of level-l cell k: the
+// segment from just off the surface (a twentieth of a voxel along n) to the centre crosses the
+// plane of a triangle kept by a geometry voxel it passes through (a voxel DDA; the fill's flag
+// and triangle, which the feed keeps while it writes, so the result does not depend on thread
+// timing). The surface's own plane is not a wall (the convex test weighs cells behind it). A
+// geometry voxel without a triangle (past 2^23 - 2 triangles) counts as a wall. Needs the
+// voxel buffer (VC_VOXEL_BUFFER) and the scene buffers (GIB_SCENE_BUFFERS).
+bool vc_cell_behind_wall(uint l, vec3 x, vec3 n, ivec3 k) {
+  float s = vc_voxel_size(l);
+  vec3 a = x + n * (0.05 * s), b = (vec3(k) + 0.5) * vc_cell_size(l);
+  vec3 d = b - a;
+  ivec3 g = ivec3(floor(a / s)), last = ivec3(floor(b / s));
+  ivec3 stepv = ivec3(sign(d));
+  vec3 inv = 1.0 / max(abs(d), vec3(1e-12));
+  // Parameter (0..1 along the segment) of the next voxel boundary on each axis.
+  vec3 next = mix((vec3(g) - a / s) * s, (vec3(g + 1) - a / s) * s, greaterThan(d, vec3(0.0))) * sign(d) * inv;
+  next = mix(next, vec3(2.0), equal(stepv, ivec3(0)));
+  vec3 delta = s * inv;
+  for (int i = 0; i < 16; ++i) {
+    if (vc_in_box(g, vc_voxel_origin(l), vc_n())) {
+      uvec4 v = vc_voxels[vc_voxel_index(l, g)];
+      if ((v.y & kVcVoxelGeometry) != 0u) {
+        uint tri = v.w & kVcFillTriangleMask;
+        if (tri == 0u || tri > gib_frame.scene_info.x) return true;
+        GpuTriangle t = gib_triangles[tri - 1u];
+        vec3 p0 = gib_vertices[t.i0].position;
+        vec3 nrm = cross(gib_vertices[t.i1].position - p0, gib_vertices[t.i2].position - p0);
+        float len = length(nrm);
+        if (len > 0.0) {
+          nrm /= len;
+          bool own = dot(nrm, n) > 0.999 && abs(dot(a - p0, nrm)) < 0.1 * s;
+          if (!own && vc_crosses_voxel_plane(a, b, p0, nrm, g, s)) return true;
+        }
+      }
+    }
+    if (all(equal(g, last))) break;
+    // Step across the nearest boundary.
+    if (next.x <= next.y && next.x <= next.z) {
+      if (next.x > 1.0) break;
+      g.x += stepv.x;
+      next.x += delta.x;
+    } else if (next.y <= next.z) {
+      if (next.y > 1.0) break;
+      g.y += stepv.y;
+      next.y += delta.y;
+    } else {
+      if (next.z > 1.0) break;
+      g.z += stepv.z;
+      next.z += delta.z;
+    }
+  }
+  return false;
 }
 #endif
 
@@ -143,9 +197,9 @@ bool vc_cell_behind_wall(uint l, vec3 q, ivec3 k) {
 // convex offset filtering the lookup moves half a cell along the normal and corner cells whose
 // centres lie behind the surface's plane (more than a quarter cell) get no weight: the filter
 // footprint stays on the lit side of a wall; where the includer defines VC_CONVEX_VOXELS and
-// geometry_light is on, corner cells behind another wall (a voxel with geometry halfway) get
-// none either, so a surface near
-// a room's corner does not blend in the cells outside it. Returns the weight found (0: nothing
+// geometry_light is on, corner cells behind another wall (vc_cell_behind_wall: the segment to
+// the cell's centre crosses a voxelised triangle's plane) get none either, so a surface near a
+// room's corner does not blend in the cells outside it. Returns the weight found (0: nothing
 // usable).
 float vc_cubes_trilinear(uint l, vec3 x, vec3 n, bool convex, out vec3 bounce, out vec3 sky, out float hit) {
   float c = vc_cell_size(l);
@@ -165,7 +219,7 @@ float vc_cubes_trilinear(uint l, vec3 x, vec3 n, bool convex, out vec3 bounce, o
     if ((vc_cell_state[cell] & kVcCellUpdated) == 0u) continue;
     if (convex && dot((vec3(k) + 0.5) * c - x, n) < -0.25 * c) continue;
 #ifdef VC_CONVEX_VOXELS
-    if (convex && vc_flag(kVcFlagGeometryLight) && vc_cell_behind_wall(l, x + n * (0.75 * c), k)) continue;
+    if (convex && vc_flag(kVcFlagGeometryLight) && vc_cell_behind_wall(l, x, n, k)) continue;
 #endif
     vec3 t = mix(1.0 - f, f, vec3(o));
     float w = t.x * t.y * t.z;

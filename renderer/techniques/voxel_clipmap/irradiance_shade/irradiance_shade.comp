@@ -4,6 +4,8 @@
 #extension GL_GOOGLE_include_directive : require
 #include "renderer/techniques/voxel_clipmap/irradiance_shade/irradiance_shade_shared.h"
 #include "frame.glsl"
+#include "scene.glsl"
+GIB_SCENE_BUFFERS(0, kBindSceneFirst)
 #include "finite.glsl"
 layout(push_constant) uniform Push { VcParams vc; };
 VC_STATE_BUFFER(kIrrShadeBindState, readonly)

@@ -69,7 +69,14 @@ void main() {
     }
     return;
   }
-  // kScFeedWrite: light the pixel once, write the voxels this sample owns.
+  // kScFeedWrite: light the pixel once, write the voxels this sample owns. Most samples own
+  // none (several samples a voxel): those return before the lighting.
+  bool owns = false;
+  for (uint l = 0u; l < vc_levels() && !owns; ++l) {
+    ivec3 g = vc_feed_voxel(x, n, l);
+    owns = vc_in_box(g, vc_voxel_origin(l), vc_n()) && owner[vc_voxel_index(l, g)] == i + 1u;
+  }
+  if (!owns) return;
   vec3 albedo = imageLoad(gb_albedo, p).rgb;
   vec3 emitted = imageLoad(gb_emissive, p).rgb;
   // direct_light holds the emission too; the voxel keeps it apart (relit cells count it as
@@ -106,7 +113,10 @@ void main() {
     float op = (!opaque && (v.y & kVcVoxelOpaqueFed) != 0u) ? old_op : mix(old_op, opacity, a);
     uint op8 = vc_opacity_byte(op);
     uint flags = (v.y & (kVcVoxelGeometry | kVcVoxelNew | kVcVoxelOpaqueFed)) | kVcVoxelFed | (opaque ? kVcVoxelOpaqueFed : 0u);
-    vc_voxels[idx] = uvec4(gib_pack_rgb9e5(rad), flags | op8, gib_pack_rgb9e5(em), v.w);
+    // Stochastic rounding (a dither from the voxel, the frame and the seed): rounded to nearest,
+    // a blend that moves by less than half a unit a frame stops, a bias the loop multiplies.
+    uint dither = gib_pcg(idx ^ gib_pcg(vc_frame() ^ gib_pcg(vc.rays.z ^ 0x5bd1e995u)));
+    vc_voxels[idx] = uvec4(gib_pack_rgb9e5_dither(rad, dither), flags | op8, gib_pack_rgb9e5_dither(em, gib_pcg(dither)), v.w);
     atomicAdd(vc_state.stats.y, 1u);
   }
 }

@@ -8,7 +8,9 @@
 // Opacity: 1 for opaque pixels; with semi_transparent, an alpha-tested material's mean opacity,
 // and a semi-transparent pixel leaves a voxel that opaque pixels fed at its opacity (4.4).
 // Several samples in one voxel: the one with the largest id writes it (an atomicMax claim, then
-// the write), so the result does not depend on thread order (the seed ignores the overwrite).
+// the write), so the result does not depend on thread order (the seed ignores the overwrite);
+// only owners light their pixel. Stores round stochastically (gib_pack_rgb9e5_dither): rounded
+// to nearest, a blend moving by less than half a unit a frame stops short of its limit.
 // Slots: read vbuffer, gbuffer_albedo, gbuffer_normal, gbuffer_position, direct_light,
 // irradiance_x/_y/_z, irradiance_cell_state; read_write voxel_clip_state, scene_voxel_data;
 // writes voxel_feed_owner (transient).

@@ -36,7 +36,10 @@ void voxelize(uint tid) {
   uint key = vc_fill_key(vc_opacity_byte(opacity), dot(cross(b - a, c - a), gib_frame.camera_pos.xyz - a) > 0.0, tri);
   float s = vc_voxel_size(l);
   int n = vc_n();
-  ivec3 lo = max(ivec3(floor(min(a, min(b, c)) / s)), o.xyz);
+  // Every voxel the triangle's bounds touch: voxel g spans [g s, (g + 1) s], so a triangle on a
+  // voxel boundary also reaches the voxel below it (floor alone would test the one above only,
+  // and a wall on the boundary at a room's far side would leave its inner voxel empty).
+  ivec3 lo = max(ivec3(ceil(min(a, min(b, c)) / s)) - 1, o.xyz);
   ivec3 hi = min(ivec3(floor(max(a, max(b, c)) / s)), o.xyz + ivec3(n - 1));
   vec3 h = vec3(0.5 * s);
   for (int z = lo.z; z <= hi.z; ++z)

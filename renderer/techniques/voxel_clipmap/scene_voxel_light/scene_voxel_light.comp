@@ -87,5 +87,9 @@ void main() {
   if (!vc_flag(kVcFlagMultiBounce)) bounce = vec3(0.0);
   vec3 radiance = albedo * (direct_light(surf.position, surf.normal) / GIB_PI + bounce + sky);
   if (vc_flag(kVcFlagNanGuards) && !(gib_finite(radiance) && gib_finite(emitted))) return;
-  vc_voxels[idx] = uvec4(gib_pack_rgb9e5(radiance), v.y | kVcVoxelLit, gib_pack_rgb9e5(emitted), v.w);
+  // Stochastic rounding, as the feed's: a voxel lit to the same value each visit would round
+  // the same way every time, a bias the loop multiplies.
+  uint dither = gib_pcg(idx ^ gib_pcg(vc_frame() ^ gib_pcg(vc.rays.z ^ 0x27d4eb2fu)));
+  vc_voxels[idx] = uvec4(gib_pack_rgb9e5_dither(radiance, dither), v.y | kVcVoxelLit,
+                         gib_pack_rgb9e5_dither(emitted, gib_pcg(dither)), v.w);
 }

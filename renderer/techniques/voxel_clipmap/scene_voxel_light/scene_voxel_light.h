@@ -11,8 +11,9 @@
 // The value is written without averaging: it has no noise of its own (one fixed point; the
 // cubes average over time). So walls the camera never sees keep sending their light and take
 // part in every bounce; a static camera in a closed room converges. Pixel-fed voxels are left
-// to the feed (textures, exact sky rays). With geometry_light 0 (the default until the
-// technique's goldens are re-recorded) the pass declares itself switched off and the graph
+// to the feed (textures, exact sky rays). The radiance is stored with stochastic rounding (a
+// voxel re-lit to the same value would round the same way each time: a bias the loop
+// multiplies). With geometry_light 0 the pass declares itself switched off and the graph
 // culls it.
 // Slots: read irradiance_x/_y/_z, irradiance_cell_state; read_write voxel_clip_state,
 // scene_voxel_data.
