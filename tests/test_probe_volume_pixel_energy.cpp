@@ -12,14 +12,18 @@
 // in a radiance-probe lookup: at the default pixel_range 2 the per-pixel hits carry 0.20 of the
 // one-interreflection light in this room, the rest arrives through the radiance probes at the
 // rays' ends.
+//   - The probe lookups' share of the second interreflection (disabled: 0.80 with the ground
+//     outside, 0.87 without; the located loss of the thin-wall rooms).
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstring>
 #include <string>
 
 #include "harness/case.h"
 #include "harness/case_render.h"
 #include "metrics/image_metrics.h"
+#include "renderer/techniques/probe_volume/include/probe_volume_shared.h"
 #include "tests/gpu_fixture.h"
 
 namespace gib {
@@ -85,8 +89,9 @@ TEST_F(ProbeVolumePixelEnergy, SunAtPerPixelHitsMatchesOneInterreflection) {
 }
 
 // Every probe relit every frame (budget 4096), 48 frames. Measured (lavapipe): 0.1453 against
-// 0.1458, ratio 0.997 (0.997 before the solid-angle weights of probe_convolve too: the room's
-// surfaces lit by the patch are axis-aligned to the probes).
+// 0.1458, ratio 0.997; with the sunlit ground outside the same reads 0.910 (0.890 before
+// probe_convolve weighed texels by solid angle). The sum hides a split the disabled test below
+// measures: the probe lookups carry 0.87 of the second interreflection here.
 TEST_F(ProbeVolumePixelEnergy, ProbesCarryTheSecondInterreflectionIndoors) {
   Room room = sunlit_room(48, false);
   room.pv.options["multi_bounce"] = 0;
@@ -97,23 +102,49 @@ TEST_F(ProbeVolumePixelEnergy, ProbesCarryTheSecondInterreflectionIndoors) {
   EXPECT_NEAR(got / ref, 1.0, 0.05);
 }
 
-// The same with the sunlit ground outside the window: measured (lavapipe) 0.1782 against
-// 0.1958, ratio 0.910 (0.890 with probe_convolve counting octahedral texels alike); indoor_classes
-// 0 reads 1.000, offsets 0 0.909 (before the solid-angle weights), probe_ao, relocation,
-// visibility_test and nearest_weight change it by under 0.003. The ground adds 0.030 to the
-// reference's one-interreflection light (matched by the per-pixel hits) and 0.020 more at the
-// second, of which the technique carries about 0.003: light from the sunlit ground that reaches
-// the room's surfaces through the window (or reaches the ground from the walls' sunlit outer
-// faces) is missing. Not isolated: disabled until it is.
-TEST_F(ProbeVolumePixelEnergy, DISABLED_ProbesCarryTheSecondInterreflectionThroughTheWindow) {
-  Room room = sunlit_room(48, true);
-  room.pv.options["multi_bounce"] = 0;
-  room.pv.options["probe_budget"] = 4096;
-  const double got = room_mean(room, render_case_hooked(gpu(), room.c, room.pv, "medium", 0, RunHooks{}).image);
-  const double ref = reference_room(gpu(), room, 3);
-  std::printf("two interreflections, sunlit ground outside: probe-volume %.5f reference %.5f ratio %.4f\n", got, ref,
-              got / ref);
-  EXPECT_NEAR(got / ref, 1.0, 0.05);
+// The second interreflection's share that comes through the probe lookups: the technique's room
+// with the converged probes (multi_bounce 0, read after 8 frames and overridden every frame)
+// minus the same run with the probes of a class at 0 (same seeds: the per-pixel sun's noise
+// cancels), against the reference's max_bounces 3 minus 2. Measured (lavapipe): with the ground
+// outside 0.0641 of 0.0800 (0.80; outdoor probes 0.0015), without it 0.0525 of 0.0603 (0.87;
+// 0.0006). The indoor probes see the ground (their mean luminance 0.200 -> 0.237 with it): the
+// light is lost between the probes and the points that look them up. The located loss of the
+// thin-wall rooms; not isolated further, so disabled.
+TEST_F(ProbeVolumePixelEnergy, DISABLED_ProbeLookupsCarryTheSecondInterreflection) {
+  for (bool ground : {true, false}) {
+    Room room = sunlit_room(8, ground);
+    room.pv.options["multi_bounce"] = 0;
+    room.pv.options["probe_budget"] = 4096;
+    RunHooks hooks;
+    hooks.read = {"probe_state", "probe_irradiance", "probe_radiance"};
+    const CaseRender r = render_case_hooked(gpu(), room.c, room.pv, "medium", 0, hooks);
+    const auto& bytes = r.read.at("probe_state");
+    const size_t header = glsl::kPvMaxCascades * sizeof(glsl::PvCascade);
+    std::vector<glsl::PvProbe> probes((bytes.size() - header) / sizeof(glsl::PvProbe));
+    std::memcpy(probes.data(), bytes.data() + header, probes.size() * sizeof(glsl::PvProbe));
+    Room full = sunlit_room(48, ground);
+    full.pv.options = room.pv.options;
+    full.pv.frames = 48;
+    double room_with[3];  // probes as converged, outdoor ones at 0, indoor ones at 0
+    for (int zero = -1; zero <= 1; ++zero) {  // -1 none, 0 outdoor zeroed, 1 indoor zeroed
+      RunHooks o;
+      for (const char* name : {"probe_irradiance", "probe_radiance"}) {
+        std::vector<uint8_t> data = r.read.at(name);
+        const size_t per = data.size() / probes.size();
+        for (size_t i = 0; i < probes.size(); ++i) {
+          const bool indoor = (uint32_t(probes[i].coord.w) & glsl::kPvProbeIndoor) != 0;
+          if (zero >= 0 && indoor == (zero == 1)) std::memset(data.data() + i * per, 0, per);
+        }
+        o.overrides.push_back({"probe_convolve", name, data});
+      }
+      room_with[zero + 1] = room_mean(full, render_case_hooked(gpu(), full.c, full.pv, "medium", 0, o).image);
+    }
+    const double outdoor = room_with[0] - room_with[1], lookups = room_with[0] - room_with[2] + outdoor;
+    const double second = reference_room(gpu(), full, 3) - reference_room(gpu(), full, 2);
+    std::printf("ground %d: probe lookups %.5f (outdoor probes %.5f), reference second interreflection %.5f, ratio %.4f\n",
+                ground, lookups, outdoor, second, lookups / second);
+    EXPECT_NEAR(lookups / second, 1.0, 0.05) << "ground " << ground;
+  }
 }
 
 }  // namespace
