@@ -88,6 +88,15 @@ vec3 pv_gbuffer_direction(uint t, bool quarter) {
   return gib_oct_decode(uv);
 }
 
+// Solid angle of an octahedral texel whose centre is direction d (unit), relative to a texel on
+// an axis: texels cover equal areas of the octahedron |x| + |y| + |z| = 1, and an area there at
+// P = d / |d|_1 subtends cos / |P|^2 = (1 / sqrt(3)) / |P|^3 of it, |P| = 1 / |d|_1: so |d|_1^3
+// (1 on an axis, 3 sqrt(3) = 5.2 on a diagonal).
+float pv_texel_solid_angle(vec3 d) {
+  float l1 = abs(d.x) + abs(d.y) + abs(d.z);
+  return l1 * l1 * l1;
+}
+
 // ---- G-buffer texel codecs (probe_volume_shared.h)
 uvec2 pv_pack_material(vec3 albedo, float translucency, vec3 emission) {
   uvec4 a = uvec4(clamp(vec4(albedo, translucency), 0.0, 1.0) * 255.0 + 0.5);

@@ -2,6 +2,12 @@
 // probe_convolve.h). One workgroup per probe: the 20x20 texels are box-filtered to 10x10 in
 // group-shared memory (the seed's bilinear pre-filter), each thread convolves one output texel,
 // then the bordered tiles are written.
+//
+// Every sum over texels weighs a texel by the solid angle it covers: octahedral texels cover
+// equal areas of the octahedron, so a texel towards a face's centre (a diagonal direction)
+// subtends 3 sqrt(3) = 5.2 times the solid angle of one on an axis. Counting texels alike
+// darkens light arriving from the diagonals and brightens light along the axes (exact only for
+// a uniform field).
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "renderer/techniques/probe_volume/probe_convolve/probe_convolve_shared.h"
@@ -29,6 +35,7 @@ layout(local_size_x = kPvConvolveGroup) in;
 const uint kBlocks = kPvRadianceInterior * kPvRadianceInterior;  // 10x10 blocks of 2x2 texels
 const uint kIrr = kPvIrradianceInterior * kPvIrradianceInterior;
 shared vec3 s_dir[kBlocks];
+shared float s_solid[kBlocks];   // the block's solid angle, up to a constant factor
 shared vec3 s_total[kBlocks];     // everything arriving: reflected + emission + sky x visibility
 shared vec4 s_reflected[kBlocks]; // rgb reflected, a sky visibility
 shared vec2 s_moments[kBlocks];
@@ -53,37 +60,42 @@ void main() {
     vec3 total = vec3(0.0);
     vec4 reflected = vec4(0.0);
     vec2 moments = vec2(0.0);
-    float local = 0.0;
+    float local = 0.0, solid = 0.0;
     for (uint k = 0u; k < 4u; ++k) {
       uint t = (by * 2u + (k >> 1u)) * kPvGbufferSide + bx * 2u + (k & 1u);
       uint src = quarter ? (by * 2u) * kPvGbufferSide + bx * 2u : t;  // a quarter probe lit one texel per block
+      float w = pv_texel_solid_angle(pv_gbuffer_direction(t, false));
       vec4 r = texel_radiance[e * kPvGbufferTexels + src];
       float depth = pv_texel_depth(probe, t, 3.4e38);
       vec3 emission = depth < 3.4e38 ? gib_unpack_rgb9e5(gb_material[pv_gbuffer_index(probe, t)].y) : vec3(0.0);
-      total += r.rgb + emission + r.a * sky;
-      reflected += r;
+      total += w * (r.rgb + emission + r.a * sky);
+      reflected += w * r;
       // Rescaled and clamped before averaging (the seed: fewer leaks in interior corners).
       float z = min(depth / unit, 1.0);
-      moments += vec2(z, z * z);
-      local += texel_local[e * kPvGbufferTexels + src];
+      moments += w * vec2(z, z * z);
+      local += w * texel_local[e * kPvGbufferTexels + src];
+      solid += w;
     }
     s_dir[tid] = d;
-    s_total[tid] = total * 0.25;
-    s_reflected[tid] = reflected * 0.25;
-    s_moments[tid] = moments * 0.25;
-    s_local[tid] = local * 0.25;
+    s_solid[tid] = solid;
+    s_total[tid] = total / solid;
+    s_reflected[tid] = reflected / solid;
+    s_moments[tid] = moments / solid;
+    s_local[tid] = local / solid;
   }
   barrier();
   if (tid == 0u) {
-    float sky = 0.0, lum = 0.0, local = 0.0;
+    float sky = 0.0, lum = 0.0, local = 0.0, solid = 0.0;
     for (uint b = 0u; b < kBlocks; ++b) {
-      sky += s_reflected[b].a;
-      lum += gib_luminance(s_total[b]);
-      local += s_local[b];
+      float w = s_solid[b];
+      sky += w * s_reflected[b].a;
+      lum += w * gib_luminance(s_total[b]);
+      local += w * s_local[b];
+      solid += w;
     }
-    sky /= float(kBlocks);
-    lum /= float(kBlocks);
-    local /= float(kBlocks);
+    sky /= solid;
+    lum /= solid;
+    local /= solid;
     // Each probe stores its lighting times 1 / its mean luminance (the seed's lighting scale:
     // precision from dark caves to noon).
     float scale = lum > 1e-6 ? 1.0 / lum : 1.0;
@@ -100,7 +112,7 @@ void main() {
     float weight = 0.0;
     for (uint b = 0u; b < kBlocks; ++b) {
       float w = clamp((dot(d, s_dir[b]) - 0.75) * 4.0, 0.0, 1.0);
-      w = (w * w) * (w * w);
+      w = (w * w) * (w * w) * s_solid[b];
       sum += w * s_reflected[b];
       moments += w * s_moments[b];
       weight += w;
@@ -114,7 +126,7 @@ void main() {
     vec3 sum = vec3(0.0);
     float weight = 0.0;
     for (uint b = 0u; b < kBlocks; ++b) {
-      float w = max(dot(n, s_dir[b]), 0.0);
+      float w = max(dot(n, s_dir[b]), 0.0) * s_solid[b];
       sum += w * s_total[b];
       weight += w;
     }
