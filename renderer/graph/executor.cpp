@@ -536,23 +536,22 @@ float Executor::frame_time() const {
   return settings_.scene_time >= 0.0f ? settings_.scene_time : float(frame_) * scene_.frame_time;
 }
 
-// Records running pass i between its timestamp pair (queries q, q + 1; q advances past them and
-// past any dispatch stamps of the profile), then the overrides after it.
-void Executor::record_pass(Cmd& cmd, size_t i, uint32_t& q, uint32_t profile_query_limit,
+// Records running pass i (`pp`) between its timestamp pair (queries q, q + 1; q advances past
+// them and past any dispatch stamps of the profile), then the overrides after it.
+void Executor::record_pass(Cmd& cmd, const PlannedPass& pp, size_t i, uint32_t& q, uint32_t profile_query_limit,
                            std::vector<LoggedDispatch>& logged) {
-  const PlannedPass* pp = plan_.running()[i];
-  const PassDecl& decl = decls_[pp->decl_index];
-  if (!pp->barrier_before.resources.empty()) cmd.barrier(pp->barrier_before.src_kinds, pp->barrier_before.dst_kind);
+  const PassDecl& decl = decls_[pp.decl_index];
+  if (!pp.barrier_before.resources.empty()) cmd.barrier(pp.barrier_before.src_kinds, pp.barrier_before.dst_kind);
   cmd.begin_label(decl.name);
   cmd.timestamp(q++);
   if (profile_dispatches_) {
     DispatchLogCmd log(cmd, q, profile_query_limit, profile_query_limit > q);
     RecordContext ctx(gpu_, log, scene_, scene_gpu_, settings_, frame_, decl.name, bind_slots(decl));
-    passes_[pp->decl_index]->record(ctx);
+    passes_[pp.decl_index]->record(ctx);
     logged = log.dispatches();
   } else {
     RecordContext ctx(gpu_, cmd, scene_, scene_gpu_, settings_, frame_, decl.name, bind_slots(decl));
-    passes_[pp->decl_index]->record(ctx);
+    passes_[pp.decl_index]->record(ctx);
   }
   cmd.timestamp(q++);
   cmd.end_label();
@@ -600,7 +599,7 @@ FrameResult Executor::run_frame_host_timed() {
     if (i == 0) record_frame_constants(*cmd, time);
     uint32_t q = 0;
     std::vector<LoggedDispatch> logged;
-    record_pass(*cmd, i, q, 0, logged);
+    record_pass(*cmd, *running[i], i, q, 0, logged);
     auto t0 = std::chrono::steady_clock::now();
     gpu_.submit(std::move(cmd));
     double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -666,7 +665,7 @@ std::vector<FrameResult> Executor::run_batch(uint32_t n) {
       const uint32_t reserved = 1u + 2u * uint32_t(passes - 1 - i) + (scan ? 1u : 0u);
       const uint32_t limit = profile_dispatches_ ? r.first_query + per_frame - reserved : 0u;
       r.pass_query[i] = q;
-      record_pass(*cmd, i, q, limit, r.logged[i]);
+      record_pass(*cmd, *running[i], i, q, limit, r.logged[i]);
       r.pass_end_query[i] = q - 1;
       if (scan) {
         const uint32_t d = record_scans(*cmd, i, r.scan_reset, k);

@@ -108,8 +108,8 @@ class Executor {
   uint32_t record_scans(Cmd& cmd, size_t running_index, bool& reset, uint32_t slot);
   void collect_scan_results(uint32_t slot, uint32_t frame);
   float frame_time() const;
-  void record_pass(Cmd& cmd, size_t running_index, uint32_t& query, uint32_t profile_query_limit,
-                   std::vector<LoggedDispatch>& logged);
+  void record_pass(Cmd& cmd, const PlannedPass& pass, size_t running_index, uint32_t& query,
+                   uint32_t profile_query_limit, std::vector<LoggedDispatch>& logged);
   FrameResult run_frame_host_timed();
   std::vector<FrameResult> run_batch(uint32_t n);
   void upload_scene(float time);
