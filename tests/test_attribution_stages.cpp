@@ -203,8 +203,11 @@ void ExactGiOracleGpu::check(const std::string& technique, const std::string& st
   in.width = c.width;
   in.height = c.height;
   in.seeds.push_back(plain.read);
-  in.formats["gbuffer_albedo"] = plain.plan.find("gbuffer_albedo")->desc.format;
-  in.extents["gbuffer_albedo"] = {c.width, c.height};
+  for (const std::string& name : reads.read) {  // as the harness fills them: every resource read
+    const ResolvedResource* res = plain.plan.find(name);
+    in.formats[name] = res->desc.format;
+    in.extents[name] = {res->width, res->height};
+  }
   FloatImage ref(c.width, c.height, 4, 0.0f);
   for (uint32_t y = 0; y < c.height; ++y)
     for (uint32_t x = 0; x < c.width; ++x)

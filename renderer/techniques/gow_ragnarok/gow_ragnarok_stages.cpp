@@ -29,7 +29,7 @@ std::vector<TechniqueStage> gow_ragnarok_stages() {
   s[1].make = [](const OracleInputs& in) {
     // RGBA16F from the combined pass (its history), RGBA32F from the separate ssgi pass.
     const Bytes& seed = oracles::seed_bytes(in, 0, "ssgi_indirect");
-    const bool halves = seed.size() == size_t(in.width) * in.height * 8;
+    const bool halves = in.formats.at("ssgi_indirect") == Format::rgba16_float;
     return std::map<std::string, Bytes>{{"ssgi_indirect", halves ? reference_rgba16f(in, "indirect_diffuse", &seed)
                                                                   : reference_rgba32f(in, "indirect_diffuse", &seed)}};
   };
