@@ -168,9 +168,15 @@ TEST(NormalMap, ImportReadsLinearNormalTextureAndScaleAndExportKeepsThem) {
   EXPECT_EQ(s.materials[0].normal_scale, 0.75f);
   EXPECT_EQ(s.materials[0].base_color_texture, -1);
   EXPECT_TRUE(s.features().has(Feature::textured));
-  const GpuMaterial g = flatten(s, 0).materials[0];
+  const FlatScene flat = flatten(s, 0);
+  const GpuMaterial g = flat.materials[0];
   EXPECT_EQ(g.normal_texture, 0u);
   EXPECT_EQ(g.normal_scale, 0.75f);
+  // Surface lookups read the material's normal texture only for instances flagged so.
+  ASSERT_FALSE(flat.instances.empty());
+  for (const GpuInstance& gi : flat.instances)
+    EXPECT_EQ(gi.flags & kInstanceNormalMapped, flat.materials[gi.material].normal_texture != kTextureNone ? kInstanceNormalMapped : 0u);
+  EXPECT_NE(flat.instances[0].flags & kInstanceNormalMapped, 0u);
 
   const test::TempDir dir("normal_map_roundtrip");
   const std::string path = (dir.path() / "bumpy.glb").string();

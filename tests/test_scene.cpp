@@ -611,7 +611,7 @@ TEST(SceneLoader, SolidObjectsAndTheirInstanceFlags) {
   FlatScene f = flatten(s, 0.0f);
   ASSERT_EQ(f.instances.size(), 6u);
   const uint32_t expect[6] = {kInstanceSolid, 0u, 0u, kInstanceSolid | kInstanceMirrored, kInstanceSolid, 0u};
-  for (size_t i = 0; i < 6; ++i) EXPECT_EQ(f.instances[i].flags, expect[i]) << "object " << i;
+  for (size_t i = 0; i < 6; ++i) EXPECT_EQ(f.instances[i].flags, expect[i]) << "object " << i << " (no normal map: no kInstanceNormalMapped)";
 
   json bad = minimal_doc();
   bad["objects"][0] = {{"primitive", {{"type", "quad"}}}, {"material", "white"}, {"solid", true}};

@@ -287,6 +287,9 @@ FlatScene flatten(const Scene& scene, float time, Vec3 world_offset, const std::
 
   out.materials.reserve(scene.materials.size());
   for (const Material& m : scene.materials) out.materials.push_back(material_to_gpu(m));
+  for (GpuInstance& gi : out.instances)
+    if (gi.material < out.materials.size() && out.materials[gi.material].normal_texture != kTextureNone)
+      gi.flags |= kInstanceNormalMapped;
   const std::vector<float> opacity = average_opacity ? *average_opacity : bake_average_opacity(scene);
   for (size_t i = 0; i < out.materials.size() && i < opacity.size(); ++i) out.materials[i].avg_opacity = opacity[i];
   out.lights.reserve(scene.lights.size());

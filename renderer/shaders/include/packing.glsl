@@ -1,7 +1,8 @@
 // Packed float formats by hand (owner: codecs). CPU mirrors in renderer/codecs/ (rgb9e5.h,
 // r11g11b10.h, half.h) agree bit for bit (tests/test_codecs.cpp); their headers state the
-// policies. Everything is integer arithmetic on float bits, so the result does not depend on a
-// device's float rounding, denormal flushing or NaN handling in min/max.
+// policies. Everything is integer arithmetic on float bits (the half conversion's fast path
+// excepted, see below), so the result does not depend on a device's float rounding, denormal
+// flushing or NaN handling in min/max.
 //
 // RGB9E5 (E5B9G9R9_UFLOAT_PACK32 layout, stored in R32_UINT images): Vulkan spec shared
 // exponent, round half up; NaN / negatives -> 0; clamp to 65408.
@@ -17,7 +18,10 @@
 // Half (IEEE binary16): round to nearest even with denormals, overflow -> Inf, NaN -> quiet
 // NaN with the sign and top payload bits. Equal to packHalf2x16 on lavapipe and NVIDIA for all
 // non-NaN inputs (Vulkan leaves packHalf2x16's rounding open; these are exact everywhere).
-//   uint gib_float_to_half(float f); float gib_half_to_float(uint h);
+// gib_float_to_half corrects the device's packHalf2x16 to RNE on normal halves (exact wherever
+// packHalf2x16 returns one of the two halves around the value, as gib_pack_half2x16_rtz needs);
+// gib_float_to_half_exact is integer arithmetic throughout.
+//   uint gib_float_to_half(float f); uint gib_float_to_half_exact(float f); float gib_half_to_float(uint h);
 //   uint gib_pack_half2x16(vec2 v); vec2 gib_unpack_half2x16(uint p);
 // gib_pack_half2x16_rtz(v): packHalf2x16 layout, rounding toward zero (overflow -> 65504, Inf
 // stays Inf, NaN stays NaN): what an imageStore to an RGBA16F image gives on lavapipe; a value so
@@ -52,7 +56,8 @@ uint gib_round_to_small_float(uint a, uint mbits, bool rne) {
 }
 
 // ---- half
-uint gib_float_to_half(float f) {
+// The reference conversion, integer arithmetic only (any value, NaN and denormals included).
+uint gib_float_to_half_exact(float f) {
   uint u = floatBitsToUint(f);
   uint sign = (u >> 16) & 0x8000u;
   uint a = u & 0x7fffffffu;
@@ -60,6 +65,31 @@ uint gib_float_to_half(float f) {
   if (a == 0x7f800000u) return sign | 0x7c00u;
   uint h = gib_round_to_small_float(a, 10u, true);
   return sign | min(h, 0x7c00u);
+}
+
+// The same bits as gib_float_to_half_exact, cheaper: where the value rounds to a normal half
+// (2^-14 <= |f| <= 65504) the device's packHalf2x16 gives one of the two halves around it in
+// whatever mode it rounds (RNE on lavapipe and NVIDIA), and one comparison of the two distances
+// (exact: the value and a half one step away differ by at most a factor 2) picks the nearer,
+// ties to the even code. Below 2^-14 the half is a multiple of 2^-24: roundEven(|f| 2^24) (an
+// exact product) is its code, 0x400 where it rounds up to the smallest normal. Overflow, Inf and
+// NaN take the exact path. Every common value thus takes a few instructions: where a warp mixed
+// the integer path (tiny derivatives, normals' near-zero components) with the fast one, it paid
+// for both.
+uint gib_float_to_half(float f) {
+  float a = abs(f);
+  uint sign = floatBitsToUint(f) >> 16 & 0x8000u;
+  if (!(a <= 65504.0)) return gib_float_to_half_exact(f);
+  if (a < 6.103515625e-05) return sign | uint(roundEven(a * 16777216.0));
+  uint h = packHalf2x16(vec2(a, 0.0)) & 0x7fffu;
+  float got = unpackHalf2x16(h).x;
+  if (got != a) {
+    uint lo = got < a ? h : h - 1u;
+    float below = unpackHalf2x16(lo).x, above = unpackHalf2x16(lo + 1u).x;
+    float d_lo = a - below, d_hi = above - a;
+    h = (d_lo < d_hi || (d_lo == d_hi && (lo & 1u) == 0u)) ? lo : lo + 1u;
+  }
+  return sign | h;
 }
 
 float gib_half_to_float(uint h) {

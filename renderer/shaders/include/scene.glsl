@@ -60,10 +60,11 @@ struct GpuInstance {  // 16 bytes
   uint material;
   uint first_triangle;
   uint triangle_count;
-  uint flags;  // kGibInstanceSolid | kGibInstanceMirrored (scene.h kInstanceSolid, kInstanceMirrored)
+  uint flags;  // kGibInstanceSolid | kGibInstanceMirrored | kGibInstanceNormalMapped (scene.h kInstance*)
 };
 const uint kGibInstanceSolid = 1u;
 const uint kGibInstanceMirrored = 2u;
+const uint kGibInstanceNormalMapped = 4u;
 
 struct GpuMaterial {  // 112 bytes
   vec3 albedo;

@@ -41,10 +41,13 @@ GibSurface gib_surface(uint tri, float u, float v, bool nan_guard) {
     s.normal = nl > 1e-12 ? n / nl : s.geo_normal;
   s.uv = vec2(a.u, a.v) * w + vec2(b.u, b.v) * u + vec2(c.u, c.v) * v;
   s.instance = t.instance;
-  s.material = gib_instances[t.instance].material;
+  GpuInstance inst = gib_instances[t.instance];
+  s.material = inst.material;
   // A normal map bends the shading normal in every pass alike (G-buffer, GI traces, path
   // tracer: the same light paths), sampled bilinearly at level 0 as the material's unfiltered
-  // lookups are. A non-finite normal (no guard) passes on untouched.
+  // lookups are. A non-finite normal (no guard) passes on untouched. The instance's flag says
+  // whether its material has one, so other surfaces never wait on the material's load.
+  if ((inst.flags & kGibInstanceNormalMapped) == 0u) return s;
   uint nt = gib_materials[s.material].normal_texture;
   if (nt != GIB_TEXTURE_NO_INDEX && gib_finite(s.normal))
     s.normal = gib_normal_map(s.normal, a.position, b.position, c.position, vec2(a.u, a.v), vec2(b.u, b.v),

@@ -1,24 +1,47 @@
-// Workgroup-wide exclusive prefix sum over one value per invocation, for kernels whose
-// workgroup is GIB_SCAN_SIZE invocations (a power of two). Deterministic: no atomics.
-// Usage: #define GIB_SCAN_SIZE 256 before including; call from uniform control flow.
+// Workgroup-wide exclusive prefix sums in gl_LocalInvocationIndex order, over one value or three
+// per invocation, for kernels whose workgroup is GIB_SCAN_SIZE invocations (a multiple of
+// kGibScanChunk). Deterministic: integer sums, no atomics, no subgroup operations (Vulkan does
+// not tie subgroups to gl_LocalInvocationIndex).
+// Two levels, three barriers: every value goes to shared memory; one invocation per chunk of
+// kGibScanChunk sums its chunk; each invocation then adds the chunks before its own and the
+// values before it in its chunk. A log-step scan over 256 values takes 17 barriers.
+// Usage: #define GIB_SCAN_SIZE 256 (and GIB_SCAN_UVEC3 for the three-value scan) before
+// including; call from uniform control flow.
 #ifndef GIB_DEFERRED_SCAN_GLSL
 #define GIB_DEFERRED_SCAN_GLSL
-shared uint gib_scan_buf[GIB_SCAN_SIZE];
+const uint kGibScanChunk = 16u;
+const uint kGibScanChunks = GIB_SCAN_SIZE / kGibScanChunk;
 
-// Returns the sum of v over invocations before this one; *total the sum over all.
-uint gib_workgroup_exclusive_scan(uint v, out uint total) {
-  uint i = gl_LocalInvocationIndex;
-  gib_scan_buf[i] = v;
-  barrier();
-  for (uint off = 1u; off < GIB_SCAN_SIZE; off <<= 1u) {
-    uint add = i >= off ? gib_scan_buf[i - off] : 0u;
-    barrier();
-    gib_scan_buf[i] += add;
-    barrier();
+// Defines `T NAME(T v, out T total)` over shared arrays of T: the sum of v over invocations
+// before this one, and in *total the sum over all.
+#define GIB_DEFINE_WORKGROUP_SCAN(T, NAME)                                        \
+  shared T NAME##_values[GIB_SCAN_SIZE];                                          \
+  shared T NAME##_chunks[kGibScanChunks];                                         \
+  T NAME(T v, out T total) {                                                      \
+    uint i = gl_LocalInvocationIndex;                                             \
+    NAME##_values[i] = v;                                                         \
+    barrier();                                                                    \
+    if (i < kGibScanChunks) {                                                     \
+      T s = T(0u);                                                                \
+      for (uint k = 0u; k < kGibScanChunk; ++k) s += NAME##_values[i * kGibScanChunk + k]; \
+      NAME##_chunks[i] = s;                                                       \
+    }                                                                             \
+    barrier();                                                                    \
+    uint c = i / kGibScanChunk;                                                   \
+    T before = T(0u), sum = T(0u);                                                \
+    for (uint k = 0u; k < kGibScanChunks; ++k) {                                  \
+      T s = NAME##_chunks[k];                                                     \
+      sum += s;                                                                   \
+      if (k < c) before += s;                                                     \
+    }                                                                             \
+    for (uint k = c * kGibScanChunk; k < i; ++k) before += NAME##_values[k];      \
+    total = sum;                                                                  \
+    barrier(); /* the next call overwrites the arrays */                          \
+    return before;                                                                \
   }
-  uint inclusive = gib_scan_buf[i];
-  total = gib_scan_buf[GIB_SCAN_SIZE - 1u];
-  barrier();
-  return inclusive - v;
-}
+
+GIB_DEFINE_WORKGROUP_SCAN(uint, gib_workgroup_exclusive_scan)
+#ifdef GIB_SCAN_UVEC3
+GIB_DEFINE_WORKGROUP_SCAN(uvec3, gib_workgroup_exclusive_scan3)
+#endif
 #endif

@@ -36,7 +36,6 @@ class MaterialClassifyPass final : public Pass {
     MatClassifyPush push{m, div_up(w, kDeferredTile), deferred_tiles(w, h), material_scan_blocks(w, h, m)};
     static_assert(sizeof(push) == 16, "MatClassifyPush must match the material_classify kernels");
     ctx.cmd.fill(ctx.buffer("material_segments"), 0u);
-    ctx.cmd.fill(ctx.buffer("pixel_commands"), kDeferredPixelPad);
     ctx.cmd.barrier(kStageTransfer, kStageCompute);
     const std::vector<BufferBinding> buffers = {{kMatBindSegments, "material_segments"}, {kMatBindCommands, "pixel_commands"}};
     const std::vector<BufferBinding> scan_buffers = {{kMatBindSegments, "material_segments"},

@@ -9,14 +9,12 @@ void main() {
   uint e = b * kMatScanSize + gl_LocalInvocationIndex;
   for (uint s = 0u; s < kDeferredShaderCount; ++s) {
     uint count = entry_count(e, s);
-    uint total, ctotal, ntotal;
-    gib_workgroup_exclusive_scan(padded_size(count), total);
-    gib_workgroup_exclusive_scan(count, ctotal);
-    gib_workgroup_exclusive_scan(count > 0u ? 1u : 0u, ntotal);
+    uvec3 total;  // padded slots, pixels, non-empty segments
+    gib_workgroup_exclusive_scan3(uvec3(padded_size(count), count, count > 0u ? 1u : 0u), total);
     if (gl_LocalInvocationIndex == 0u) {
-      blk[block_word(s, b) + 0u] = total;
-      blk[block_word(s, b) + 1u] = ctotal;
-      blk[block_word(s, b) + 2u] = ntotal;
+      blk[block_word(s, b) + 0u] = total.x;
+      blk[block_word(s, b) + 1u] = total.y;
+      blk[block_word(s, b) + 2u] = total.z;
     }
   }
 }

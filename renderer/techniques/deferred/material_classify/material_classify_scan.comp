@@ -16,14 +16,12 @@ void main() {
       uint padded = in_range ? blk[block_word(s, b) + 0u] : 0u;
       uint count = in_range ? blk[block_word(s, b) + 1u] : 0u;
       uint nonempty = in_range ? blk[block_word(s, b) + 2u] : 0u;
-      uint total, ctotal, ntotal;
-      uint before = gib_workgroup_exclusive_scan(padded, total);
-      gib_workgroup_exclusive_scan(count, ctotal);
-      gib_workgroup_exclusive_scan(nonempty, ntotal);
+      uvec3 total;
+      uint before = gib_workgroup_exclusive_scan3(uvec3(padded, count, nonempty), total).x;
       if (in_range) blk[block_word(s, b) + 3u] = slot + before;
-      slot += total;
-      pixels += ctotal;
-      segments += ntotal;
+      slot += total.x;
+      pixels += total.y;
+      segments += total.z;
     }
     if (gl_LocalInvocationIndex == 0u) {
       seg[4u * s + 0u] = (slot - first) / kDeferredWave;

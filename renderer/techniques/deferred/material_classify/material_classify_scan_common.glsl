@@ -5,6 +5,7 @@
 #include "scene.glsl"
 GIB_SCENE_BUFFERS(0, kBindSceneFirst)
 #define GIB_SCAN_SIZE kMatScanSize
+#define GIB_SCAN_UVEC3
 #include "renderer/techniques/deferred/include/deferred_scan.glsl"
 
 layout(local_size_x = kMatScanSize) in;

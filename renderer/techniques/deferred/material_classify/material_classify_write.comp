@@ -8,7 +8,8 @@ GIB_SCENE_BUFFERS(0, kBindSceneFirst)
 #include "renderer/techniques/deferred/include/deferred_scan.glsl"
 
 // One workgroup per tile; invocation i owns the tile's pixels 4i .. 4i + 3 in raster order.
-// For each material present in the tile, a prefix sum ranks its pixels in raster order.
+// For each material present in the tile, a prefix sum ranks its pixels in raster order; the
+// workgroup pads its lists and a share of the buffer's unused tail with kDeferredPixelPad.
 layout(local_size_x = kMatScanSize) in;
 layout(set = 0, binding = kMatBindVbuffer, rg32ui) uniform readonly uimage2D vbuffer;
 layout(std430, set = 0, binding = kMatBindSegments) buffer Segments { uint seg[]; };
@@ -48,5 +49,14 @@ void main() {
       commands[first + rank] = tile << 10u | (i / kDeferredTile) << 5u | (i % kDeferredTile);
       ++rank;
     }
+    // The list's padding up to its next multiple of kDeferredWave entries.
+    uint padded = (total + kDeferredWave - 1u) / kDeferredWave * kDeferredWave;
+    for (uint j = total + gl_LocalInvocationIndex; j < padded; j += kMatScanSize) commands[first + j] = kDeferredPixelPad;
   }
+  // The entries past the last list (the buffer is sized for every segment non-empty), shared by
+  // all workgroups: every word of pixel_commands is written each frame, without a fill before
+  // the pass (a 20 MB transfer and its barrier at 2560x1440).
+  uint used = seg[kSegStats + kStatWaves] * kDeferredWave;
+  for (uint j = used + tile * kMatScanSize + gl_LocalInvocationIndex; j < uint(commands.length()); j += push.tiles * kMatScanSize)
+    commands[j] = kDeferredPixelPad;
 }
