@@ -89,7 +89,7 @@ TEST_F(DeferredGpu, AttributePackingMatchesCpuBitForBit) {
     const uint16_t p = pack_bary_deriv(v, flag);
     ASSERT_EQ(out[4 * i], p) << "value " << v;
     ASSERT_EQ(out[4 * i + 1], std::bit_cast<uint32_t>(unpack_bary_deriv(p))) << "value " << v;
-    ASSERT_EQ(out[4 * i + 2], flag ? 1u : 0u);
+    ASSERT_EQ(out[4 * i + 2], flag ? 1u : 0u) << "value " << v << " (2: the pair form's high half differs)";
     // sqrt is not correctly rounded on every device: z within 2 ulp-ish of the CPU's.
     const float z = unit_z_from_xy(v * 0.5f, v * (1.0f / 3.0f), flag);
     if (std::isfinite(v) && std::fabs(std::bit_cast<float>(out[4 * i + 3]) - z) > 1e-6f) ++z_off;

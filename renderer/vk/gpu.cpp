@@ -1,9 +1,12 @@
 // Instance, device choice, memory, buffers, images, uploads and readbacks.
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <fmt/format.h>
 
 #include "renderer/vk/internal.h"
+#include "device_spec_shared.h"
+#include "renderer/codecs/half.h"
 
 namespace gib {
 namespace vkimpl {
@@ -309,6 +312,43 @@ VkGpu::VkGpu(const GpuOptions& options) {
   sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   sci.unnormalizedCoordinates = VK_FALSE;
   check(vkCreateSampler(device, &sci, nullptr, &nearest_sampler), "vkCreateSampler");
+  native_half_rne_ = probe_half_rounding() ? 1u : 0u;
+}
+
+// Whether packHalf2x16 rounds to nearest even here: the device converts, for a sample of half
+// codes over every exponent (denormals included), the float halfway to the next code and the
+// floats just either side of it, both signs, and values at and past the largest half; the CPU
+// mirror (codecs::float_to_half) says what nearest-even gives. Ties tell nearest-even from
+// ties-away, the neighbours tell nearest from toward-zero. Any difference: false, and
+// gib_float_to_half corrects the device's result instead (packing.glsl).
+bool VkGpu::probe_half_rounding() {
+  std::vector<float> values = {65504.0f, std::nextafter(65520.0f, 0.0f), 65520.0f, 1.0e6f, 0.0f, -0.0f};
+  for (uint32_t h = 0; h < 0x7bffu; h += (h < 64u || h > 0x7b00u) ? 1u : 37u) {
+    const float lo = codecs::half_to_float(uint16_t(h)), hi = codecs::half_to_float(uint16_t(h + 1u));
+    const float mid = 0.5f * (lo + hi);  // exact: 12 significant bits
+    for (float v : {mid, std::nextafter(mid, 0.0f), std::nextafter(mid, 1.0e9f), lo}) {
+      values.push_back(v);
+      values.push_back(-v);
+    }
+  }
+  const uint32_t count = uint32_t(values.size());
+  auto in = create_buffer(count * sizeof(float), BufferUsage::storage, "half_rounding_probe.in");
+  auto out = create_buffer(count * sizeof(uint32_t), BufferUsage::storage, "half_rounding_probe.out");
+  upload(*in, values.data(), count * sizeof(float), 0);
+  auto pipeline = compute_pipeline({"half_rounding_probe.comp",
+                                    {{glsl::kHalfProbeBindIn, DescriptorKind::storage_buffer},
+                                     {glsl::kHalfProbeBindOut, DescriptorKind::storage_buffer}},
+                                    sizeof(uint32_t)});
+  const Bind binds[] = {{glsl::kHalfProbeBindIn, in.get()}, {glsl::kHalfProbeBindOut, out.get()}};
+  auto cmd = begin(0);
+  cmd->bind(*pipeline, binds, &count, sizeof(count));
+  cmd->dispatch((count + glsl::kHalfProbeGroup - 1) / glsl::kHalfProbeGroup);
+  submit(std::move(cmd));
+  std::vector<uint32_t> halves(count);
+  download(*out, halves.data(), count * sizeof(uint32_t), 0);
+  for (uint32_t i = 0; i < count; ++i)
+    if (halves[i] != codecs::float_to_half(values[i])) return false;
+  return true;
 }
 
 VkGpu::~VkGpu() {

@@ -137,6 +137,9 @@ class VkGpu final : public Gpu {
   VkFence fence_ = VK_NULL_HANDLE;
   Staging staging_;
   Staging make_staging(uint64_t bytes);
+  // kGibSpecNativeHalfRne's value for every compute pipeline (device_spec_shared.h).
+  uint32_t native_half_rne_ = 0;
+  bool probe_half_rounding();
 };
 
 class VkCmd final : public Cmd {

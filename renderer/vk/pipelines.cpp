@@ -1,7 +1,9 @@
 // Compute and graphics pipelines from embedded SPIR-V, cached by description.
+#include <algorithm>
 #include <fmt/format.h>
 
 #include "renderer/vk/internal.h"
+#include "device_spec_shared.h"
 
 namespace gib {
 
@@ -130,8 +132,12 @@ VkPipelineObj::~VkPipelineObj() {
 }
 
 std::shared_ptr<Pipeline> VkGpu::compute_pipeline(const ComputePipelineDesc& desc) {
+  std::vector<SpecConstant> spec_constants = desc.spec_constants;
+  if (std::none_of(spec_constants.begin(), spec_constants.end(),
+                   [](const SpecConstant& s) { return s.id == glsl::kGibSpecNativeHalfRne; }))
+    spec_constants.push_back({glsl::kGibSpecNativeHalfRne, native_half_rne_});
   std::string key = fmt::format("C|{}|{}|{}|", desc.shader, binding_key(desc.bindings), desc.push_constant_bytes);
-  for (auto& s : desc.spec_constants) key += fmt::format("{}={},", s.id, s.value);
+  for (auto& s : spec_constants) key += fmt::format("{}={},", s.id, s.value);
   if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second;
 
   auto p = std::make_shared<VkPipelineObj>();
@@ -144,9 +150,9 @@ std::shared_ptr<Pipeline> VkGpu::compute_pipeline(const ComputePipelineDesc& des
   p->local_size_ = spirv_local_size(shader_registry().at(desc.shader));
   std::vector<VkSpecializationMapEntry> entries;
   std::vector<uint32_t> values;
-  for (size_t i = 0; i < desc.spec_constants.size(); ++i) {
-    entries.push_back({desc.spec_constants[i].id, static_cast<uint32_t>(i * 4), 4});
-    values.push_back(desc.spec_constants[i].value);
+  for (size_t i = 0; i < spec_constants.size(); ++i) {
+    entries.push_back({spec_constants[i].id, static_cast<uint32_t>(i * 4), 4});
+    values.push_back(spec_constants[i].value);
   }
   VkSpecializationInfo spec{static_cast<uint32_t>(entries.size()), entries.data(), values.size() * 4, values.data()};
   VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};

@@ -30,6 +30,7 @@
 // around the value with denormals (RNE on lavapipe and NVIDIA, tests/test_codecs.cpp).
 #ifndef GIB_PACKING_GLSL
 #define GIB_PACKING_GLSL
+#include "device_spec_shared.h"
 
 // Round the non-negative finite float with bits a (< 0x7f800000) to a small float with 5
 // exponent bits (bias 15) and mbits mantissa bits, denormals included. Returns
@@ -76,10 +77,16 @@ uint gib_float_to_half_exact(float f) {
 // NaN take the exact path. Every common value thus takes a few instructions: where a warp mixed
 // the integer path (tiny derivatives, normals' near-zero components) with the fast one, it paid
 // for both.
+// Where the device's packHalf2x16 rounds to nearest even (probed when the device is created,
+// renderer/vk/gpu.cpp: lavapipe and NVIDIA do), its result is returned as is, without the
+// correction below (renderer/techniques/deferred/deferred.md, "Cost", measures both).
+layout(constant_id = kGibSpecNativeHalfRne) const bool kGibNativeHalfRne = false;
+
 uint gib_float_to_half(float f) {
   float a = abs(f);
   uint sign = floatBitsToUint(f) >> 16 & 0x8000u;
   if (!(a <= 65504.0)) return gib_float_to_half_exact(f);
+  if (kGibNativeHalfRne) return packHalf2x16(vec2(f, 0.0)) & 0xffffu;
   if (a < 6.103515625e-05) return sign | uint(roundEven(a * 16777216.0));
   uint h = packHalf2x16(vec2(a, 0.0)) & 0x7fffu;
   float got = unpackHalf2x16(h).x;
@@ -105,7 +112,12 @@ float gib_half_to_float(uint h) {
   return uintBitsToFloat(sign | ((e + 112u) << 23) | (m << 13));
 }
 
-uint gib_pack_half2x16(vec2 v) { return gib_float_to_half(v.x) | (gib_float_to_half(v.y) << 16); }
+uint gib_pack_half2x16(vec2 v) {
+  // One packHalf2x16 for both where the device rounds to nearest even (Inf, NaN and overflow
+  // take the per-value path for their policy).
+  if (kGibNativeHalfRne && all(lessThanEqual(abs(v), vec2(65504.0)))) return packHalf2x16(v);
+  return gib_float_to_half(v.x) | (gib_float_to_half(v.y) << 16);
+}
 uint gib_pack_half2x16_rtz(vec2 v) {
   uint p = packHalf2x16(v);
   vec2 back = unpackHalf2x16(p);
@@ -115,6 +127,12 @@ uint gib_pack_half2x16_rtz(vec2 v) {
   return p;
 }
 vec2 gib_unpack_half2x16(uint p) {
+  // Normal halves and zeros convert exactly on any device (unpackHalf2x16); denormals, which a
+  // device may flush, Inf and NaN (their payload) take the integer path.
+  uint lo = p & 0x7fffu, hi = (p >> 16) & 0x7fffu;
+  bool lo_plain = lo == 0u || (lo >= 0x0400u && lo < 0x7c00u);
+  bool hi_plain = hi == 0u || (hi >= 0x0400u && hi < 0x7c00u);
+  if (lo_plain && hi_plain) return unpackHalf2x16(p);
   return vec2(gib_half_to_float(p & 0xffffu), gib_half_to_float(p >> 16));
 }
 

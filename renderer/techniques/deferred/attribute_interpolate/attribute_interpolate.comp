@@ -67,9 +67,8 @@ void main() {
   bool bitangent_negative = dot(cross(n, tangent), bitangent) < 0.0;
   // Pre-rounded to binary16 (ties to even): the stores then keep exactly these values on every
   // device, whatever its float-to-half rounding (deferred_attributes.glsl).
-  imageStore(out_bary, p, gib_round_to_half(vec4(bc, 0.0, 0.0)));
-  imageStore(out_deriv, p, uvec4(gib_pack_bary_deriv(bcx.x, front), gib_pack_bary_deriv(bcx.y, n.z < 0.0),
-                                 gib_pack_bary_deriv(bcy.x, tangent.z < 0.0),
-                                 gib_pack_bary_deriv(bcy.y, bitangent_negative)));
+  imageStore(out_bary, p, vec4(gib_round_to_half(bc), 0.0, 0.0));
+  uint deriv_x = gib_pack_bary_deriv2(bcx, front, n.z < 0.0), deriv_y = gib_pack_bary_deriv2(bcy, tangent.z < 0.0, bitangent_negative);
+  imageStore(out_deriv, p, uvec4(deriv_x & 0xffffu, deriv_x >> 16, deriv_y & 0xffffu, deriv_y >> 16));
   imageStore(out_frame, p, gib_round_to_half(vec4(n.xy, tangent.xy)));
 }
