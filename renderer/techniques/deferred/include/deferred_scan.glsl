@@ -5,8 +5,8 @@
 // Two levels, three barriers: every value goes to shared memory; one invocation per chunk of
 // kGibScanChunk sums its chunk; each invocation then adds the chunks before its own and the
 // values before it in its chunk. A log-step scan over 256 values takes 17 barriers.
-// Usage: #define GIB_SCAN_SIZE 256 (and GIB_SCAN_UVEC3 for the three-value scan) before
-// including; call from uniform control flow.
+// Usage: #define GIB_SCAN_SIZE 256 (and GIB_SCAN_UVEC2 / GIB_SCAN_UVEC3 for the two- and
+// three-value scans) before including; call from uniform control flow.
 #ifndef GIB_DEFERRED_SCAN_GLSL
 #define GIB_DEFERRED_SCAN_GLSL
 const uint kGibScanChunk = 16u;
@@ -41,6 +41,9 @@ const uint kGibScanChunks = GIB_SCAN_SIZE / kGibScanChunk;
   }
 
 GIB_DEFINE_WORKGROUP_SCAN(uint, gib_workgroup_exclusive_scan)
+#ifdef GIB_SCAN_UVEC2
+GIB_DEFINE_WORKGROUP_SCAN(uvec2, gib_workgroup_exclusive_scan2)
+#endif
 #ifdef GIB_SCAN_UVEC3
 GIB_DEFINE_WORKGROUP_SCAN(uvec3, gib_workgroup_exclusive_scan3)
 #endif

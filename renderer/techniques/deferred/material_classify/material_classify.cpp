@@ -42,8 +42,7 @@ class MaterialClassifyPass final : public Pass {
                                                      {kMatBindBlocks, "material_scan_blocks"}};
     record_compute(ctx, {.shader = "material_classify_count.comp",
                          .images = {{kMatBindVbuffer, "vbuffer"}},
-                         .groups_x = div_up(w, kMatClassifyGroup),
-                         .groups_y = div_up(h, kMatClassifyGroup),
+                         .groups_x = push.tiles,
                          .push = &push,
                          .push_bytes = sizeof(push),
                          .buffers = buffers});

@@ -4,8 +4,8 @@
 #include "vbuffer_shared.h"
 #include "renderer/techniques/deferred/include/deferred_shared.h"
 GIB_SHARED_BEGIN
-GIB_CONST(uint, kMatClassifyGroup, 8)    // count: 8x8 pixels per workgroup
-GIB_CONST(uint, kMatScanSize, 256)       // scan and write: 256 invocations
+GIB_CONST(uint, kMatScanSize, 256)       // count, scan and write: 256 invocations
+GIB_CONST(uint, kMatCountShared, 256)    // count: materials counted in group-shared memory
 GIB_CONST(uint, kMatBindVbuffer, 8)
 GIB_CONST(uint, kMatBindSegments, 9)     // material_segments (layout: deferred_shared.h)
 GIB_CONST(uint, kMatBindCommands, 10)    // pixel_commands: padded pixel lists
