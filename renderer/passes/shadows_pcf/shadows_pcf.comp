@@ -24,6 +24,7 @@ float pcf(ShadowReceiver r) {
 }
 
 void main() {
+  csm_receiver_setup(push);
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(p, imageSize(out_visibility)))) return;
   ShadowReceiver r = csm_receiver(p, push);

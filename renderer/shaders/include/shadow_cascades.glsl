@@ -72,19 +72,37 @@ vec3 csm_shadow_project(ShadowCascade c, ShadowBasis b, vec3 x_rel) {
 // Metres per shadow-map texel of cascade c.
 float csm_texel_size(ShadowCascade c, ShadowCascadePush p) { return 2.0 * c.half_extent / p.params.y; }
 
+// Whether cascade c's square holds x_rel with margin_m metres plus margin_texels texels to spare
+// and its depth range holds it (the test csm_select_cascade applies to each cascade in turn).
+bool csm_cascade_holds(ShadowCascade c, ShadowBasis b, ShadowCascadePush p, vec3 x_rel, float margin_m,
+                       float margin_texels) {
+  vec3 q = csm_shadow_project(c, b, x_rel);
+  float m = margin_m / (2.0 * c.half_extent) + margin_texels / p.params.y;
+  return all(greaterThanEqual(q.xy, vec2(m))) && all(lessThanEqual(q.xy, vec2(1.0 - m))) && q.z >= 0.0 && q.z <= 1.0;
+}
+
 // The first cascade whose square holds x_rel with margin_m metres plus margin_texels texels to
 // spare and whose depth range holds it; kShadowMaxCascades when none does (the point is lit:
 // beyond the shadowed distance).
 uint csm_select_cascade(vec3 cam, vec3 fwd, float tan_y, float aspect, ShadowBasis b, ShadowCascadePush p,
                         vec3 x_rel, float margin_m, float margin_texels) {
-  for (uint i = 0u; i < uint(p.params.x); ++i) {
-    ShadowCascade c = csm_cascade(i, cam, fwd, tan_y, aspect, b, p);
-    vec3 q = csm_shadow_project(c, b, x_rel);
-    float m = margin_m / (2.0 * c.half_extent) + margin_texels / p.params.y;
-    if (all(greaterThanEqual(q.xy, vec2(m))) && all(lessThanEqual(q.xy, vec2(1.0 - m))) && q.z >= 0.0 && q.z <= 1.0)
-      return i;
-  }
+  for (uint i = 0u; i < uint(p.params.x); ++i)
+    if (csm_cascade_holds(csm_cascade(i, cam, fwd, tan_y, aspect, b, p), b, p, x_rel, margin_m, margin_texels)) return i;
   return kShadowMaxCascades;
+}
+
+// The seam blend of csm_cascade_blend with the cascades already built: c is cascade i (the one
+// selected for x_rel), next cascade i + 1, has_next false where i is the last cascade.
+float csm_cascade_blend_of(ShadowCascade c, ShadowCascade next, bool has_next, ShadowBasis b, ShadowCascadePush p,
+                           vec3 x_rel, float margin_m, float margin_texels) {
+  float band = p.blend.x;
+  if (!(band > 0.0) || !has_next) return 0.0;
+  vec3 q = csm_shadow_project(c, b, x_rel);
+  float m = margin_m / (2.0 * c.half_extent) + margin_texels / p.params.y;
+  float d = min(min(q.x - m, q.y - m), min(1.0 - m - q.x, 1.0 - m - q.y));
+  float w = clamp(1.0 - d / band, 0.0, 1.0);
+  if (w <= 0.0) return 0.0;
+  return csm_cascade_holds(next, b, p, x_rel, margin_m, margin_texels) ? w : 0.0;
 }
 
 // The weight of cascade i + 1 at x_rel, a point whose selected cascade is i: the seam blend.
@@ -95,20 +113,10 @@ uint csm_select_cascade(vec3 cam, vec3 fwd, float tan_y, float aspect, ShadowBas
 // margins (nothing to blend into).
 float csm_cascade_blend(vec3 cam, vec3 fwd, float tan_y, float aspect, ShadowBasis b, ShadowCascadePush p, uint i,
                         vec3 x_rel, float margin_m, float margin_texels) {
-  float band = p.blend.x;
-  if (!(band > 0.0) || i + 1u >= uint(p.params.x)) return 0.0;
+  bool has_next = i + 1u < uint(p.params.x);
   ShadowCascade c = csm_cascade(i, cam, fwd, tan_y, aspect, b, p);
-  vec3 q = csm_shadow_project(c, b, x_rel);
-  float m = margin_m / (2.0 * c.half_extent) + margin_texels / p.params.y;
-  float d = min(min(q.x - m, q.y - m), min(1.0 - m - q.x, 1.0 - m - q.y));
-  float w = clamp(1.0 - d / band, 0.0, 1.0);
-  if (w <= 0.0) return 0.0;
-  ShadowCascade n = csm_cascade(i + 1u, cam, fwd, tan_y, aspect, b, p);
-  vec3 qn = csm_shadow_project(n, b, x_rel);
-  float mn = margin_m / (2.0 * n.half_extent) + margin_texels / p.params.y;
-  bool held = all(greaterThanEqual(qn.xy, vec2(mn))) && all(lessThanEqual(qn.xy, vec2(1.0 - mn))) && qn.z >= 0.0 &&
-              qn.z <= 1.0;
-  return held ? w : 0.0;
+  ShadowCascade next = has_next ? csm_cascade(i + 1u, cam, fwd, tan_y, aspect, b, p) : c;
+  return csm_cascade_blend_of(c, next, has_next, b, p, x_rel, margin_m, margin_texels);
 }
 
 // Tap k of n of the filter disk (a golden-angle spiral: even area density, no two taps closer
@@ -152,21 +160,23 @@ vec2 csm_shadow_tap2(uint cascade, vec2 uv, vec2 z, float res) {
   vec2 t = uv * res - 0.5;
   vec2 i0 = floor(t);
   vec2 f = t - i0;
-  ivec2 a = ivec2(clamp(i0, vec2(0.0), vec2(res - 1.0)));
-  ivec2 b = ivec2(clamp(i0 + 1.0, vec2(0.0), vec2(res - 1.0)));
-  int x0 = int(cascade) * int(res);
+  float x0 = float(cascade) * res;
   float d00, d10, d01, d11;
-  if (b == a + 1) {
-    vec4 g = textureGather(shadow_map, vec2(float(x0 + b.x), float(b.y)) / vec2(textureSize(shadow_map, 0)));
+  if (all(greaterThanEqual(i0, vec2(0.0))) && all(lessThan(i0, vec2(res - 1.0)))) {
+    // The quad's shared corner, texel (i0 + 1) of the cascade in the atlas, in its normalised
+    // coordinates (within a rounding of it: the gather tolerates half a texel).
+    vec4 g = textureGather(shadow_map, (vec2(x0 + 1.0, 1.0) + i0) / vec2(textureSize(shadow_map, 0)));
     d01 = g.x;  // gather order: (i0, j1), (i1, j1), (i1, j0), (i0, j0)
     d11 = g.y;
     d10 = g.z;
     d00 = g.w;
   } else {
-    d00 = texelFetch(shadow_map, ivec2(x0 + a.x, a.y), 0).x;
-    d10 = texelFetch(shadow_map, ivec2(x0 + b.x, a.y), 0).x;
-    d01 = texelFetch(shadow_map, ivec2(x0 + a.x, b.y), 0).x;
-    d11 = texelFetch(shadow_map, ivec2(x0 + b.x, b.y), 0).x;
+    ivec2 a = ivec2(clamp(i0, vec2(0.0), vec2(res - 1.0))) + ivec2(int(x0), 0);
+    ivec2 b = ivec2(clamp(i0 + 1.0, vec2(0.0), vec2(res - 1.0))) + ivec2(int(x0), 0);
+    d00 = texelFetch(shadow_map, ivec2(a.x, a.y), 0).x;
+    d10 = texelFetch(shadow_map, ivec2(b.x, a.y), 0).x;
+    d01 = texelFetch(shadow_map, ivec2(a.x, b.y), 0).x;
+    d11 = texelFetch(shadow_map, ivec2(b.x, b.y), 0).x;
   }
   vec2 l00 = vec2(greaterThanEqual(vec2(d00), z)), l10 = vec2(greaterThanEqual(vec2(d10), z));
   vec2 l01 = vec2(greaterThanEqual(vec2(d01), z)), l11 = vec2(greaterThanEqual(vec2(d11), z));

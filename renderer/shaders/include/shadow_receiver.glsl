@@ -5,7 +5,8 @@
 // tighten range of ray trace").
 //
 // The includer declares: frame.glsl, hash.glsl, shadow_cascades_shared.h, CSM_SHADOW_MAP_BOUND with
-// images shadow_map, shadow_minmax, gb_position, gb_normal; shadow_cascades.glsl; push `push`.
+// images shadow_map, shadow_minmax, gb_position, gb_normal; shadow_cascades.glsl; push `push`. Its
+// main calls csm_receiver_setup before any thread returns.
 #ifndef GIB_SHADOW_RECEIVER_GLSL
 #define GIB_SHADOW_RECEIVER_GLSL
 
@@ -22,27 +23,59 @@ struct ShadowReceiver {
   float rotation;    // tap-pattern rotation (radians)
 };
 
+// The frame's cascades, light basis and camera position: the same for every pixel of the
+// dispatch, so each workgroup builds them once (csm_receiver_setup) and its receivers read them
+// here instead of each thread rebuilding up to six cascades (selection, seam blend, projection).
+shared ShadowCascade s_csm_cascades[kShadowMaxCascades];
+shared ShadowBasis s_csm_basis;
+shared vec3 s_csm_camera;
+
+// Builds the shared cascades; every thread of the workgroup calls it before its first receiver
+// (it holds a barrier: call it before any thread returns).
+void csm_receiver_setup(ShadowCascadePush sp) {
+  uint lane = gl_LocalInvocationIndex;
+  if (lane < uint(sp.params.x)) {
+    vec3 cam, fwd;
+    float tan_y, aspect;
+    csm_camera(cam, fwd, tan_y, aspect);
+    ShadowBasis b = csm_shadow_basis(gib_frame.sun_dir.xyz);
+    s_csm_cascades[lane] = csm_cascade(lane, cam, fwd, tan_y, aspect, b, sp);
+    if (lane == 0u) {
+      s_csm_basis = b;
+      s_csm_camera = cam;
+    }
+  }
+  barrier();
+}
+
 // Pixel p as a receiver in cascade `cascade` (selected: csm_receiver; or the next one, for the
-// seam blend). `cascade` kShadowMaxCascades: the first that holds its filter footprint.
+// seam blend). `cascade` kShadowMaxCascades: the first that holds its filter footprint (the
+// first csm_cascade_holds accepts, as csm_select_cascade). Reads csm_receiver_setup's cascades.
 ShadowReceiver csm_receiver_in(ivec2 p, ShadowCascadePush sp, uint cascade) {
   ShadowReceiver r;
   r.state = -1;
   r.blend = 0.0;
   vec4 pos = imageLoad(gb_position, p);
   if (pos.w == 0.0) return r;
-  vec3 cam, fwd;
-  float tan_y, aspect;
-  csm_camera(cam, fwd, tan_y, aspect);
-  ShadowBasis b = csm_shadow_basis(gib_frame.sun_dir.xyz);
+  ShadowBasis b = s_csm_basis;
   float radius_m = csm_filter_radius(sp);
-  vec3 x_rel = pos.xyz - cam;
+  vec3 x_rel = pos.xyz - s_csm_camera;
+  uint cascades = uint(sp.params.x);
+  float margin_texels = 2.0 + sp.area.w;
   if (cascade < kShadowMaxCascades) r.cascade = cascade;
   else {
-    r.cascade = csm_select_cascade(cam, fwd, tan_y, aspect, b, sp, x_rel, radius_m, 2.0 + sp.area.w);
+    r.cascade = kShadowMaxCascades;
+    for (uint i = 0u; i < cascades; ++i)
+      if (csm_cascade_holds(s_csm_cascades[i], b, sp, x_rel, radius_m, margin_texels)) {
+        r.cascade = i;
+        break;
+      }
     if (r.cascade >= kShadowMaxCascades) return r;
-    r.blend = csm_cascade_blend(cam, fwd, tan_y, aspect, b, sp, r.cascade, x_rel, radius_m, 2.0 + sp.area.w);
+    bool has_next = r.cascade + 1u < cascades;
+    r.blend = csm_cascade_blend_of(s_csm_cascades[r.cascade], s_csm_cascades[has_next ? r.cascade + 1u : r.cascade],
+                                   has_next, b, sp, x_rel, radius_m, margin_texels);
   }
-  ShadowCascade c = csm_cascade(r.cascade, cam, fwd, tan_y, aspect, b, sp);
+  ShadowCascade c = s_csm_cascades[r.cascade];
   float res = sp.params.y, texel = csm_texel_size(c, sp);
   vec3 n = imageLoad(gb_normal, p).xyz;
   if (!(dot(n, n) > 0.25 && dot(n, n) < 4.0)) n = b.s;  // a broken normal: no offset, flat slope
