@@ -84,6 +84,10 @@ std::vector<TechniqueOption> own_options() {
              0, 1, &S::indoor_classes),
       option("nearest_weight", "nearest-probe fast path above this trilinear weight (> 1: always 8 probes)", 0, 2,
              &S::nearest_weight),
+      option("lookup_view",
+             "diagnostic: each ray pixel carries the probes' irradiance at its own surface instead of its ray's "
+             "light (the probe lookups against the reference's one-interreflection image; 0/1)",
+             0, 1, &S::lookup_view),
       option("pixel_divisor", "per-pixel rays at 1/2 (quarter resolution) or 1 (full)", 1, 2, &S::pixel_divisor),
       option("screen_steps", "screen_trace steps per ray (0: every ray traced in the BVH)", 0, 256, &S::screen_steps),
       option("screen_thickness", "metres behind the depth buffer a screen_trace hit may lie", 0, 100,

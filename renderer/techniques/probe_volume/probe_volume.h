@@ -34,6 +34,7 @@ struct ProbeVolumeSettings : TechniqueSettingsOf<ProbeVolumeSettings>, DirectLig
   bool relocation = true;           // probe_relocate moves probes out of / away from geometry
   bool indoor_classes = true;       // probes blend only with points of their class (indoor volumes of the scene)
   float nearest_weight = 0.9f;      // nearest-probe fast path when its trilinear weight exceeds this (> 1: off)
+  bool lookup_view = false;         // diagnostic: per-pixel rays replaced by the probe lookup at the pixel's surface
   // ---- per pixel (AC Shadows "Per-pixel diffuse algorithm")
   uint32_t pixel_divisor = 2;       // rays traced at 1/2 (quarter resolution) or 1 (full)
   uint32_t screen_steps = 24;       // screen_trace steps per ray (0: every ray in the BVH)

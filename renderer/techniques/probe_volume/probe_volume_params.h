@@ -36,7 +36,7 @@ inline glsl::PvParams make_pv_params(const Settings& s, uint32_t frame) {
                    (p.inverse_ray_offset ? kPvFlagInverseRay : 0) | (p.probe_ao ? kPvFlagProbeAo : 0) |
                    (p.relocation ? kPvFlagRelocation : 0) | (p.material_mask ? kPvFlagMaterialMask : 0) |
                    (p.translucent_rays ? kPvFlagTranslucentRays : 0) | (p.quarter_res_new ? kPvFlagQuarterNew : 0) |
-                   (p.indoor_classes ? kPvFlagIndoor : 0);
+                   (p.indoor_classes ? kPvFlagIndoor : 0) | (p.lookup_view ? kPvFlagLookupView : 0);
   PvParams r{};
   r.grid = {p.grid_xz, p.grid_y, p.cascades, frame};
   r.volume = {p.probe_spacing, p.forward_offset, p.trace_range, p.pixel_range};

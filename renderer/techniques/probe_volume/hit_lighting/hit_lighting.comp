@@ -60,8 +60,18 @@ void main() {
     return;
   }
   ivec2 p = pv_source_pixel(q);
-  PvPixelRay r = pv_pixel_ray_from(q, p, imageLoad(gb_position, p).xyz);
+  vec3 position = imageLoad(gb_position, p).xyz;
+  PvPixelRay r = pv_pixel_ray_from(q, p, position);
   vec3 e = GIB_PI * ray_radiance(r, h) * r.weight;
+  if (pv_flag(kPvFlagLookupView)) {
+    // Diagnostic: E at the pixel's own surface from the probes, seen from the camera, with a
+    // flat SH (the per-pixel light is left out).
+    vec3 to_camera = gib_frame.camera_pos.xyz - position;
+    float dist = length(to_camera);
+    vec3 n = normalize(imageLoad(gb_normal, p).xyz);
+    e = GIB_PI * pv_bounce(position, n, imageLoad(gb_emissive, p).w, -to_camera / dist, dist);
+    r.encode_dir = vec3(0.0);
+  }
   if (pv_flag(kPvFlagNanGuards) && !gib_finite(e)) e = vec3(0.0);
   vec3 ycocg = gib_rgb_to_ycocg(e);
   imageStore(out_sh, q, uvec4(gib_pack_ycocg_sh(ycocg.x, ycocg.x * r.encode_dir, ycocg.yz), 0u, 0u));

@@ -102,6 +102,7 @@ GIB_CONST(uint, kPvFlagMaterialMask, 128)
 GIB_CONST(uint, kPvFlagTranslucentRays, 256)
 GIB_CONST(uint, kPvFlagQuarterNew, 512)
 GIB_CONST(uint, kPvFlagIndoor, 1024)   // indoor / outdoor classes (Scene::indoor_volumes)
+GIB_CONST(uint, kPvFlagLookupView, 2048)  // diagnostic: the probes' irradiance at the pixel's own surface
 
 // Push constants shared by the probe-volume passes (80 bytes); a pass may append its own.
 struct PvParams {

@@ -97,6 +97,34 @@ float pv_texel_solid_angle(vec3 d) {
   return l1 * l1 * l1;
 }
 
+// The irradiance tile's equator vertices (kPvIrradianceInterior odd). The octahedral square's edge
+// midpoints are the octahedron's vertices +x, -x, +y, -y, where the map folds onto itself: the
+// mirrored border (gib_oct_border_source) copies the edge's middle interior texel into the
+// middle border texel, so a bilinear lookup at +-x or +-y reads that texel alone, whose
+// direction lies 14 degrees above the equator (towards +z): every wall or floor normal read
+// the irradiance of a direction tilted towards +z. The middle border texel k (0: right, 1:
+// left, 2: top, 3: bottom) holds instead the irradiance at the middle texel's direction
+// reflected below the equator, so the lookup at the vertex averages the two, 14 degrees above
+// and below. pv_irradiance_vertex_texel(k): the border texel; pv_irradiance_vertex_direction(k):
+// the direction its value is convolved for.
+ivec2 pv_irradiance_vertex_texel(uint k) {
+  int m = int(kPvIrradianceInterior + 1u) / 2, last = int(kPvIrradianceInterior) + 1;
+  return k == 0u ? ivec2(last, m) : k == 1u ? ivec2(0, m) : k == 2u ? ivec2(m, 0) : ivec2(m, last);
+}
+vec3 pv_irradiance_vertex_direction(uint k) {
+  ivec2 at = pv_irradiance_vertex_texel(k);
+  int n = int(kPvIrradianceInterior);
+  ivec2 inner = clamp(at, ivec2(1), ivec2(n));
+  vec3 d = gib_oct_texel_direction(inner, n);
+  return vec3(d.xy, -d.z);
+}
+// Index 0..3 of the vertex texel `at` is, or 4.
+uint pv_irradiance_vertex_of(ivec2 at) {
+  for (uint k = 0u; k < 4u; ++k)
+    if (all(equal(at, pv_irradiance_vertex_texel(k)))) return k;
+  return 4u;
+}
+
 // ---- G-buffer texel codecs (probe_volume_shared.h)
 uvec2 pv_pack_material(vec3 albedo, float translucency, vec3 emission) {
   uvec4 a = uvec4(clamp(vec4(albedo, translucency), 0.0, 1.0) * 255.0 + 0.5);

@@ -43,7 +43,20 @@ shared float s_local[kBlocks];
 shared vec4 s_out_radiance[kBlocks];
 shared vec2 s_out_moments[kBlocks];
 shared vec3 s_out_irradiance[kIrr];
+shared vec3 s_out_vertex[4];  // the middle border texels of the irradiance tile (pv_irradiance_vertex_texel)
 shared float s_scale;
+
+// Irradiance / pi for normal n: the cosine-weighted mean of everything arriving.
+vec3 irradiance_for(vec3 n) {
+  vec3 sum = vec3(0.0);
+  float weight = 0.0;
+  for (uint b = 0u; b < kBlocks; ++b) {
+    float w = max(dot(n, s_dir[b]), 0.0) * s_solid[b];
+    sum += w * s_total[b];
+    weight += w;
+  }
+  return sum / weight;
+}
 
 void main() {
   uint e = gl_WorkGroupID.x;
@@ -119,18 +132,10 @@ void main() {
     }
     s_out_radiance[tid] = sum / weight;
     s_out_moments[tid] = moments / weight;
+    if (tid < 4u) s_out_vertex[tid] = irradiance_for(pv_irradiance_vertex_direction(tid));
   } else if (tid < kBlocks + kIrr) {
-    // Irradiance / pi: the cosine-weighted mean of everything arriving.
     uint i = tid - kBlocks;
-    vec3 n = gib_oct_decode((vec2(i % kPvIrradianceInterior, i / kPvIrradianceInterior) + 0.5) / float(kPvIrradianceInterior));
-    vec3 sum = vec3(0.0);
-    float weight = 0.0;
-    for (uint b = 0u; b < kBlocks; ++b) {
-      float w = max(dot(n, s_dir[b]), 0.0) * s_solid[b];
-      sum += w * s_total[b];
-      weight += w;
-    }
-    s_out_irradiance[i] = sum / weight;
+    s_out_irradiance[i] = irradiance_for(gib_oct_decode((vec2(i % kPvIrradianceInterior, i / kPvIrradianceInterior) + 0.5) / float(kPvIrradianceInterior)));
   }
   barrier();
   float scale = s_scale;
@@ -153,7 +158,8 @@ void main() {
   for (uint t = tid; t < kPvIrradianceTexels; t += kPvConvolveGroup) {
     ivec2 at = ivec2(t % kPvIrradianceSide, t / kPvIrradianceSide);
     ivec2 src = gib_oct_border_source(at, int(kPvIrradianceInterior)) - 1;
-    vec3 r = s_out_irradiance[uint(src.y) * kPvIrradianceInterior + uint(src.x)] * scale;
+    uint vertex = pv_irradiance_vertex_of(at);
+    vec3 r = (vertex < 4u ? s_out_vertex[vertex] : s_out_irradiance[uint(src.y) * kPvIrradianceInterior + uint(src.x)]) * scale;
     out_irradiance[pv_irradiance_index(probe, at)] = uvec2(gib_pack_half2x16(r.rg), gib_pack_half2x16(vec2(r.b, 0.0)));
   }
 }
