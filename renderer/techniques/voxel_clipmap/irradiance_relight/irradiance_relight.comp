@@ -37,12 +37,15 @@ void main() {
   ivec3 k = vc_slot_world(s, vc_cell_origin(l), m);
   // Rays start in the cell's first empty voxel (of its 2x2x2, nearest the origin corner first),
   // not at its centre: a centre on a wall would see the wall's inside or back from within it.
+  // A cell with no empty voxel is marked solid (kVcCellSolid): the lookups give it no weight.
   vec3 centre = (vec3(k) + 0.5) * vc_cell_size(l);
   float vs = vc_voxel_size(l);
+  uint origin = kVcCellSolid;
   for (int i = 0; i < 8; ++i) {
     ivec3 g = 2 * k + ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
     if (vc_in_box(g, vc_voxel_origin(l), vc_n()) && (vc_voxels[vc_voxel_index(l, g)].y & kVcOpacityMask) == 0u) {
       centre = (vec3(g) + 0.5) * vs;
+      origin = uint(i) << kVcCellOriginShift;
       break;
     }
   }
@@ -104,5 +107,6 @@ void main() {
     else vc_cube_z[at] = mix(vc_cube_z[at], value, w);
   }
   barrier();  // every thread has read the old state before it changes
-  if (tid == 0u) vc_cell_state[cell] = (state & ~kVcAgeMask) | kVcCellUpdated | kVcCellRelit;
+  if (tid == 0u)
+    vc_cell_state[cell] = (state & ~(kVcAgeMask | kVcCellSolid | kVcCellOriginMask)) | kVcCellUpdated | kVcCellRelit | origin;
 }
