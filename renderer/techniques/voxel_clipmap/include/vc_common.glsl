@@ -168,7 +168,7 @@ bool vc_triangle_plane_blocks(uint id, vec3 a, vec3 b, vec3 n, ivec3 g, float s)
 // started them in (cell state `state`), or the cell's centre when it was never relit (inherited
 // from the coarser level).
 vec3 vc_cell_ray_origin(uint l, ivec3 k, uint state) {
-  if ((state & kVcCellRelit) == 0u) return (vec3(k) + 0.5) * vc_cell_size(l);
+  if ((state & (kVcCellRelit | kVcCellOriginCentre)) != kVcCellRelit) return (vec3(k) + 0.5) * vc_cell_size(l);
   uint i = (state & kVcCellOriginMask) >> kVcCellOriginShift;
   return (vec3(2 * k + ivec3(i & 1u, (i >> 1u) & 1u, (i >> 2u) & 1u)) + 0.5) * vc_voxel_size(l);
 }

@@ -54,13 +54,15 @@ GIB_CONST(uint, kVcCellUpdated, 0x10000)    // holds irradiance (relit, or inher
 GIB_CONST(uint, kVcCellGeometry, 0x20000)   // its box holds voxels with opacity (queue A / A')
 GIB_CONST(uint, kVcCellVisible, 0x40000)    // in the view frustum this frame
 GIB_CONST(uint, kVcCellRelit, 0x80000)      // relit at least once (else: queue A' when it has geometry)
-// Relit with no empty voxel in its 2 x 2 x 2: its rays started inside geometry (a cell within a
+// Relit with every voxel of its 2 x 2 x 2 opaque: its rays started inside geometry (a cell within a
 // wall or roof, whose first voxel may be the sunlit outer face); the cube lookups give it no weight.
 GIB_CONST(uint, kVcCellSolid, 0x100000)
 // Which of its 2 x 2 x 2 voxels the last relight's rays started in (bit 0: +x, 1: +y, 2: +z):
 // the cube lookups' wall test ends its segment there (vc_cell_ray_origin).
 GIB_CONST(uint, kVcCellOriginShift, 21)
 GIB_CONST(uint, kVcCellOriginMask, 0xe00000)
+// Relit with no empty voxel but some semi-transparent (foliage): its rays started at its centre.
+GIB_CONST(uint, kVcCellOriginCentre, 0x1000000)
 
 // Flags in VcParams.grid.w.
 GIB_CONST(uint, kVcFlagNanGuards, 1)
