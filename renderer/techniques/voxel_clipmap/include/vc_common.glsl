@@ -152,7 +152,11 @@ bool vc_crosses_voxel_plane(vec3 a, vec3 b, vec3 p0, vec3 nrm, ivec3 g, float s)
 
 // Whether the segment from a to b (a just off a surface of normal n) crosses, inside level-l
 // voxel g of size s, the plane of triangle `id` + 1 (a triangle scene_voxel_fill kept for that
-// voxel). The surface's own plane is not a wall (the convex test weighs cells behind it).
+// voxel). The pixel's own surface is not a wall (the convex test weighs cells behind it): a
+// plane within 60 degrees of n that passes within half a voxel of a is taken for it. On a
+// curved surface the voxels along the segment keep neighbouring facets tilted from n, whose
+// planes a segment leaving the surface crosses outside the object; a wall that blocks a
+// segment meets the surface at a corner (near 90 degrees) or lies more than half a voxel away.
 bool vc_triangle_plane_blocks(uint id, vec3 a, vec3 b, vec3 n, ivec3 g, float s) {
   GpuTriangle t = gib_triangles[id - 1u];
   vec3 p0 = gib_vertices[t.i0].position;
@@ -160,7 +164,7 @@ bool vc_triangle_plane_blocks(uint id, vec3 a, vec3 b, vec3 n, ivec3 g, float s)
   float len = length(nrm);
   if (!(len > 0.0)) return false;
   nrm /= len;
-  bool own = dot(nrm, n) > 0.999 && abs(dot(a - p0, nrm)) < 0.1 * s;
+  bool own = dot(nrm, n) > 0.5 && abs(dot(a - p0, nrm)) < 0.5 * s;
   return !own && vc_crosses_voxel_plane(a, b, p0, nrm, g, s);
 }
 
