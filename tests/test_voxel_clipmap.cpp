@@ -108,6 +108,23 @@ TEST(VoxelClipmapCpu, FillKeyKnownAnswers) {
   EXPECT_GT(vc_fill_key(200, true, 1), vc_fill_key(200, false, 5000000));
 }
 
+TEST(VoxelClipmapCpu, SecondTriangleKnownAnswers) {
+  uint32_t y = 0x1fffu, w = 0x7fffffu;  // every flag and opacity bit, the first triangle's field
+  vc_set_second_triangle(y, w, 0x7ffffeu);
+  EXPECT_EQ(y, 0xffffdfffu);
+  EXPECT_EQ(w, 0x7ffffffu);
+  EXPECT_EQ(vc_second_triangle(y, w), 0x7ffffeu);
+  vc_set_second_triangle(y, w, 0);  // none: the other bits stay
+  EXPECT_EQ(y, 0x1fffu);
+  EXPECT_EQ(w, 0x7fffffu);
+  y = 0x200u;
+  w = 0x2au;
+  vc_set_second_triangle(y, w, 0x80001u);
+  EXPECT_EQ(y, 0x2200u);
+  EXPECT_EQ(w, 0x80002au);
+  EXPECT_EQ(vc_second_triangle(y, w), 0x80001u);
+}
+
 TEST(VoxelClipmapCpu, ClosestPointOnTriangleKnownAnswers) {
   const Float3 a{0, 0, 0}, b{2, 0, 0}, c{0, 2, 0};
   // Above the interior: the projection.
@@ -337,6 +354,22 @@ TEST_F(VoxelClipmapGpu, FillKeyAndClosestPointMatchCpu) {
   EXPECT_GT(inside, 200u);  // both branches (interior and edges) are exercised
 }
 
+TEST_F(VoxelClipmapGpu, SecondTriangleMatchesCpu) {
+  std::mt19937 rng(31);
+  std::uniform_int_distribution<uint32_t> word, id(0, 0x7fffff);
+  std::vector<glsl::VcTestIn> in(1024);
+  for (auto& t : in) t.a = {int32_t(word(rng)), int32_t(word(rng)), int32_t(id(rng)), 0};
+  const auto out = run(in, glsl::kVcTestSecond);
+  for (size_t i = 0; i < in.size(); ++i) {
+    uint32_t y = uint32_t(in[i].a.x), w = uint32_t(in[i].a.y);
+    ASSERT_EQ(out[i].u.x, vc_second_triangle(y, w)) << i;
+    vc_set_second_triangle(y, w, uint32_t(in[i].a.z));
+    ASSERT_EQ(out[i].u.y, y) << i;
+    ASSERT_EQ(out[i].u.z, w) << i;
+    ASSERT_EQ(out[i].u.w, uint32_t(in[i].a.z)) << i;
+  }
+}
+
 // ---------------------------------------------------------------- the plan
 // scene_voxel_light exists for geometry_light: with it off the graph culls the pass (it would
 // dispatch and return), with it on the pass runs.
@@ -489,12 +522,14 @@ TEST_F(VoxelClipmapEnergy, VoxelsReflectAlbedoTimesTheCubes) {
   std::printf("voxels: %u inner wall voxels: mean %.4f, worst %.4f of a (e + B); %u fed: mean %.4f; %u lit: mean %.4f; %u dark\n",
               count, sum / count, worst, fed, sum_fed / fed, count - fed, (sum - sum_fed) / std::max(1u, count - fed), dark);
   // A loss-free stage gives 1 for every voxel. Measured (lavapipe, medium): pixel-fed voxels
-  // 0.9997, voxels lit from their triangle 0.973: those on a room's edges (two walls in one voxel,
-  // GIB_VC_ENERGY_VERBOSE=1 lists them) read about 0.78, because a voxel keeps one triangle and
-  // the wall test cannot see the other wall there, so the lookup blends in cells outside the room
-  // (here 0). The lit bound guards that measured state; fed voxels are at 1.
+  // 0.9997, voxels lit from their triangle 1.0001, worst voxel 0.998. Voxels on a room's edges
+  // and corners hold two or three walls; with one triangle kept per voxel the wall test missed
+  // the others and the lookup blended in cells outside the room (lit mean 0.973, edges about
+  // 0.78); the fill now keeps one per dominant normal axis. GIB_VC_ENERGY_VERBOSE=1 lists voxels
+  // below 0.95.
   EXPECT_GT(sum_fed / fed, 0.998) << "pixel-fed voxels";
-  EXPECT_GT((sum - sum_fed) / std::max(1u, count - fed), 0.965) << "voxels lit from their triangle";
+  EXPECT_GT((sum - sum_fed) / std::max(1u, count - fed), 0.995) << "voxels lit from their triangle";
+  EXPECT_GT(worst, 0.99) << "worst voxel (a room's edges and corners)";
   EXPECT_GT(sum / count, 0.98) << "light lost from the cubes to the voxels per bounce";
   EXPECT_LT(sum / count, 1.005) << "light gained from the cubes to the voxels per bounce";
 }

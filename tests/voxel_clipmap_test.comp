@@ -47,6 +47,9 @@ void main() {
     r.u.x = vc_triangle_box_overlap(t.p0.xyz, t.p1.xyz, t.p2.xyz, t.p3.xyz, vec3(t.p3.w)) ? 1u : 0u;
   } else if (mode.x == kVcTestFillKey) {
     r.u.x = vc_fill_key(uint(t.a.x), t.a.y != 0, uint(t.a.z));
+  } else if (mode.x == kVcTestSecond) {
+    uvec4 v = vc_with_second_triangle(uvec4(0u, uint(t.a.x), 0u, uint(t.a.y)), uint(t.a.z));
+    r.u = uvec4(vc_second_triangle(uvec4(0u, uint(t.a.x), 0u, uint(t.a.y))), v.y, v.w, vc_second_triangle(v));
   } else if (mode.x == kVcTestClosest) {
     r.f0 = vec4(vc_closest_on_triangle(t.p3.xyz, t.p0.xyz, t.p1.xyz, t.p2.xyz), 0.0, 0.0);
   } else {

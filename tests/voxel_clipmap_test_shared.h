@@ -19,6 +19,7 @@ GIB_CONST(uint, kVcTestOverlap, 3)     // in.p0-p2: triangle, in.p3: box centre 
 GIB_CONST(uint, kVcTestOpacity, 4)     // in.p0.w: opacity
 GIB_CONST(uint, kVcTestFillKey, 5)     // in.a: opacity byte, facing, triangle
 GIB_CONST(uint, kVcTestClosest, 6)     // in.p0-p2: triangle, in.p3: point
+GIB_CONST(uint, kVcTestSecond, 7)      // in.a: voxel y, w, second triangle + 1 to set
 struct VcTestIn {
   ivec4 a;
   vec4 p0, p1, p2, p3;

@@ -91,6 +91,15 @@ uint32_t vc_fill_key(uint32_t op8, bool facing, uint32_t triangle) {
   return (op8 << 24) | (facing ? 0x800000u : 0u) | id;
 }
 
+uint32_t vc_second_triangle(uint32_t y, uint32_t w) {
+  return (y >> 13) | (((w & 0x7800000u) >> 23) << 19);
+}
+
+void vc_set_second_triangle(uint32_t& y, uint32_t& w, uint32_t id) {
+  y = (y & 0x1fffu) | (id << 13);
+  w = (w & ~0x7800000u) | (((id >> 19) << 23) & 0x7800000u);
+}
+
 Bary vc_closest_on_triangle(Float3 p, Float3 a, Float3 b, Float3 c) {
   const Float3 e1 = sub(b, a), e2 = sub(c, a), q = sub(p, a);
   const float d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2);

@@ -53,6 +53,11 @@ bool vc_triangle_box_overlap(Float3 a, Float3 b, Float3 c, Float3 centre, Float3
 // the triangle faces the camera, triangle + 1 in bits 0-22 (0 when the id does not fit).
 uint32_t vc_fill_key(uint32_t op8, bool facing, uint32_t triangle);
 
+// A voxel's second triangle + 1 (0: none; voxel_clipmap_shared.h): bits 0-18 in y bits 13-31,
+// bits 19-22 in w bits 23-26; the other bits of y and w are left as they are.
+uint32_t vc_second_triangle(uint32_t y, uint32_t w);
+void vc_set_second_triangle(uint32_t& y, uint32_t& w, uint32_t id);
+
 // Barycentrics (u, v) of the point of triangle a, b, c nearest p (a (1 - u - v) + b u + c v);
 // a degenerate triangle gives (0, 0).
 struct Bary {

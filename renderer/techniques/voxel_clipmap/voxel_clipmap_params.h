@@ -75,6 +75,8 @@ inline ResourceDesc vc_buffer(uint64_t bytes, bool persistent) {
 // The persistent clipmap buffers, as every pass that touches them declares them.
 inline ResourceDesc vc_state_desc() { return vc_buffer(sizeof(glsl::VcState), true); }
 inline ResourceDesc vc_voxels_desc(const VoxelClipmapSettings& p) { return vc_buffer(vc_voxel_count(p) * 16, true); }
+// Each voxel's third triangle + 1 (voxel_clipmap_shared.h), written by scene_voxel_fill.
+inline ResourceDesc vc_third_desc(const VoxelClipmapSettings& p) { return vc_buffer(vc_voxel_count(p) * 4, true); }
 inline ResourceDesc vc_cube_desc(const VoxelClipmapSettings& p) {
   ResourceDesc d = vc_buffer(vc_cell_count(p) * glsl::kVcCellFloats * 4, true);
   d.values = non_negative_values().layout(1, 0, 1);

@@ -38,6 +38,18 @@ uint vc_slot_index(ivec3 s, int n) { return uint((s.z * n + s.y) * n + s.x); }
 ivec3 vc_slot_world(ivec3 slot, ivec3 o, int n) { return o + vc_wrap(slot - o, n); }
 // The voxel opacity byte: opacity x 255 rounded half up, clamped to [1, 255] (0: no geometry).
 uint vc_opacity_byte(float opacity) { return uint(clamp(floor(opacity * 255.0 + 0.5), 1.0, 255.0)); }
+// The second triangle (+ 1; 0: none) of a voxel (voxel_clipmap_shared.h: y bits 13-31 hold its
+// bits 0-18, w bits 23-26 its bits 19-22), and the voxel with it set. CPU mirror:
+// codecs::vc_second_triangle / vc_with_second_triangle.
+uint vc_second_triangle(uvec4 v) {
+  return (v.y >> kVcSecondLowShift) | (((v.w & kVcSecondHighMask) >> kVcSecondHighShift) << kVcSecondLowBits);
+}
+uvec4 vc_with_second_triangle(uvec4 v, uint id) {
+  uint low = (1u << kVcSecondLowShift) - 1u;
+  v.y = (v.y & low) | (id << kVcSecondLowShift);
+  v.w = (v.w & ~kVcSecondHighMask) | (((id >> kVcSecondLowBits) << kVcSecondHighShift) & kVcSecondHighMask);
+  return v;
+}
 bool vc_in_box(ivec3 g, ivec3 o, int n) { return all(greaterThanEqual(g, o)) && all(lessThan(g, o + ivec3(n))); }
 
 uint vc_voxel_index(uint l, ivec3 g) { return l * vc_voxels_per_level() + vc_slot_index(vc_wrap(g, vc_n()), vc_n()); }
@@ -138,16 +150,46 @@ bool vc_crosses_voxel_plane(vec3 a, vec3 b, vec3 p0, vec3 nrm, ivec3 g, float s)
   return all(greaterThanEqual(c, lo)) && all(lessThanEqual(c, hi));
 }
 
-// Whether a wall lies between surface point x (normal n) and the centre of level-l cell k: the
-// segment from just off the surface (a twentieth of a voxel along n) to the centre crosses the
+// Whether the segment from a to b (a just off a surface of normal n) crosses, inside level-l
+// voxel g of size s, the plane of triangle `id` + 1 (a triangle scene_voxel_fill kept for that
+// voxel). The pixel's own surface is not a wall (the convex test weighs cells behind it): a
+// plane within 60 degrees of n that passes within half a voxel of a is taken for it. On a
+// curved surface the voxels along the segment keep neighbouring facets tilted from n, whose
+// planes a segment leaving the surface crosses outside the object; a wall that blocks a
+// segment meets the surface at a corner (near 90 degrees) or lies more than half a voxel away.
+bool vc_triangle_plane_blocks(uint id, vec3 a, vec3 b, vec3 n, ivec3 g, float s) {
+  GpuTriangle t = gib_triangles[id - 1u];
+  vec3 p0 = gib_vertices[t.i0].position;
+  vec3 nrm = cross(gib_vertices[t.i1].position - p0, gib_vertices[t.i2].position - p0);
+  float len = length(nrm);
+  if (!(len > 0.0)) return false;
+  nrm /= len;
+  bool own = dot(nrm, n) > 0.5 && abs(dot(a - p0, nrm)) < 0.5 * s;
+  return !own && vc_crosses_voxel_plane(a, b, p0, nrm, g, s);
+}
+
+// Where level-l cell k's rays start: the centre of the voxel of its 2 x 2 x 2 the last relight
+// started them in (cell state `state`), or the cell's centre when it was never relit (inherited
+// from the coarser level).
+vec3 vc_cell_ray_origin(uint l, ivec3 k, uint state) {
+  if ((state & (kVcCellRelit | kVcCellOriginCentre)) != kVcCellRelit) return (vec3(k) + 0.5) * vc_cell_size(l);
+  uint i = (state & kVcCellOriginMask) >> kVcCellOriginShift;
+  return (vec3(2 * k + ivec3(i & 1u, (i >> 1u) & 1u, (i >> 2u) & 1u)) + 0.5) * vc_voxel_size(l);
+}
+
+// Whether a wall lies between surface point x (normal n) and point b, where level-l cell k's
+// rays start (vc_cell_ray_origin): the
+// segment from just off the surface (a twentieth of a voxel along n) to b crosses the
 // plane of a triangle kept by a geometry voxel it passes through (a voxel DDA; the fill's flag
-// and triangle, which the feed keeps while it writes, so the result does not depend on thread
-// timing). The surface's own plane is not a wall (the convex test weighs cells behind it). A
-// geometry voxel without a triangle (past 2^23 - 2 triangles) counts as a wall. Needs the
-// voxel buffer (VC_VOXEL_BUFFER) and the scene buffers (GIB_SCENE_BUFFERS).
-bool vc_cell_behind_wall(uint l, vec3 x, vec3 n, ivec3 k) {
+// and triangles, which the feed keeps while it writes, so the result does not depend on thread
+// timing). A voxel keeps up to three triangles, one per dominant normal axis (two walls and the
+// ceiling they meet): with one, a wall's pixel below a ceiling saw its own plane in the voxel
+// they share, missed the ceiling, and took the cell above it, whose rays start above the roof.
+// A geometry voxel without a triangle (past 2^23 - 2 triangles) counts as a wall. Needs the
+// voxel buffers (VC_VOXEL_BUFFER, VC_THIRD_BUFFER) and the scene buffers (GIB_SCENE_BUFFERS).
+bool vc_cell_behind_wall(uint l, vec3 x, vec3 n, vec3 b) {
   float s = vc_voxel_size(l);
-  vec3 a = x + n * (0.05 * s), b = (vec3(k) + 0.5) * vc_cell_size(l);
+  vec3 a = x + n * (0.05 * s);
   vec3 d = b - a;
   ivec3 g = ivec3(floor(a / s)), last = ivec3(floor(b / s));
   ivec3 stepv = ivec3(sign(d));
@@ -160,17 +202,14 @@ bool vc_cell_behind_wall(uint l, vec3 x, vec3 n, ivec3 k) {
     if (vc_in_box(g, vc_voxel_origin(l), vc_n())) {
       uvec4 v = vc_voxels[vc_voxel_index(l, g)];
       if ((v.y & kVcVoxelGeometry) != 0u) {
-        uint tri = v.w & kVcFillTriangleMask;
+        uint tri = v.w & kVcFillTriangleMask, second = vc_second_triangle(v);
         if (tri == 0u || tri > gib_frame.scene_info.x) return true;
-        GpuTriangle t = gib_triangles[tri - 1u];
-        vec3 p0 = gib_vertices[t.i0].position;
-        vec3 nrm = cross(gib_vertices[t.i1].position - p0, gib_vertices[t.i2].position - p0);
-        float len = length(nrm);
-        if (len > 0.0) {
-          nrm /= len;
-          bool own = dot(nrm, n) > 0.999 && abs(dot(a - p0, nrm)) < 0.1 * s;
-          if (!own && vc_crosses_voxel_plane(a, b, p0, nrm, g, s)) return true;
-        }
+        if (vc_triangle_plane_blocks(tri, a, b, n, g, s)) return true;
+        if (second != 0u && second <= gib_frame.scene_info.x && vc_triangle_plane_blocks(second, a, b, n, g, s))
+          return true;
+        uint third = second != 0u ? vc_voxel_third[vc_voxel_index(l, g)] : 0u;
+        if (third != 0u && third <= gib_frame.scene_info.x && vc_triangle_plane_blocks(third, a, b, n, g, s))
+          return true;
       }
     }
     if (all(equal(g, last))) break;
@@ -216,14 +255,18 @@ float vc_cubes_trilinear(uint l, vec3 x, vec3 n, bool convex, out vec3 bounce, o
     ivec3 k = k0 + o;
     if (!vc_in_box(k, vc_cell_origin(l), vc_m())) continue;
     uint cell = vc_cell_index(l, k);
-    if ((vc_cell_state[cell] & kVcCellUpdated) == 0u) continue;
+    uint state = vc_cell_state[cell];
+    if ((state & kVcCellUpdated) == 0u) continue;
+    // A solid cell's rays started inside geometry: what they saw is no light at any surface.
+    if (convex && (state & kVcCellSolid) != 0u) continue;
     if (convex && dot((vec3(k) + 0.5) * c - x, n) < -0.25 * c) continue;
-#ifdef VC_CONVEX_VOXELS
-    if (convex && vc_flag(kVcFlagGeometryLight) && vc_cell_behind_wall(l, x, n, k)) continue;
-#endif
     vec3 t = mix(1.0 - f, f, vec3(o));
     float w = t.x * t.y * t.z;
+    // Before the wall test: a corner of no weight (a point on a cell plane) needs no voxel walk.
     if (w <= 0.0) continue;
+#ifdef VC_CONVEX_VOXELS
+    if (convex && vc_flag(kVcFlagGeometryLight) && vc_cell_behind_wall(l, x, n, vc_cell_ray_origin(l, k, state))) continue;
+#endif
     vec3 b, s;
     float h;
     vc_cube_eval(cell, n, b, s, h);

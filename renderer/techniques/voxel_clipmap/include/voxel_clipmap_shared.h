@@ -13,14 +13,24 @@ GIB_CONST(uint, kVcMaxRays, 256)  // rays per irradiance cell: one thread each, 
 // Scene voxels (buffer scene_voxel_data): level l holds N^3 voxels of size voxel_size x 2^l,
 // voxel (world grid coordinate g) at slot g mod N (toroidal), index l N^3 + (s.z N + s.y) N + s.x.
 // A voxel is a uvec4: x reflected radiance RGB9E5 (outgoing, lit, without emission), y opacity
-// unorm8 (bits 0-7) | flags, z emitted radiance RGB9E5, w the triangle scene_voxel_light lights
-// it from (scene_voxel_fill's key, kVcFillTriangleMask bits: triangle + 1; 0: none).
+// unorm8 (bits 0-7) | flags (bits 8-12) | the low bits of the second triangle (bits 13-31), z
+// emitted radiance RGB9E5, w the triangle scene_voxel_light lights it from (scene_voxel_fill's
+// key, kVcFillTriangleMask bits: triangle + 1; 0: none) | the second triangle's high bits (bits
+// 23-26). The fill keeps the best triangle of each dominant normal axis (x, y, z): the first
+// is the best of all, the second (+ 1; 0: none; vc_second_triangle) the best of the two other
+// axes, the third the remaining axis' (buffer scene_voxel_third: uint per voxel, triangle + 1,
+// 0: none). Where walls meet a floor or ceiling one voxel holds up to three surfaces, and the
+// cube lookups' wall test needs every plane.
 GIB_CONST(uint, kVcOpacityMask, 0xff)
 GIB_CONST(uint, kVcVoxelFed, 0x100)       // lit from the G-buffer at least once (else: written without averaging)
 GIB_CONST(uint, kVcVoxelGeometry, 0x200)  // opacity from voxelising scene triangles (scene_voxel_fill)
 GIB_CONST(uint, kVcVoxelNew, 0x400)       // entered the clipmap (or was invalidated) this frame
 GIB_CONST(uint, kVcVoxelOpaqueFed, 0x800) // an opaque pixel fed it: semi-transparent pixels keep its opacity
 GIB_CONST(uint, kVcVoxelLit, 0x1000)      // lit from its triangle at least once (scene_voxel_light)
+GIB_CONST(uint, kVcSecondLowShift, 13)     // second triangle + 1: bits 0-18 in y bits 13-31,
+GIB_CONST(uint, kVcSecondLowBits, 19)      // bits 19-22 in w bits 23-26
+GIB_CONST(uint, kVcSecondHighShift, 23)
+GIB_CONST(uint, kVcSecondHighMask, 0x7800000)
 
 // scene_voxel_fill's per-voxel key, merged with atomicMax: opacity byte (bits 24-31), whether the
 // triangle faces the camera (bit 23), triangle + 1 (bits 0-22; 0 past 2^23 - 2 triangles). The
@@ -44,6 +54,15 @@ GIB_CONST(uint, kVcCellUpdated, 0x10000)    // holds irradiance (relit, or inher
 GIB_CONST(uint, kVcCellGeometry, 0x20000)   // its box holds voxels with opacity (queue A / A')
 GIB_CONST(uint, kVcCellVisible, 0x40000)    // in the view frustum this frame
 GIB_CONST(uint, kVcCellRelit, 0x80000)      // relit at least once (else: queue A' when it has geometry)
+// Relit with every voxel of its 2 x 2 x 2 opaque: its rays started inside geometry (a cell within a
+// wall or roof, whose first voxel may be the sunlit outer face); the cube lookups give it no weight.
+GIB_CONST(uint, kVcCellSolid, 0x100000)
+// Which of its 2 x 2 x 2 voxels the last relight's rays started in (bit 0: +x, 1: +y, 2: +z):
+// the cube lookups' wall test ends its segment there (vc_cell_ray_origin).
+GIB_CONST(uint, kVcCellOriginShift, 21)
+GIB_CONST(uint, kVcCellOriginMask, 0xe00000)
+// Relit with no empty voxel but some semi-transparent (foliage): its rays started at its centre.
+GIB_CONST(uint, kVcCellOriginCentre, 0x1000000)
 
 // Flags in VcParams.grid.w.
 GIB_CONST(uint, kVcFlagNanGuards, 1)
@@ -94,6 +113,8 @@ GIB_SHARED_END
   layout(std430, set = 0, binding = (B)) QUAL buffer VcStateBuffer { VcState vc_state; };
 #define VC_VOXEL_BUFFER(B, QUAL) \
   layout(std430, set = 0, binding = (B)) QUAL buffer VcVoxelBuffer { uvec4 vc_voxels[]; };
+#define VC_THIRD_BUFFER(B, QUAL) \
+  layout(std430, set = 0, binding = (B)) QUAL buffer VcThirdBuffer { uint vc_voxel_third[]; };
 #define VC_CUBE_BUFFERS(BX, BY, BZ, BS, QUAL)                                              \
   layout(std430, set = 0, binding = (BX)) QUAL buffer VcCubeX { float vc_cube_x[]; };      \
   layout(std430, set = 0, binding = (BY)) QUAL buffer VcCubeY { float vc_cube_y[]; };      \

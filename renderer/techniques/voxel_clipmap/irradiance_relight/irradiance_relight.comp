@@ -37,15 +37,24 @@ void main() {
   ivec3 k = vc_slot_world(s, vc_cell_origin(l), m);
   // Rays start in the cell's first empty voxel (of its 2x2x2, nearest the origin corner first),
   // not at its centre: a centre on a wall would see the wall's inside or back from within it.
+  // A cell whose voxels are all opaque is marked solid (kVcCellSolid): the lookups give it no
+  // weight. One of semi-transparent voxels (foliage) with none empty starts at its centre.
   vec3 centre = (vec3(k) + 0.5) * vc_cell_size(l);
   float vs = vc_voxel_size(l);
+  uint origin = kVcCellSolid;
+  bool opaque = true;
   for (int i = 0; i < 8; ++i) {
     ivec3 g = 2 * k + ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-    if (vc_in_box(g, vc_voxel_origin(l), vc_n()) && (vc_voxels[vc_voxel_index(l, g)].y & kVcOpacityMask) == 0u) {
+    bool inside = vc_in_box(g, vc_voxel_origin(l), vc_n());
+    uint op8 = inside ? vc_voxels[vc_voxel_index(l, g)].y & kVcOpacityMask : 0u;
+    if (inside && op8 == 0u) {
       centre = (vec3(g) + 0.5) * vs;
+      origin = uint(i) << kVcCellOriginShift;
       break;
     }
+    opaque = opaque && inside && vc_opacity(uvec4(0u, op8, 0u, 0u), vc_flag(kVcFlagSemiTransparent)) >= 1.0;
   }
+  if (origin == kVcCellSolid && !opaque) origin = kVcCellOriginCentre;
 
   GibRng rng = gib_rng(vc.rays.z, vc_frame(), uvec2(cell, tid), 13u);
   float z = 1.0 - (2.0 * float(tid) + gib_next(rng)) / float(rays);
@@ -104,5 +113,6 @@ void main() {
     else vc_cube_z[at] = mix(vc_cube_z[at], value, w);
   }
   barrier();  // every thread has read the old state before it changes
-  if (tid == 0u) vc_cell_state[cell] = (state & ~kVcAgeMask) | kVcCellUpdated | kVcCellRelit;
+  if (tid == 0u)
+    vc_cell_state[cell] = (state & ~(kVcAgeMask | kVcCellSolid | kVcCellOriginMask | kVcCellOriginCentre)) | kVcCellUpdated | kVcCellRelit | origin;
 }

@@ -17,6 +17,7 @@ layout(push_constant) uniform Push {
 };
 VC_STATE_BUFFER(kScFeedBindState, )
 VC_VOXEL_BUFFER(kScFeedBindVoxels, )
+VC_THIRD_BUFFER(kScFeedBindThird, readonly)
 layout(std430, set = 0, binding = kScFeedBindOwner) buffer OwnerBuffer { uint owner[]; };
 VC_CUBE_BUFFERS(kScFeedBindX, kScFeedBindY, kScFeedBindZ, kScFeedBindCells, readonly)
 layout(set = 0, binding = kScFeedBindVbuffer, rg32ui) uniform readonly uimage2D vbuffer;
@@ -112,7 +113,7 @@ void main() {
     // A semi-transparent pixel does not thin a voxel that opaque surfaces fed (4.4).
     float op = (!opaque && (v.y & kVcVoxelOpaqueFed) != 0u) ? old_op : mix(old_op, opacity, a);
     uint op8 = vc_opacity_byte(op);
-    uint flags = (v.y & (kVcVoxelGeometry | kVcVoxelNew | kVcVoxelOpaqueFed)) | kVcVoxelFed | (opaque ? kVcVoxelOpaqueFed : 0u);
+    uint flags = (v.y & (kVcVoxelGeometry | kVcVoxelNew | kVcVoxelOpaqueFed | ~((1u << kVcSecondLowShift) - 1u))) | kVcVoxelFed | (opaque ? kVcVoxelOpaqueFed : 0u);
     // Stochastic rounding (a dither from the voxel, the frame and the seed): rounded to nearest,
     // a blend that moves by less than half a unit a frame stops, a bias the loop multiplies.
     uint dither = gib_pcg(idx ^ gib_pcg(vc_frame() ^ gib_pcg(vc.rays.z ^ 0x5bd1e995u)));

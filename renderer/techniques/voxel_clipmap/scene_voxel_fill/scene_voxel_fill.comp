@@ -13,6 +13,7 @@ layout(constant_id = kScFillSpecKernel) const uint kKernel = 0u;
 layout(push_constant) uniform Push { VcParams vc; };
 VC_STATE_BUFFER(kScFillBindState, )
 VC_VOXEL_BUFFER(kScFillBindVoxels, )
+VC_THIRD_BUFFER(kScFillBindThird, )
 layout(std430, set = 0, binding = kScFillBindGeometry) buffer GeometryBuffer { uint geometry[]; };
 #define VC_HAS_STATE
 #include "renderer/techniques/voxel_clipmap/include/vc_common.glsl"
@@ -33,7 +34,11 @@ void voxelize(uint tid) {
   GpuMaterial m = gib_materials[gib_instances[t.instance].material];
   float opacity = (m.alpha != GIB_ALPHA_NONE && vc_flag(kVcFlagSemiTransparent)) ? m.avg_opacity : 1.0;
   // The key keeps the triangle scene_voxel_light lights the voxel from (voxel_clipmap_shared.h).
-  uint key = vc_fill_key(vc_opacity_byte(opacity), dot(cross(b - a, c - a), gib_frame.camera_pos.xyz - a) > 0.0, tri);
+  vec3 nrm = cross(b - a, c - a), an = abs(nrm);
+  uint key = vc_fill_key(vc_opacity_byte(opacity), dot(nrm, gib_frame.camera_pos.xyz - a) > 0.0, tri);
+  // One key per dominant axis of the normal: the merge keeps the best of all and the best of
+  // another axis (a wall and the floor or ceiling it meets).
+  uint axis = an.x >= an.y && an.x >= an.z ? 0u : (an.y >= an.z ? 1u : 2u);
   float s = vc_voxel_size(l);
   int n = vc_n();
   // Every voxel the triangle's bounds touch: voxel g spans [g s, (g + 1) s], so a triangle on a
@@ -48,7 +53,7 @@ void voxelize(uint tid) {
         ivec3 g = ivec3(x, y, z);
         uint idx = vc_voxel_index(l, g);
         if ((vc_voxels[idx].y & kVcVoxelNew) == 0u) continue;
-        if (vc_triangle_box_overlap(a, b, c, (vec3(g) + 0.5) * s, h)) atomicMax(geometry[idx], key);
+        if (vc_triangle_box_overlap(a, b, c, (vec3(g) + 0.5) * s, h)) atomicMax(geometry[3u * idx + axis], key);
       }
 }
 
@@ -72,13 +77,19 @@ void merge(uint tid) {
       }
     }
   }
-  uint key = geometry[tid];
+  // The best key of all (the triangle the voxel is lit from, its opacity), the best of the other
+  // two axes and the remaining one (the planes the cube lookups' wall test sees).
+  uvec3 keys = uvec3(geometry[3u * tid], geometry[3u * tid + 1u], geometry[3u * tid + 2u]);
+  uint key = max(keys.x, max(keys.y, keys.z));
+  uvec2 rest = keys.x == key ? keys.yz : (keys.y == key ? keys.xz : keys.xy);
+  uint second = max(rest.x, rest.y), third = min(rest.x, rest.y);
+  vc_voxel_third[tid] = third & kVcFillTriangleMask;
   uint y = kVcVoxelNew;
   if (key != 0u) {
     y |= kVcVoxelGeometry | (key >> 24);
     atomicAdd(vc_state.stats.z, 1u);
   }
-  vc_voxels[tid] = uvec4(radiance, y, emitted, key & kVcFillTriangleMask);
+  vc_voxels[tid] = vc_with_second_triangle(uvec4(radiance, y, emitted, key & kVcFillTriangleMask), second & kVcFillTriangleMask);
 }
 
 void main() {

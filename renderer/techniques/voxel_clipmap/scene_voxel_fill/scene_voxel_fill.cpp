@@ -14,7 +14,8 @@ class SceneVoxelFillPass final : public Pass {
     d.name = "scene_voxel_fill";
     d.slots = {{"voxel_clip_state", Access::read_write, vc_state_desc()},
                {"scene_voxel_data", Access::read_write, vc_voxels_desc(p)},
-               {"voxel_geometry", Access::write, vc_buffer(vc_voxel_count(p) * 4, false)}};
+               {"scene_voxel_third", Access::read_write, vc_third_desc(p)},
+               {"voxel_geometry", Access::write, vc_buffer(vc_voxel_count(p) * 12, false)}};
     d.work = {{"voxels", double(vc_voxel_count(p))}};
     return d;
   }
@@ -28,6 +29,7 @@ class SceneVoxelFillPass final : public Pass {
     ctx.cmd.barrier(kStageTransfer, kStageCompute);
     const std::vector<BufferBinding> buffers{{kScFillBindState, "voxel_clip_state"},
                                              {kScFillBindVoxels, "scene_voxel_data"},
+                                             {kScFillBindThird, "scene_voxel_third"},
                                              {kScFillBindGeometry, "voxel_geometry"}};
     auto dispatch = [&](uint32_t kernel, const char* label, uint32_t items) {
       record_compute(ctx, {.shader = "scene_voxel_fill.comp",

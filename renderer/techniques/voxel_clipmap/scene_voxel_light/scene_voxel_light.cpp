@@ -17,7 +17,8 @@ class SceneVoxelLightPass final : public Pass {
                {"irradiance_z", Access::read},
                {"irradiance_cell_state", Access::read},
                {"voxel_clip_state", Access::read_write, vc_state_desc()},
-               {"scene_voxel_data", Access::read_write, vc_voxels_desc(p)}};
+               {"scene_voxel_data", Access::read_write, vc_voxels_desc(p)},
+               {"scene_voxel_third", Access::read}};
     d.work = {{"voxels", double(vc_lit_visits(p))}};
     d.traces_rays = true;
     if (!p.geometry_light) d.switched_off = "geometry_light is 0";
@@ -39,6 +40,7 @@ class SceneVoxelLightPass final : public Pass {
                                             {kScLightSpecLocal, f.has(Feature::local_lights)}},
                          .buffers = {{kScLightBindState, "voxel_clip_state"},
                                      {kScLightBindVoxels, "scene_voxel_data"},
+                                     {kScLightBindThird, "scene_voxel_third"},
                                      {kScLightBindX, "irradiance_x"},
                                      {kScLightBindY, "irradiance_y"},
                                      {kScLightBindZ, "irradiance_z"},
