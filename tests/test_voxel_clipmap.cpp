@@ -125,6 +125,39 @@ TEST(VoxelClipmapCpu, SecondTriangleKnownAnswers) {
   EXPECT_EQ(vc_second_triangle(y, w), 0x80001u);
 }
 
+// The flood mask of the cube lookups' wall test: a wall of geometry voxels across the window
+// (x = 4) keeps the flood on the seed's side; a hole in it lets the flood round it.
+TEST(VoxelClipmapCpu, VisFloodStopsAtWallsKnownAnswers) {
+  VisRows free_rows, seeds{}, holed;
+  free_rows.fill(0xffu & ~(1u << 4));
+  seeds[3 * 8 + 3] = 1u << 3;  // voxel (3, 3, 3): the cell's origin voxel (+x +y +z of cell (1, 1, 1))
+  const VisRows walled = vc_vis_flood(free_rows, seeds);
+  for (int r = 0; r < 64; ++r) ASSERT_EQ(walled[r], 0x0fu) << r;  // every voxel with x < 4, none past the wall
+  holed = free_rows;
+  holed[0] = 0xffu;  // the wall's voxel (4, 0, 0) is free
+  const VisRows through = vc_vis_flood(holed, seeds);
+  // Through the hole at row 0 (6 rows from the seed) and back to row 63 (14 more): within kVcVisSteps.
+  for (int r = 0; r < 64; ++r) ASSERT_EQ(through[r], r == 0 ? 0xffu : 0xefu) << r;
+  // A seed on a geometry voxel (a cell whose rays start at its centre) is reached itself.
+  VisRows none{};
+  EXPECT_EQ(vc_vis_flood(none, seeds)[27], 1u << 3);
+  EXPECT_EQ(vc_vis_flood(none, seeds)[28], 0u);
+  // The stored middle: window voxels 1..6; cell k's voxels 2k - 2 .. 2k + 3.
+  const std::array<uint32_t, 7> words = vc_vis_pack(walled);
+  EXPECT_EQ(vc_vis_bit({0, 0, 0}, {1, 1, 1}), 0);
+  EXPECT_EQ(vc_vis_bit({5, 5, 5}, {1, 1, 1}), 215);
+  EXPECT_EQ(vc_vis_bit({-1, 0, 0}, {1, 1, 1}), -1);
+  EXPECT_EQ(vc_vis_bit({6, 0, 0}, {1, 1, 1}), -1);
+  // Cell (1, 1, 1)'s window starts at voxel -1: voxel 2 (window x 3) is reached, voxel 3 (the wall) not.
+  const auto bit_set = [&](Int3 g) {
+    const int32_t b = vc_vis_bit(g, {1, 1, 1});
+    return ((words[b / 32] >> (b % 32)) & 1u) != 0;
+  };
+  EXPECT_TRUE(bit_set({2, 0, 5}));
+  EXPECT_FALSE(bit_set({3, 0, 5}));
+  EXPECT_FALSE(bit_set({4, 2, 1}));
+}
+
 TEST(VoxelClipmapCpu, ClosestPointOnTriangleKnownAnswers) {
   const Float3 a{0, 0, 0}, b{2, 0, 0}, c{0, 2, 0};
   // Above the interior: the projection.
@@ -368,6 +401,32 @@ TEST_F(VoxelClipmapGpu, SecondTriangleMatchesCpu) {
     ASSERT_EQ(out[i].u.z, w) << i;
     ASSERT_EQ(out[i].u.w, uint32_t(in[i].a.z)) << i;
   }
+}
+
+TEST_F(VoxelClipmapGpu, VisFloodStepAndBitMatchCpu) {
+  std::mt19937 rng(37);
+  std::uniform_int_distribution<uint32_t> row(0, 255);
+  std::uniform_int_distribution<int32_t> g(-40, 40);
+  std::vector<glsl::VcTestIn> in(4096);
+  for (auto& t : in) t.a = {int32_t(row(rng)), int32_t(row(rng) & row(rng) & row(rng)), int32_t(row(rng)), int32_t(row(rng))};
+  const auto step = run(in, glsl::kVcTestVisStep);
+  for (size_t i = 0; i < in.size(); ++i)
+    ASSERT_EQ(step[i].u.x, vc_vis_row_step(uint32_t(in[i].a.x), uint32_t(in[i].a.y), uint32_t(in[i].a.z),
+                                           uint32_t(in[i].a.w)))
+        << i;
+  uint32_t stored = 0;
+  for (auto& t : in) {
+    const int32_t kx = g(rng) / 2, ky = g(rng) / 2, kz = g(rng) / 2;
+    t.a = {2 * kx + g(rng) % 5, 2 * ky + g(rng) % 5, 2 * kz + g(rng) % 5, 0};
+    t.p0 = {int_bits(kx), int_bits(ky), int_bits(kz), 0};
+  }
+  const auto bit = run(in, glsl::kVcTestVisBit);
+  for (size_t i = 0; i < in.size(); ++i) {
+    const Int3 k{std::bit_cast<int32_t>(in[i].p0.x), std::bit_cast<int32_t>(in[i].p0.y), std::bit_cast<int32_t>(in[i].p0.z)};
+    ASSERT_EQ(bit[i].i.x, vc_vis_bit({in[i].a.x, in[i].a.y, in[i].a.z}, k)) << i;
+    stored += bit[i].i.x >= 0;
+  }
+  EXPECT_GT(stored, 100u);
 }
 
 // ---------------------------------------------------------------- the plan
