@@ -126,22 +126,33 @@ TEST(VoxelClipmapCpu, SecondTriangleKnownAnswers) {
 }
 
 // The flood mask of the cube lookups' wall test: a wall of geometry voxels across the window
-// (x = 4) keeps the flood on the seed's side; a hole in it lets the flood round it.
+// (x = 4) keeps the flood on the seed's side; through a hole in it the flood goes on only away
+// from the seed (monotone: not round the hole's edge and back).
 TEST(VoxelClipmapCpu, VisFloodStopsAtWallsKnownAnswers) {
-  VisRows free_rows, seeds{}, holed;
+  VisRows free_rows, open, holed;
+  open.fill(0xffu);
+  const Int3 s{3, 3, 3};  // the seed: the cell's origin voxel (+x +y +z of cell (1, 1, 1))
+  for (uint32_t row : vc_vis_flood(open, s, s)) ASSERT_EQ(row, 0xffu);  // open air: every voxel
   free_rows.fill(0xffu & ~(1u << 4));
-  seeds[3 * 8 + 3] = 1u << 3;  // voxel (3, 3, 3): the cell's origin voxel (+x +y +z of cell (1, 1, 1))
-  const VisRows walled = vc_vis_flood(free_rows, seeds);
+  const VisRows walled = vc_vis_flood(free_rows, s, s);
   for (int r = 0; r < 64; ++r) ASSERT_EQ(walled[r], 0x0fu) << r;  // every voxel with x < 4, none past the wall
   holed = free_rows;
   holed[0] = 0xffu;  // the wall's voxel (4, 0, 0) is free
-  const VisRows through = vc_vis_flood(holed, seeds);
-  // Through the hole at row 0 (6 rows from the seed) and back to row 63 (14 more): within kVcVisSteps.
-  for (int r = 0; r < 64; ++r) ASSERT_EQ(through[r], r == 0 ? 0xffu : 0xefu) << r;
-  // A seed on a geometry voxel (a cell whose rays start at its centre) is reached itself.
+  const VisRows through = vc_vis_flood(holed, s, s);
+  // Row 0 (y = z = 0, as far from the seed as rows go) past the hole; the other rows' voxels past
+  // the wall only by coming back towards the seed: not reached.
+  for (int r = 0; r < 64; ++r) ASSERT_EQ(through[r], r == 0 ? 0xffu : 0x0fu) << r;
+  // Seeds on geometry voxels (a cell whose rays start at its centre: the box 3..4) are reached themselves.
   VisRows none{};
-  EXPECT_EQ(vc_vis_flood(none, seeds)[27], 1u << 3);
-  EXPECT_EQ(vc_vis_flood(none, seeds)[28], 0u);
+  const VisRows centre = vc_vis_flood(none, {3, 3, 3}, {4, 4, 4});
+  EXPECT_EQ(centre[27], 0x18u);
+  EXPECT_EQ(centre[36], 0x18u);
+  EXPECT_EQ(centre[28 + 8], 0x18u);
+  EXPECT_EQ(centre[26], 0u);
+  // Monotone along x: from seed x 3 the free voxels 5..7 past geometry at 4 are not reached.
+  EXPECT_EQ(vc_vis_row_step(0xefu, 0x08u, 0u, 0u, 3, 3), 0x0fu);
+  EXPECT_EQ(vc_vis_row_step(0xffu, 0x08u, 0u, 0u, 3, 3), 0xffu);
+  EXPECT_EQ(vc_vis_row_step(0xffu, 0u, 0u, 0x80u, 3, 3), 0x80u);  // from a row on the seed's side: onwards, not back
   // The stored middle: window voxels 1..6; cell k's voxels 2k - 2 .. 2k + 3.
   const std::array<uint32_t, 7> words = vc_vis_pack(walled);
   EXPECT_EQ(vc_vis_bit({0, 0, 0}, {1, 1, 1}), 0);
@@ -408,11 +419,17 @@ TEST_F(VoxelClipmapGpu, VisFloodStepAndBitMatchCpu) {
   std::uniform_int_distribution<uint32_t> row(0, 255);
   std::uniform_int_distribution<int32_t> g(-40, 40);
   std::vector<glsl::VcTestIn> in(4096);
-  for (auto& t : in) t.a = {int32_t(row(rng)), int32_t(row(rng) & row(rng) & row(rng)), int32_t(row(rng)), int32_t(row(rng))};
+  std::uniform_int_distribution<int32_t> x(0, 7);
+  for (auto& t : in) {
+    t.a = {int32_t(row(rng)), int32_t(row(rng) & row(rng) & row(rng)), int32_t(row(rng)), int32_t(row(rng))};
+    const int32_t lo = x(rng), hi = std::min(7, lo + x(rng) % 2);
+    t.p0 = {int_bits(lo), int_bits(hi), 0, 0};
+  }
   const auto step = run(in, glsl::kVcTestVisStep);
   for (size_t i = 0; i < in.size(); ++i)
     ASSERT_EQ(step[i].u.x, vc_vis_row_step(uint32_t(in[i].a.x), uint32_t(in[i].a.y), uint32_t(in[i].a.z),
-                                           uint32_t(in[i].a.w)))
+                                           uint32_t(in[i].a.w), uint32_t(std::bit_cast<int32_t>(in[i].p0.x)),
+                                           uint32_t(std::bit_cast<int32_t>(in[i].p0.y))))
         << i;
   uint32_t stored = 0;
   for (auto& t : in) {

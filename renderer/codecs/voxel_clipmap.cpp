@@ -102,22 +102,28 @@ void vc_set_second_triangle(uint32_t& y, uint32_t& w, uint32_t id) {
   w = (w & ~0x7800000u) | (((id >> 19) << 23) & 0x7800000u);
 }
 
-uint32_t vc_vis_row_step(uint32_t free_row, uint32_t seed, uint32_t row, uint32_t beside) {
+uint32_t vc_vis_row_step(uint32_t free_row, uint32_t seed, uint32_t row, uint32_t beside, uint32_t xlo, uint32_t xhi) {
+  const uint32_t all = (1u << uint32_t(glsl::kVcVisWindow)) - 1u;
+  const uint32_t up = all & ~((2u << xhi) - 1u), down = (1u << xlo) - 1u;
   uint32_t r = seed | (free_row & (row | beside));
-  for (int i = 0; i < glsl::kVcVisWindow - 1; ++i) r |= free_row & ((r << 1u) | (r >> 1u));
-  return r & ((1u << uint32_t(glsl::kVcVisWindow)) - 1u);
+  for (int i = 0; i < glsl::kVcVisWindow - 1; ++i) r |= free_row & (((r << 1u) & up) | ((r >> 1u) & down));
+  return r & all;
 }
 
-VisRows vc_vis_flood(const VisRows& free_rows, const VisRows& seeds) {
+VisRows vc_vis_flood(const VisRows& free_rows, Int3 lo, Int3 hi) {
   constexpr int w = glsl::kVcVisWindow;
   static_assert(w * w == 64, "VisRows holds the flood window's rows");
+  VisRows seeds{};
+  for (int z = lo.z; z <= hi.z; ++z)
+    for (int y = lo.y; y <= hi.y; ++y)
+      for (int x = lo.x; x <= hi.x; ++x) seeds[z * w + y] |= 1u << x;
   VisRows cur = seeds, next{};
   for (uint32_t step = 0; step < glsl::kVcVisSteps; ++step) {
     for (int r = 0; r < w * w; ++r) {
       const int y = r % w, z = r / w;
-      const uint32_t beside = (y > 0 ? cur[r - 1] : 0u) | (y < w - 1 ? cur[r + 1] : 0u) |
-                              (z > 0 ? cur[r - w] : 0u) | (z < w - 1 ? cur[r + w] : 0u);
-      next[r] = vc_vis_row_step(free_rows[r], seeds[r], cur[r], beside);
+      const uint32_t beside = (y > hi.y ? cur[r - 1] : 0u) | (y < lo.y ? cur[r + 1] : 0u) |
+                              (z > hi.z ? cur[r - w] : 0u) | (z < lo.z ? cur[r + w] : 0u);
+      next[r] = vc_vis_row_step(free_rows[r], seeds[r], cur[r], beside, uint32_t(lo.x), uint32_t(hi.x));
     }
     cur = next;
   }

@@ -54,14 +54,18 @@ uvec4 vc_with_second_triangle(uvec4 v, uint id) {
 bool vc_in_box(ivec3 g, ivec3 o, int n) { return all(greaterThanEqual(g, o)) && all(lessThan(g, o + ivec3(n))); }
 
 // One step of the relight's flood (irradiance_cell_vis, voxel_clipmap_shared.h) on one row of
-// its window (kVcVisWindow voxels along x, bit x): the seeds, the row's voxels reached so far
-// and the free voxels (no geometry) reached in its four neighbouring rows (y and z +/- 1, or-ed
-// into `beside`), spread along the row through its free voxels. CPU mirror:
-// codecs::vc_vis_row_step.
-uint vc_vis_row_step(uint free_row, uint seed, uint row, uint beside) {
+// its window (kVcVisWindow voxels along x, bit x). The flood is monotone: it moves only away
+// from the seed box (voxels xlo..xhi along x), so a voxel is reached along a staircase of free
+// voxels from the seed, not around a wall's edge and back. The row takes the seeds, its voxels
+// reached so far and those of its neighbouring rows on the seed's side (y and z, or-ed into
+// `beside`), and spreads them along x through its free voxels outwards from the seed box.
+// CPU mirror: codecs::vc_vis_row_step.
+uint vc_vis_row_step(uint free_row, uint seed, uint row, uint beside, uint xlo, uint xhi) {
+  uint all = (1u << uint(kVcVisWindow)) - 1u;
+  uint up = all & ~((2u << xhi) - 1u), down = (1u << xlo) - 1u;  // bits past the seed box
   uint r = seed | (free_row & (row | beside));
-  for (int i = 0; i < kVcVisWindow - 1; ++i) r |= free_row & ((r << 1u) | (r >> 1u));
-  return r & ((1u << uint(kVcVisWindow)) - 1u);
+  for (int i = 0; i < kVcVisWindow - 1; ++i) r |= free_row & (((r << 1u) & up) | ((r >> 1u) & down));
+  return r & all;
 }
 // The bit of cell k's flood mask that holds voxel g of the cell's level; -1 outside the stored
 // middle of its window (voxels 2k - 2 .. 2k + 3). CPU mirror: codecs::vc_vis_bit.

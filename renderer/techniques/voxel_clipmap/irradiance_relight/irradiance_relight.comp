@@ -34,17 +34,21 @@ shared uint s_seed[kVisRows];       // bit x set where the flood starts (the ray
 shared uint s_reach[2][kVisRows];   // voxels reached, double-buffered so the steps do not race
 
 // The cell's flood mask (irradiance_cell_vis, voxel_clipmap_shared.h): the voxels without
-// geometry joined 6-connected to the voxel its rays start in (`origin`, as the cell state
-// records it; every voxel of the 2 x 2 x 2 for a cell whose rays start at its centre, none for
-// a solid one) within the window of world voxels 2k - 3 .. 2k + 4; kVcVisSteps steps, each
-// spreading along x through a row and one voxel across rows. A voxel outside the level's box
-// counts as free. The cube lookups then test a pixel's air voxel against one bit instead of
+// geometry joined to the voxel its rays start in (`origin`, as the cell state records it; the
+// seed box is every voxel of the 2 x 2 x 2 for a cell whose rays start at its centre, none for
+// a solid one) by a staircase of free voxels moving away from it on every axis (monotone: a
+// path over a roof's edge and back under it is not line of sight), within the window of world
+// voxels 2k - 3 .. 2k + 4; kVcVisSteps steps, each spreading along x through a row and one
+// voxel across rows. A voxel outside the level's box counts as free. The cube lookups then test a pixel's air voxel against one bit instead of
 // walking the voxels between them (wall_test 2). Called by every thread (it has barriers).
 void flood_cell_vis(uint l, ivec3 k, uint origin, uint cell) {
   uint tid = gl_LocalInvocationIndex, threads = gl_WorkGroupSize.x;
   const int w = kVcVisWindow;
   ivec3 base = 2 * k - ivec3(3);
   uint seed_at = (origin & kVcCellOriginMask) >> kVcCellOriginShift;
+  // The seed box in window coordinates (the cell's voxels are 3 and 4 on each axis).
+  ivec3 lo = ivec3(3), hi = ivec3(4);
+  if (origin != kVcCellOriginCentre) lo = hi = ivec3(3) + ivec3(seed_at & 1u, (seed_at >> 1u) & 1u, (seed_at >> 2u) & 1u);
   for (uint r = tid; r < kVisRows; r += threads) {
     uint free_row = 0u, seed = 0u;
     for (int x = 0; x < w; ++x) {
@@ -66,9 +70,10 @@ void flood_cell_vis(uint l, ivec3 k, uint origin, uint cell) {
     uint src = it & 1u, dst = src ^ 1u;
     for (uint r = tid; r < kVisRows; r += threads) {
       int y = int(r) % w, z = int(r) / w;
-      uint beside = (y > 0 ? s_reach[src][r - 1u] : 0u) | (y < w - 1 ? s_reach[src][r + 1u] : 0u) |
-                    (z > 0 ? s_reach[src][r - uint(w)] : 0u) | (z < w - 1 ? s_reach[src][r + uint(w)] : 0u);
-      s_reach[dst][r] = vc_vis_row_step(s_free[r], s_seed[r], s_reach[src][r], beside);
+      // The neighbouring rows on the seed box's side (none along an axis inside the box).
+      uint beside = (y > hi.y ? s_reach[src][r - 1u] : 0u) | (y < lo.y ? s_reach[src][r + 1u] : 0u) |
+                    (z > hi.z ? s_reach[src][r - uint(w)] : 0u) | (z < lo.z ? s_reach[src][r + uint(w)] : 0u);
+      s_reach[dst][r] = vc_vis_row_step(s_free[r], s_seed[r], s_reach[src][r], beside, uint(lo.x), uint(hi.x));
     }
     barrier();
   }
