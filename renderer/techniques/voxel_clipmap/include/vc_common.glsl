@@ -284,9 +284,9 @@ bool vc_cell_sees(uint cell, ivec3 k, ivec3 g) {
 // centres lie behind the surface's plane (more than a quarter cell) get no weight: the filter
 // footprint stays on the lit side of a wall; where the includer defines VC_CONVEX_VOXELS and
 // geometry_light is on, corner cells behind another wall get none either, so a surface near a
-// room's corner does not blend in the cells outside it: wall_test 2 (the default) reads one bit
-// of the cell's flood mask (vc_cell_sees: is the pixel's air voxel joined to the cell's ray
-// origin through voxels without geometry), wall_test 1 walks the voxels to the cell's ray origin
+// room's corner does not blend in the cells outside it: wall_test 2 reads one bit of the cell's
+// flood mask (vc_cell_sees: is the pixel's air voxel joined to the cell's ray origin through
+// voxels without geometry), wall_test 1 (the default) walks the voxels to the cell's ray origin
 // through the kept triangles' planes (vc_cell_behind_wall; also the fallback of wall_test 2 for
 // a pixel without an air voxel or a cell never relit). Returns the weight found (0: nothing
 // usable).
