@@ -98,16 +98,20 @@ TEST_F(Determinism, FramesInOneSubmissionAreTheFramesSubmittedOneByOne) {
 }
 
 // voxel-clipmap with geometry_light (on by default) in a thin-wall room: scene_voxel_light's lit
-// voxels, the out-of-view cells and the wall test of the cube lookups (its DDA reads the
-// triangles the fill kept while the feed writes the voxels).
+// voxels, the out-of-view cells and the wall test of the cube lookups, both kinds: the voxel walk
+// (wall_test 1: its DDA reads the triangles the fill kept while the feed writes the voxels) and
+// the flood mask (wall_test 2: the relight's flood in shared memory, the air voxel's geometry flag).
 TEST_F(Determinism, VoxelClipmapGeometryLightIsBitIdenticalRunToRun) {
-  const Config cfg{"voxel-clipmap", "medium", {{"geometry_light", 1}}};
   Scene scene = load_scene(std::string(GIB_SOURCE_DIR) + "/cases/scenes/thin_wall_005.json");
-  std::vector<FloatImage> a = render(gpu(), scene, cfg, 6), b = render(gpu(), scene, cfg, 6);
-  ASSERT_EQ(a.size(), b.size());
-  for (size_t i = 0; i < a.size(); ++i) {
-    ASSERT_EQ(a[i].pixels.size(), b[i].pixels.size());
-    EXPECT_EQ(differing_floats(a[i], b[i]), 0u) << "output " << i << " of " << a[i].pixels.size() << " floats";
+  for (double wall_test : {1.0, 2.0}) {
+    SCOPED_TRACE(wall_test == 1.0 ? "wall_test 1" : "wall_test 2");
+    const Config cfg{"voxel-clipmap", "medium", {{"geometry_light", 1}, {"wall_test", wall_test}}};
+    std::vector<FloatImage> a = render(gpu(), scene, cfg, 6), b = render(gpu(), scene, cfg, 6);
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t i = 0; i < a.size(); ++i) {
+      ASSERT_EQ(a[i].pixels.size(), b[i].pixels.size());
+      EXPECT_EQ(differing_floats(a[i], b[i]), 0u) << "output " << i << " of " << a[i].pixels.size() << " floats";
+    }
   }
 }
 

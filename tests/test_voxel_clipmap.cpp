@@ -125,6 +125,50 @@ TEST(VoxelClipmapCpu, SecondTriangleKnownAnswers) {
   EXPECT_EQ(vc_second_triangle(y, w), 0x80001u);
 }
 
+// The flood mask of the cube lookups' wall test: a wall of geometry voxels across the window
+// (x = 4) keeps the flood on the seed's side; through a hole in it the flood goes on only away
+// from the seed (monotone: not round the hole's edge and back).
+TEST(VoxelClipmapCpu, VisFloodStopsAtWallsKnownAnswers) {
+  VisRows free_rows, open, holed;
+  open.fill(0xffu);
+  const Int3 s{3, 3, 3};  // the seed: the cell's origin voxel (+x +y +z of cell (1, 1, 1))
+  for (uint32_t row : vc_vis_flood(open, s, s)) ASSERT_EQ(row, 0xffu);  // open air: every voxel
+  free_rows.fill(0xffu & ~(1u << 4));
+  const VisRows walled = vc_vis_flood(free_rows, s, s);
+  for (int r = 0; r < 64; ++r) ASSERT_EQ(walled[r], 0x0fu) << r;  // every voxel with x < 4, none past the wall
+  holed = free_rows;
+  holed[0] = 0xffu;  // the wall's voxel (4, 0, 0) is free
+  const VisRows through = vc_vis_flood(holed, s, s);
+  // Row 0 (y = z = 0, as far from the seed as rows go) past the hole; the other rows' voxels past
+  // the wall only by coming back towards the seed: not reached.
+  for (int r = 0; r < 64; ++r) ASSERT_EQ(through[r], r == 0 ? 0xffu : 0x0fu) << r;
+  // Seeds on geometry voxels (a cell whose rays start at its centre: the box 3..4) are reached themselves.
+  VisRows none{};
+  const VisRows centre = vc_vis_flood(none, {3, 3, 3}, {4, 4, 4});
+  EXPECT_EQ(centre[27], 0x18u);
+  EXPECT_EQ(centre[36], 0x18u);
+  EXPECT_EQ(centre[28 + 8], 0x18u);
+  EXPECT_EQ(centre[26], 0u);
+  // Monotone along x: from seed x 3 the free voxels 5..7 past geometry at 4 are not reached.
+  EXPECT_EQ(vc_vis_row_step(0xefu, 0x08u, 0u, 0u, 3, 3), 0x0fu);
+  EXPECT_EQ(vc_vis_row_step(0xffu, 0x08u, 0u, 0u, 3, 3), 0xffu);
+  EXPECT_EQ(vc_vis_row_step(0xffu, 0u, 0u, 0x80u, 3, 3), 0x80u);  // from a row on the seed's side: onwards, not back
+  // The stored middle: window voxels 1..6; cell k's voxels 2k - 2 .. 2k + 3.
+  const std::array<uint32_t, 7> words = vc_vis_pack(walled);
+  EXPECT_EQ(vc_vis_bit({0, 0, 0}, {1, 1, 1}), 0);
+  EXPECT_EQ(vc_vis_bit({5, 5, 5}, {1, 1, 1}), 215);
+  EXPECT_EQ(vc_vis_bit({-1, 0, 0}, {1, 1, 1}), -1);
+  EXPECT_EQ(vc_vis_bit({6, 0, 0}, {1, 1, 1}), -1);
+  // Cell (1, 1, 1)'s window starts at voxel -1: voxel 2 (window x 3) is reached, voxel 3 (the wall) not.
+  const auto bit_set = [&](Int3 g) {
+    const int32_t b = vc_vis_bit(g, {1, 1, 1});
+    return ((words[b / 32] >> (b % 32)) & 1u) != 0;
+  };
+  EXPECT_TRUE(bit_set({2, 0, 5}));
+  EXPECT_FALSE(bit_set({3, 0, 5}));
+  EXPECT_FALSE(bit_set({4, 2, 1}));
+}
+
 TEST(VoxelClipmapCpu, ClosestPointOnTriangleKnownAnswers) {
   const Float3 a{0, 0, 0}, b{2, 0, 0}, c{0, 2, 0};
   // Above the interior: the projection.
@@ -368,6 +412,38 @@ TEST_F(VoxelClipmapGpu, SecondTriangleMatchesCpu) {
     ASSERT_EQ(out[i].u.z, w) << i;
     ASSERT_EQ(out[i].u.w, uint32_t(in[i].a.z)) << i;
   }
+}
+
+TEST_F(VoxelClipmapGpu, VisFloodStepAndBitMatchCpu) {
+  std::mt19937 rng(37);
+  std::uniform_int_distribution<uint32_t> row(0, 255);
+  std::uniform_int_distribution<int32_t> g(-40, 40);
+  std::vector<glsl::VcTestIn> in(4096);
+  std::uniform_int_distribution<int32_t> x(0, 7);
+  for (auto& t : in) {
+    t.a = {int32_t(row(rng)), int32_t(row(rng) & row(rng) & row(rng)), int32_t(row(rng)), int32_t(row(rng))};
+    const int32_t lo = x(rng), hi = std::min(7, lo + x(rng) % 2);
+    t.p0 = {int_bits(lo), int_bits(hi), 0, 0};
+  }
+  const auto step = run(in, glsl::kVcTestVisStep);
+  for (size_t i = 0; i < in.size(); ++i)
+    ASSERT_EQ(step[i].u.x, vc_vis_row_step(uint32_t(in[i].a.x), uint32_t(in[i].a.y), uint32_t(in[i].a.z),
+                                           uint32_t(in[i].a.w), uint32_t(std::bit_cast<int32_t>(in[i].p0.x)),
+                                           uint32_t(std::bit_cast<int32_t>(in[i].p0.y))))
+        << i;
+  uint32_t stored = 0;
+  for (auto& t : in) {
+    const int32_t kx = g(rng) / 2, ky = g(rng) / 2, kz = g(rng) / 2;
+    t.a = {2 * kx + g(rng) % 5, 2 * ky + g(rng) % 5, 2 * kz + g(rng) % 5, 0};
+    t.p0 = {int_bits(kx), int_bits(ky), int_bits(kz), 0};
+  }
+  const auto bit = run(in, glsl::kVcTestVisBit);
+  for (size_t i = 0; i < in.size(); ++i) {
+    const Int3 k{std::bit_cast<int32_t>(in[i].p0.x), std::bit_cast<int32_t>(in[i].p0.y), std::bit_cast<int32_t>(in[i].p0.z)};
+    ASSERT_EQ(bit[i].i.x, vc_vis_bit({in[i].a.x, in[i].a.y, in[i].a.z}, k)) << i;
+    stored += bit[i].i.x >= 0;
+  }
+  EXPECT_GT(stored, 100u);
 }
 
 // ---------------------------------------------------------------- the plan

@@ -50,6 +50,10 @@ void main() {
   } else if (mode.x == kVcTestSecond) {
     uvec4 v = vc_with_second_triangle(uvec4(0u, uint(t.a.x), 0u, uint(t.a.y)), uint(t.a.z));
     r.u = uvec4(vc_second_triangle(uvec4(0u, uint(t.a.x), 0u, uint(t.a.y))), v.y, v.w, vc_second_triangle(v));
+  } else if (mode.x == kVcTestVisStep) {
+    r.u.x = vc_vis_row_step(uint(t.a.x), uint(t.a.y), uint(t.a.z), uint(t.a.w), uint(floatBitsToInt(t.p0.x)), uint(floatBitsToInt(t.p0.y)));
+  } else if (mode.x == kVcTestVisBit) {
+    r.i.x = vc_vis_bit(t.a.xyz, floatBitsToInt(t.p0.xyz));
   } else if (mode.x == kVcTestClosest) {
     r.f0 = vec4(vc_closest_on_triangle(t.p3.xyz, t.p0.xyz, t.p1.xyz, t.p2.xyz), 0.0, 0.0);
   } else {

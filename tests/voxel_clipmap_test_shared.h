@@ -20,6 +20,8 @@ GIB_CONST(uint, kVcTestOpacity, 4)     // in.p0.w: opacity
 GIB_CONST(uint, kVcTestFillKey, 5)     // in.a: opacity byte, facing, triangle
 GIB_CONST(uint, kVcTestClosest, 6)     // in.p0-p2: triangle, in.p3: point
 GIB_CONST(uint, kVcTestSecond, 7)      // in.a: voxel y, w, second triangle + 1 to set
+GIB_CONST(uint, kVcTestVisStep, 8)     // in.a: free row, seed, row, beside; in.p0.xy: seed box x lo, hi (int bits)
+GIB_CONST(uint, kVcTestVisBit, 9)      // in.a.xyz: voxel g; in.p0.xyz: cell k (int bits)
 struct VcTestIn {
   ivec4 a;
   vec4 p0, p1, p2, p3;

@@ -1,5 +1,7 @@
 #include "renderer/codecs/voxel_clipmap.h"
 
+#include "renderer/techniques/voxel_clipmap/include/voxel_clipmap_shared.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -98,6 +100,52 @@ uint32_t vc_second_triangle(uint32_t y, uint32_t w) {
 void vc_set_second_triangle(uint32_t& y, uint32_t& w, uint32_t id) {
   y = (y & 0x1fffu) | (id << 13);
   w = (w & ~0x7800000u) | (((id >> 19) << 23) & 0x7800000u);
+}
+
+uint32_t vc_vis_row_step(uint32_t free_row, uint32_t seed, uint32_t row, uint32_t beside, uint32_t xlo, uint32_t xhi) {
+  const uint32_t all = (1u << uint32_t(glsl::kVcVisWindow)) - 1u;
+  const uint32_t up = all & ~((2u << xhi) - 1u), down = (1u << xlo) - 1u;
+  uint32_t r = seed | (free_row & (row | beside));
+  for (int i = 0; i < glsl::kVcVisWindow - 1; ++i) r |= free_row & (((r << 1u) & up) | ((r >> 1u) & down));
+  return r & all;
+}
+
+VisRows vc_vis_flood(const VisRows& free_rows, Int3 lo, Int3 hi) {
+  constexpr int w = glsl::kVcVisWindow;
+  static_assert(w * w == 64, "VisRows holds the flood window's rows");
+  VisRows seeds{};
+  for (int z = lo.z; z <= hi.z; ++z)
+    for (int y = lo.y; y <= hi.y; ++y)
+      for (int x = lo.x; x <= hi.x; ++x) seeds[z * w + y] |= 1u << x;
+  VisRows cur = seeds, next{};
+  for (uint32_t step = 0; step < glsl::kVcVisSteps; ++step) {
+    for (int r = 0; r < w * w; ++r) {
+      const int y = r % w, z = r / w;
+      const uint32_t beside = (y > hi.y ? cur[r - 1] : 0u) | (y < lo.y ? cur[r + 1] : 0u) |
+                              (z > hi.z ? cur[r - w] : 0u) | (z < lo.z ? cur[r + w] : 0u);
+      next[r] = vc_vis_row_step(free_rows[r], seeds[r], cur[r], beside, uint32_t(lo.x), uint32_t(hi.x));
+    }
+    cur = next;
+  }
+  return cur;
+}
+
+std::array<uint32_t, 7> vc_vis_pack(const VisRows& reached) {
+  constexpr int w = glsl::kVcVisWindow, span = glsl::kVcVisSpan;
+  static_assert(glsl::kVcCellVisWords == 7 && span * span * span <= 7 * 32, "mask words");
+  std::array<uint32_t, 7> words{};
+  for (int bit = 0; bit < span * span * span; ++bit) {
+    const int x = bit % span + 1, y = (bit / span) % span + 1, z = bit / (span * span) + 1;
+    words[bit / 32] |= ((reached[z * w + y] >> x) & 1u) << (bit % 32);
+  }
+  return words;
+}
+
+int32_t vc_vis_bit(Int3 g, Int3 k) {
+  const Int3 c{g.x - (2 * k.x - 2), g.y - (2 * k.y - 2), g.z - (2 * k.z - 2)};
+  const int span = glsl::kVcVisSpan;
+  if (c.x < 0 || c.y < 0 || c.z < 0 || c.x >= span || c.y >= span || c.z >= span) return -1;
+  return (c.z * span + c.y) * span + c.x;
 }
 
 Bary vc_closest_on_triangle(Float3 p, Float3 a, Float3 b, Float3 c) {

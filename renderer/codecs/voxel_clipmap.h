@@ -65,4 +65,19 @@ struct Bary {
 };
 Bary vc_closest_on_triangle(Float3 p, Float3 a, Float3 b, Float3 c);
 
+// The cells' flood masks (irradiance_cell_vis, voxel_clipmap_shared.h). A window of 8^3 voxels is
+// 64 rows (index z x 8 + y), bit x of a row for voxel x.
+using VisRows = std::array<uint32_t, 64>;
+// One flood step of one row: seeds, the row's reached voxels and its neighbouring rows' on the
+// seed box's side (or-ed into `beside`), spread along the row through its free voxels away from
+// the seed box (window x xlo..xhi).
+uint32_t vc_vis_row_step(uint32_t free_row, uint32_t seed, uint32_t row, uint32_t beside, uint32_t xlo, uint32_t xhi);
+// The relight's monotone flood from the seed box lo..hi (window coordinates, every voxel of it a
+// seed): kVcVisSteps double-buffered steps over every row.
+VisRows vc_vis_flood(const VisRows& free_rows, Int3 lo, Int3 hi);
+// The stored mask (kVcCellVisWords words) of a flooded window: its middle 6^3 voxels.
+std::array<uint32_t, 7> vc_vis_pack(const VisRows& reached);
+// The mask bit of cell k holding voxel g (-1 outside the stored middle, voxels 2k - 2 .. 2k + 3).
+int32_t vc_vis_bit(Int3 g, Int3 k);
+
 }  // namespace gib::codecs

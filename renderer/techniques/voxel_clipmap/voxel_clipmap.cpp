@@ -94,6 +94,11 @@ std::vector<TechniqueOption> own_options() {
       option("convex_offset",
              "leak mitigation: lookup moved along the normal, cells behind the surface's plane dropped (0/1)", 0, 1,
              &S::convex_offset),
+      option("wall_test",
+             "with geometry_light, cube lookups skip corner cells behind another wall: 0 none, 1 a voxel walk per "
+             "pixel and cell through the kept triangles' planes, 2 one bit of the cell's flood mask (voxels without "
+             "geometry joined to its ray origin, flooded at relight; the walk where it has no answer)",
+             0, 2, &S::wall_test),
   };
 }
 

@@ -38,6 +38,11 @@ struct VoxelClipmapSettings : TechniqueSettingsOf<VoxelClipmapSettings>, DirectL
   bool select_per_queue = false;  // one P for cells with geometry (queue A), one for empty cells (queue B)
   // ---- shading (5.1)
   bool convex_offset = true;      // lookup moved along the normal, corners behind the surface dropped
+  // With geometry_light, cube lookups skip cells behind another wall: 0 no test, 1 a voxel walk per
+  // pixel and cell through the kept triangles' planes, 2 one bit of the cell's flood mask
+  // (irradiance_cell_vis, written by the relight; the walk where it has no answer). 1 stays the
+  // default: 2 over-lights gltf-atrium's colonnade (voxel_clipmap.md, "Convex offset filtering").
+  uint32_t wall_test = 1;
 };
 
 }  // namespace gib

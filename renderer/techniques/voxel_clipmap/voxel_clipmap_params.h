@@ -56,6 +56,7 @@ inline glsl::VcParams make_vc_params(const Scene& scene, const Settings& s, uint
                          (p.sky_rays == 0 ? kVcFlagSkyFromCubes : 0) | (p.invalidate ? kVcFlagInvalidate : 0) |
                          (p.multi_bounce ? kVcFlagMultiBounce : 0) | (p.select_per_queue ? kVcFlagSelectPerQueue : 0) |
                          (p.geometry_light ? kVcFlagGeometryLight : 0) |
+                         (p.wall_test == 1 ? kVcFlagWallWalk : 0) | (p.wall_test == 2 ? kVcFlagWallFlood : 0) |
                          (vc_pixel_sky_hits(scene, p) ? kVcFlagPixelSkyHits : 0);
   VcParams r{};
   r.grid = {p.grid, p.levels, frame, flags};
@@ -83,5 +84,9 @@ inline ResourceDesc vc_cube_desc(const VoxelClipmapSettings& p) {
   return d;
 }
 inline ResourceDesc vc_cell_state_desc(const VoxelClipmapSettings& p) { return vc_buffer(vc_cell_count(p) * 4, true); }
+// Each cell's flood mask for the cube lookups' wall test (voxel_clipmap_shared.h), written by the relight.
+inline ResourceDesc vc_cell_vis_desc(const VoxelClipmapSettings& p) {
+  return vc_buffer(vc_cell_count(p) * glsl::kVcCellVisWords * 4, true);
+}
 
 }  // namespace gib

@@ -11,6 +11,7 @@
 //   VC_STATE_BUFFER(binding, readonly)   // (voxel_clipmap_shared.h) or with no qualifier to write it
 //   VC_VOXEL_BUFFER(binding, readonly)
 //   VC_CUBE_BUFFERS(bx, by, bz, bstate, readonly)
+//   VC_VIS_BUFFER(binding, readonly)     // with VC_CONVEX_VOXELS: the cells' flood masks
 // and include this file after them (the functions below use the names they declare that exist:
 // define VC_HAS_VOXELS / VC_HAS_CUBES before including to get the voxel / cube functions).
 #ifndef GIB_VC_COMMON_GLSL
@@ -51,6 +52,28 @@ uvec4 vc_with_second_triangle(uvec4 v, uint id) {
   return v;
 }
 bool vc_in_box(ivec3 g, ivec3 o, int n) { return all(greaterThanEqual(g, o)) && all(lessThan(g, o + ivec3(n))); }
+
+// One step of the relight's flood (irradiance_cell_vis, voxel_clipmap_shared.h) on one row of
+// its window (kVcVisWindow voxels along x, bit x). The flood is monotone: it moves only away
+// from the seed box (voxels xlo..xhi along x), so a voxel is reached along a staircase of free
+// voxels from the seed, not around a wall's edge and back. The row takes the seeds, its voxels
+// reached so far and those of its neighbouring rows on the seed's side (y and z, or-ed into
+// `beside`), and spreads them along x through its free voxels outwards from the seed box.
+// CPU mirror: codecs::vc_vis_row_step.
+uint vc_vis_row_step(uint free_row, uint seed, uint row, uint beside, uint xlo, uint xhi) {
+  uint all = (1u << uint(kVcVisWindow)) - 1u;
+  uint up = all & ~((2u << xhi) - 1u), down = (1u << xlo) - 1u;  // bits past the seed box
+  uint r = seed | (free_row & (row | beside));
+  for (int i = 0; i < kVcVisWindow - 1; ++i) r |= free_row & (((r << 1u) & up) | ((r >> 1u) & down));
+  return r & all;
+}
+// The bit of cell k's flood mask that holds voxel g of the cell's level; -1 outside the stored
+// middle of its window (voxels 2k - 2 .. 2k + 3). CPU mirror: codecs::vc_vis_bit.
+int vc_vis_bit(ivec3 g, ivec3 k) {
+  ivec3 c = g - (2 * k - ivec3(2));
+  if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, ivec3(kVcVisSpan)))) return -1;
+  return (c.z * kVcVisSpan + c.y) * kVcVisSpan + c.x;
+}
 
 uint vc_voxel_index(uint l, ivec3 g) { return l * vc_voxels_per_level() + vc_slot_index(vc_wrap(g, vc_n()), vc_n()); }
 uint vc_cell_index(uint l, ivec3 k) { return l * vc_cells_per_level() + vc_slot_index(vc_wrap(k, vc_m()), vc_m()); }
@@ -230,15 +253,42 @@ bool vc_cell_behind_wall(uint l, vec3 x, vec3 n, vec3 b) {
   }
   return false;
 }
+
+// The voxel of level l that the light of surface point x (normal n) arrives through: the first
+// of the points 0.5, 1, 1.5 and 2 voxels off the surface along n whose voxel holds no geometry
+// (kVcVoxelGeometry, which the fill sets and the feed and the voxel light keep, so the answer
+// does not depend on thread timing) or lies outside the level's box. False when all four hold
+// geometry (a point in a crevice, or a floor within a voxel of a wall): the caller walks.
+bool vc_air_voxel(uint l, vec3 x, vec3 n, out ivec3 g) {
+  float s = vc_voxel_size(l);
+  for (int i = 1; i <= 4; ++i) {
+    g = ivec3(floor((x + n * (0.5 * float(i) * s)) / s));
+    if (!vc_in_box(g, vc_voxel_origin(l), vc_n())) return true;
+    if ((vc_voxels[vc_voxel_index(l, g)].y & kVcVoxelGeometry) == 0u) return true;
+  }
+  return false;
+}
+
+// Whether air voxel g (vc_air_voxel) is joined to level-l cell k's ray origin through voxels
+// without geometry inside the cell's flood window: one bit of the mask the relight stored
+// (irradiance_cell_vis; valid once the cell was relit). Needs VC_VIS_BUFFER.
+bool vc_cell_sees(uint cell, ivec3 k, ivec3 g) {
+  int bit = vc_vis_bit(g, k);
+  if (bit < 0) return false;
+  return ((vc_cell_vis[cell * kVcCellVisWords + uint(bit) / 32u] >> (uint(bit) % 32u)) & 1u) != 0u;
+}
 #endif
 
 // Trilinear ambient cubes of level l at x for normal n; cells never relit get no weight. With
 // convex offset filtering the lookup moves half a cell along the normal and corner cells whose
 // centres lie behind the surface's plane (more than a quarter cell) get no weight: the filter
 // footprint stays on the lit side of a wall; where the includer defines VC_CONVEX_VOXELS and
-// geometry_light is on, corner cells behind another wall (vc_cell_behind_wall: the segment to
-// the cell's centre crosses a voxelised triangle's plane) get none either, so a surface near a
-// room's corner does not blend in the cells outside it. Returns the weight found (0: nothing
+// geometry_light is on, corner cells behind another wall get none either, so a surface near a
+// room's corner does not blend in the cells outside it: wall_test 2 reads one bit of the cell's
+// flood mask (vc_cell_sees: is the pixel's air voxel joined to the cell's ray origin through
+// voxels without geometry), wall_test 1 (the default) walks the voxels to the cell's ray origin
+// through the kept triangles' planes (vc_cell_behind_wall; also the fallback of wall_test 2 for
+// a pixel without an air voxel or a cell never relit). Returns the weight found (0: nothing
 // usable).
 float vc_cubes_trilinear(uint l, vec3 x, vec3 n, bool convex, out vec3 bounce, out vec3 sky, out float hit) {
   float c = vc_cell_size(l);
@@ -250,6 +300,13 @@ float vc_cubes_trilinear(uint l, vec3 x, vec3 n, bool convex, out vec3 bounce, o
   sky = vec3(0.0);
   hit = 0.0;
   float wsum = 0.0;
+#ifdef VC_CONVEX_VOXELS
+  // The wall test (geometry_light): the flood mask's bit for the pixel's air voxel (wall_test 2)
+  // where the pixel has one and the cell was relit, else the voxel walk.
+  bool wall = convex && vc_flag(kVcFlagGeometryLight) && vc_flag(kVcFlagWallWalk | kVcFlagWallFlood);
+  ivec3 air = ivec3(0);
+  bool flood = wall && vc_flag(kVcFlagWallFlood) && vc_air_voxel(l, x, n, air);
+#endif
   for (int i = 0; i < 8; ++i) {
     ivec3 o = ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
     ivec3 k = k0 + o;
@@ -265,7 +322,11 @@ float vc_cubes_trilinear(uint l, vec3 x, vec3 n, bool convex, out vec3 bounce, o
     // Before the wall test: a corner of no weight (a point on a cell plane) needs no voxel walk.
     if (w <= 0.0) continue;
 #ifdef VC_CONVEX_VOXELS
-    if (convex && vc_flag(kVcFlagGeometryLight) && vc_cell_behind_wall(l, x, n, vc_cell_ray_origin(l, k, state))) continue;
+    if (wall) {
+      bool blocked = flood && (state & kVcCellRelit) != 0u ? !vc_cell_sees(cell, k, air)
+                                                            : vc_cell_behind_wall(l, x, n, vc_cell_ray_origin(l, k, state));
+      if (blocked) continue;
+    }
 #endif
     vec3 b, s;
     float h;

@@ -64,6 +64,19 @@ GIB_CONST(uint, kVcCellOriginMask, 0xe00000)
 // Relit with no empty voxel but some semi-transparent (foliage): its rays started at its centre.
 GIB_CONST(uint, kVcCellOriginCentre, 0x1000000)
 
+// irradiance_cell_vis: per cell kVcCellVisWords uints, the cube lookups' wall test (wall_test 2,
+// vc_cell_sees). The relight floods the voxels without geometry (kVcVoxelGeometry clear)
+// 6-connected from the voxel its rays start in, over a window of kVcVisWindow^3 voxels (world
+// voxels 2k - 3 .. 2k + 4 of cell k), and stores the reached voxels of the window's middle
+// kVcVisSpan^3 (2k - 2 .. 2k + 3: every voxel a lookup of this cell can ask about), bit
+// (z x 6 + y) x 6 + x of the middle's local coordinates, 32 a word, lowest bit first.
+GIB_CONST(int, kVcVisWindow, 8)
+GIB_CONST(int, kVcVisSpan, 6)
+GIB_CONST(uint, kVcCellVisWords, 7)
+// Flood steps: each spreads along x through a row's free voxels and one voxel across rows (y, z);
+// 24 reach every row of the window by a path that goes around a wall (14 rows corner to corner).
+GIB_CONST(uint, kVcVisSteps, 24)
+
 // Flags in VcParams.grid.w.
 GIB_CONST(uint, kVcFlagNanGuards, 1)
 GIB_CONST(uint, kVcFlagConvexOffset, 2)
@@ -78,6 +91,11 @@ GIB_CONST(uint, kVcFlagGeometryLight, 256)   // scene_voxel_light lights voxels 
 // direct_light's alpha is each pixel's share of rays that met a surface, and the pixel's bounce
 // is gathered over that share only (vc_bounce_for_pixel).
 GIB_CONST(uint, kVcFlagPixelSkyHits, 512)
+// The cube lookups' wall test (with geometry_light): wall_test 1, a voxel walk from the pixel to
+// the cell's ray origin through the triangles' planes (vc_cell_behind_wall); wall_test 2, one bit
+// of the cell's flood mask (irradiance_cell_vis). Neither flag: no wall test.
+GIB_CONST(uint, kVcFlagWallWalk, 1024)
+GIB_CONST(uint, kVcFlagWallFlood, 2048)
 
 struct VcParams {
   uvec4 grid;    // x: N voxels per axis per level, y: levels, z: frame, w: kVcFlag*
@@ -115,6 +133,8 @@ GIB_SHARED_END
   layout(std430, set = 0, binding = (B)) QUAL buffer VcVoxelBuffer { uvec4 vc_voxels[]; };
 #define VC_THIRD_BUFFER(B, QUAL) \
   layout(std430, set = 0, binding = (B)) QUAL buffer VcThirdBuffer { uint vc_voxel_third[]; };
+#define VC_VIS_BUFFER(B, QUAL) \
+  layout(std430, set = 0, binding = (B)) QUAL buffer VcCellVisBuffer { uint vc_cell_vis[]; };
 #define VC_CUBE_BUFFERS(BX, BY, BZ, BS, QUAL)                                              \
   layout(std430, set = 0, binding = (BX)) QUAL buffer VcCubeX { float vc_cube_x[]; };      \
   layout(std430, set = 0, binding = (BY)) QUAL buffer VcCubeY { float vc_cube_y[]; };      \

@@ -18,7 +18,8 @@ class IrradianceRelightPass final : public Pass {
                {"irradiance_x", Access::read_write, vc_cube_desc(p)},
                {"irradiance_y", Access::read_write, vc_cube_desc(p)},
                {"irradiance_z", Access::read_write, vc_cube_desc(p)},
-               {"irradiance_cell_state", Access::read_write, vc_cell_state_desc(p)}};
+               {"irradiance_cell_state", Access::read_write, vc_cell_state_desc(p)},
+               {"irradiance_cell_vis", Access::read_write, vc_cell_vis_desc(p)}};
     d.work = {{"rays", double(vc_queue_capacity(p)) * p.rays_per_cell}};
     return d;
   }
@@ -36,7 +37,8 @@ class IrradianceRelightPass final : public Pass {
                                      {kIrrRelightBindX, "irradiance_x"},
                                      {kIrrRelightBindY, "irradiance_y"},
                                      {kIrrRelightBindZ, "irradiance_z"},
-                                     {kIrrRelightBindCells, "irradiance_cell_state"}},
+                                     {kIrrRelightBindCells, "irradiance_cell_state"},
+                                     {kIrrRelightBindVis, "irradiance_cell_vis"}},
                          .indirect = "irradiance_queue",
                          .indirect_offset = 0});
   }

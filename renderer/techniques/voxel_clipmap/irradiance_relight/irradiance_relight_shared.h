@@ -11,6 +11,7 @@ GIB_CONST(uint, kIrrRelightBindX, 11)       // irradiance_x (read_write)
 GIB_CONST(uint, kIrrRelightBindY, 12)
 GIB_CONST(uint, kIrrRelightBindZ, 13)
 GIB_CONST(uint, kIrrRelightBindCells, 14)   // irradiance_cell_state (read_write)
+GIB_CONST(uint, kIrrRelightBindVis, 15)     // irradiance_cell_vis (write: the cell's flood mask)
 GIB_CONST(uint, kIrrRelightSpecRays, 0)     // workgroup size: one thread per ray
 struct IrrRelightPush {
   VcParams vc;

@@ -12,6 +12,7 @@ VC_STATE_BUFFER(kIrrShadeBindState, readonly)
 VC_CUBE_BUFFERS(kIrrShadeBindX, kIrrShadeBindY, kIrrShadeBindZ, kIrrShadeBindCells, readonly)
 VC_VOXEL_BUFFER(kIrrShadeBindVoxels, readonly)
 VC_THIRD_BUFFER(kIrrShadeBindThird, readonly)
+VC_VIS_BUFFER(kIrrShadeBindVis, readonly)
 layout(set = 0, binding = kIrrShadeBindNormal, rgba16f) uniform readonly image2D gb_normal;
 layout(set = 0, binding = kIrrShadeBindPosition, rgba32f) uniform readonly image2D gb_position;
 layout(set = 0, binding = kIrrShadeBindDirect, rgba32f) uniform readonly image2D direct_light;

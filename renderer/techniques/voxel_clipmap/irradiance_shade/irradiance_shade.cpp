@@ -15,7 +15,7 @@ class IrradianceShadePass final : public Pass {
     d.slots = {{"voxel_clip_state", Access::read},      {"irradiance_x", Access::read},
                {"irradiance_y", Access::read},          {"irradiance_z", Access::read},
                {"irradiance_cell_state", Access::read}, {"scene_voxel_data", Access::read},
-               {"scene_voxel_third", Access::read},
+               {"scene_voxel_third", Access::read},        {"irradiance_cell_vis", Access::read},
                {"gbuffer_normal", Access::read},        {"gbuffer_position", Access::read},
                {"direct_light", Access::read},
                {"gi_irradiance", Access::write, out},   {"gi_direct_irradiance", Access::write, out}};
@@ -41,7 +41,8 @@ class IrradianceShadePass final : public Pass {
                                      {kIrrShadeBindZ, "irradiance_z"},
                                      {kIrrShadeBindCells, "irradiance_cell_state"},
                                      {kIrrShadeBindVoxels, "scene_voxel_data"},
-                                     {kIrrShadeBindThird, "scene_voxel_third"}}});
+                                     {kIrrShadeBindThird, "scene_voxel_third"},
+                                     {kIrrShadeBindVis, "irradiance_cell_vis"}}});
   }
 };
 

@@ -17,6 +17,7 @@ GIB_CONST(uint, kIrrShadeBindSky, 16)      // gi_direct_irradiance (rgba32f, irr
 GIB_CONST(uint, kIrrShadeBindVoxels, 17)   // scene_voxel_data (read: walls between a pixel and a cell)
 GIB_CONST(uint, kIrrShadeBindDirect, 18)   // direct_light (alpha: the pixel's share of sky rays that met a surface)
 GIB_CONST(uint, kIrrShadeBindThird, 19)  // scene_voxel_third (read: the wall test's third planes)
+GIB_CONST(uint, kIrrShadeBindVis, 20)    // irradiance_cell_vis (read: the cells' flood masks)
 struct IrrShadePush {
   VcParams vc;
 };

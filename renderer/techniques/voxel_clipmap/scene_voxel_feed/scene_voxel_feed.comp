@@ -18,6 +18,7 @@ layout(push_constant) uniform Push {
 VC_STATE_BUFFER(kScFeedBindState, )
 VC_VOXEL_BUFFER(kScFeedBindVoxels, )
 VC_THIRD_BUFFER(kScFeedBindThird, readonly)
+VC_VIS_BUFFER(kScFeedBindVis, readonly)
 layout(std430, set = 0, binding = kScFeedBindOwner) buffer OwnerBuffer { uint owner[]; };
 VC_CUBE_BUFFERS(kScFeedBindX, kScFeedBindY, kScFeedBindZ, kScFeedBindCells, readonly)
 layout(set = 0, binding = kScFeedBindVbuffer, rg32ui) uniform readonly uimage2D vbuffer;

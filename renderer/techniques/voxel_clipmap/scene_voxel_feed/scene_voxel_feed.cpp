@@ -25,6 +25,7 @@ class SceneVoxelFeedPass final : public Pass {
                {"voxel_clip_state", Access::read_write, vc_state_desc()},
                {"scene_voxel_data", Access::read_write, vc_voxels_desc(p)},
                {"scene_voxel_third", Access::read},
+               {"irradiance_cell_vis", Access::read},
                {"voxel_feed_owner", Access::write, vc_buffer(vc_voxel_count(p) * 4, false)}};
     d.work = {{"feed_pixels", double(p.feed_pixels)}};
     return d;
@@ -60,6 +61,7 @@ class SceneVoxelFeedPass final : public Pass {
                            .buffers = {{kScFeedBindState, "voxel_clip_state"},
                                        {kScFeedBindVoxels, "scene_voxel_data"},
                                        {kScFeedBindThird, "scene_voxel_third"},
+                                       {kScFeedBindVis, "irradiance_cell_vis"},
                                        {kScFeedBindOwner, "voxel_feed_owner"},
                                        {kScFeedBindX, "irradiance_x"},
                                        {kScFeedBindY, "irradiance_y"},

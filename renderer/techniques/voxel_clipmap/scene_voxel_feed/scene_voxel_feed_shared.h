@@ -19,6 +19,7 @@ GIB_CONST(uint, kScFeedBindPosition, 18)
 GIB_CONST(uint, kScFeedBindDirect, 19)    // direct_light
 GIB_CONST(uint, kScFeedBindEmissive, 20)  // gbuffer_emissive
 GIB_CONST(uint, kScFeedBindThird, 21)  // scene_voxel_third (read: the wall test's third planes)
+GIB_CONST(uint, kScFeedBindVis, 22)    // irradiance_cell_vis (read: the cells' flood masks)
 GIB_CONST(uint, kScFeedSpecKernel, 0)
 GIB_CONST(uint, kScFeedClaim, 0)          // one thread per sample: atomicMax of its id into each voxel it falls in
 GIB_CONST(uint, kScFeedWrite, 1)          // one thread per sample: the owner lights its pixel and writes the voxels

@@ -21,6 +21,7 @@ layout(push_constant) uniform Push { VcParams vc; };
 VC_STATE_BUFFER(kScLightBindState, readonly)
 VC_VOXEL_BUFFER(kScLightBindVoxels, )
 VC_THIRD_BUFFER(kScLightBindThird, readonly)
+VC_VIS_BUFFER(kScLightBindVis, readonly)
 VC_CUBE_BUFFERS(kScLightBindX, kScLightBindY, kScLightBindZ, kScLightBindCells, readonly)
 #define VC_HAS_STATE
 #define VC_HAS_CUBES

@@ -18,7 +18,8 @@ class SceneVoxelLightPass final : public Pass {
                {"irradiance_cell_state", Access::read},
                {"voxel_clip_state", Access::read_write, vc_state_desc()},
                {"scene_voxel_data", Access::read_write, vc_voxels_desc(p)},
-               {"scene_voxel_third", Access::read}};
+               {"scene_voxel_third", Access::read},
+               {"irradiance_cell_vis", Access::read}};
     d.work = {{"voxels", double(vc_lit_visits(p))}};
     d.traces_rays = true;
     if (!p.geometry_light) d.switched_off = "geometry_light is 0";
@@ -41,6 +42,7 @@ class SceneVoxelLightPass final : public Pass {
                          .buffers = {{kScLightBindState, "voxel_clip_state"},
                                      {kScLightBindVoxels, "scene_voxel_data"},
                                      {kScLightBindThird, "scene_voxel_third"},
+                                     {kScLightBindVis, "irradiance_cell_vis"},
                                      {kScLightBindX, "irradiance_x"},
                                      {kScLightBindY, "irradiance_y"},
                                      {kScLightBindZ, "irradiance_z"},
