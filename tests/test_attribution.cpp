@@ -363,6 +363,18 @@ TEST(Attribution, LagInputsAreOneClearError) {
   EXPECT_THROW(integrate({}), std::invalid_argument);
 }
 
+TEST(Attribution, FlipIntegratesOnlyWhenEveryFrameHasIt) {
+  const LagChain c;
+  std::vector<Options> o(3);
+  for (size_t f = 1; f < 3; ++f)  // frame 61 plays no FLIP game (as against a reference with no light)
+    o[f].flip_map = [](const FloatImage& img) { return FloatImage(img.width, img.height, 1, 0.5f); };
+  const LagAttribution a = attribute_frames({"probes", "history"}, [&](uint32_t m, uint32_t s) { return c.render(m, s); },
+                                            c.frames, c.references, {{"all", {}}}, o);
+  EXPECT_TRUE(a.per_frame[0].rois[0].flip.empty());
+  EXPECT_EQ(a.per_frame[1].rois[0].flip.size(), 4u);
+  EXPECT_TRUE(a.integrated.rois[0].flip.empty());
+}
+
 TEST(Attribution, LagTableJsonAndPageSayTheSame) {
   const LagAttribution a = LagChain().run(2);
   ReportContext ctx{"lag", "chain", "medium", "indirect_diffuse", "cpu",

@@ -162,7 +162,11 @@ nlohmann::json attribute_row(Gpu& gpu, const Case& c, Tier tier, const Technique
     const uint32_t rf = reference_frame(c, frames[k]);
     opts[k].seeds = st.seeds;
     const FloatImage& ref = references[k];
-    opts[k].flip_map = [&ref, &flip_opts](const FloatImage& img) { return flip(ref, img, flip_opts).error_map; };
+    // FLIP needs light in the reference to set its exposures; a dark frame plays no FLIP game.
+    bool lit = false;
+    for (uint32_t y = 0; y < ref.height && !lit; ++y)
+      for (uint32_t x = 0; x < ref.width && !lit; ++x) lit = metrics::luminance(ref, x, y) > 0;
+    if (lit) opts[k].flip_map = [&ref, &flip_opts](const FloatImage& img) { return flip(ref, img, flip_opts).error_map; };
     if (analytic) {
       opts[k].noise_floor.assign(rois.size(), 0.0);
       continue;

@@ -160,15 +160,19 @@ Attribution integrate(const std::vector<Attribution>& per_frame) {
   for (size_t r = 0; r < first.rois.size(); ++r) {
     RoiAttribution ra;
     ra.roi = first.rois[r].roi;
+    // The FLIP game integrates only when every frame has one (FLIP is undefined against a
+    // reference with no light, e.g. a sealed room before its wall goes).
+    bool flip = true;
+    for (const Attribution& f : per_frame) flip &= !f.rois[r].flip.empty();
     for (size_t m = 0; m < first.rois[r].subsets.size(); ++m) {
       std::vector<const RoiError*> errors;
-      double flip = 0;
+      double flip_mean = 0;
       for (const Attribution& f : per_frame) {
         errors.push_back(&f.rois[r].subsets[m]);
-        if (!first.rois[r].flip.empty()) flip += f.rois[r].flip.at(m) / k;
+        if (flip) flip_mean += f.rois[r].flip.at(m) / k;
       }
       ra.subsets.push_back(mean_error(errors));
-      if (!first.rois[r].flip.empty()) ra.flip.push_back(flip);
+      if (flip) ra.flip.push_back(flip_mean);
     }
     for (const Attribution& f : per_frame) ra.noise_floor += f.rois[r].noise_floor / k;
     play(ra, out.stages, out.seeds);
