@@ -19,6 +19,13 @@ std::vector<uint32_t> evaluation_frames(const Case& c) {
   return c.eval_frames.empty() ? std::vector<uint32_t>{c.frames} : c.eval_frames;
 }
 
+const FloatImage& image_at(const CaseRender& r, uint32_t f, const Case& c) {
+  if (f == c.frames) return r.image;
+  auto it = r.frame_images.find(f);
+  if (it == r.frame_images.end()) throw CaseError(fmt::format("{}: frame {} was not captured", c.file, f));
+  return it->second;
+}
+
 bool per_frame_references(const Case& c) {
   return !c.eval_frames.empty() && c.scene.time_varying();
 }
@@ -60,6 +67,8 @@ CaseRender render(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::s
   if (reference) {
     // A reference never moves while it converges: it shows one moment of the scene.
     s.scene_time = float(at_frame ? at_frame - 1 : 0) * c.scene.frame_time;
+  } else if (hooks && hooks->frozen_frame) {
+    s.scene_time = float(hooks->frozen_frame - 1) * c.scene.frame_time;
   }
 
   // The compared AOV, by the contract (renderer/techniques/aov.h): the resource the technique
@@ -178,6 +187,7 @@ CaseRender render(Gpu& gpu, const Case& c, const TechniqueRun& run, const std::s
                      {"size", {c.width, c.height}}, {"frames", frames}, {"seed", s.seed},
                      {"spp", r.spp}, {"scene", c.scene_file.empty() ? std::string("inline") : c.scene_file}};
   if (at_frame) key["at_frame"] = at_frame;
+  if (hooks && hooks->frozen_frame) key["frozen_frame"] = hooks->frozen_frame;
   r.settings_hash = fnv1a_hex(key.dump());
   return r;
 }

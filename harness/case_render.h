@@ -46,10 +46,13 @@ struct CaseRender {
 // place from the first frame (Executor::add_override), and resources whose raw bytes are read
 // after the last frame (Executor::read_bytes), and after the `read_frames` - 1 frames before it
 // too (CaseRender::read_before). A hooked run renders no timing frames.
+// `frozen_frame` (1-based, 0 = off) holds a moving scene as it is at that frame of the case, as
+// its per-frame reference shows it: the technique's converged state there (a lag oracle's input).
 struct RunHooks {
   std::vector<ResourceOverride> overrides;
   std::vector<std::string> read;
   uint32_t read_frames = 1;
+  uint32_t frozen_frame = 0;
 };
 
 // Frames a row records into one GPU submission at most (Executor::run_frames), process-wide
@@ -79,6 +82,9 @@ CaseRender render_reference(Gpu& gpu, const Case& c, uint32_t seed_offset = 0, u
 
 // The 1-based frames a technique run is evaluated at: Case::eval_frames, or {frames}.
 std::vector<uint32_t> evaluation_frames(const Case& c);
+// The image a technique run produced at evaluation frame `f` (its final image at the case's last
+// frame); a CaseError when the run did not capture it.
+const FloatImage& image_at(const CaseRender& r, uint32_t f, const Case& c);
 // True when the case's evaluation frames need references of their own (the scene moves).
 bool per_frame_references(const Case& c);
 

@@ -50,14 +50,6 @@ void save_images(const SuiteOptions& o, const std::string& id, const FloatImage&
   }
 }
 
-// The image a run produced at 1-based frame f (its final image at the last frame).
-const FloatImage& image_at(const CaseRender& r, uint32_t f, const Case& c) {
-  if (f == c.frames) return r.image;
-  auto it = r.frame_images.find(f);
-  if (it == r.frame_images.end()) throw CaseError(fmt::format("{}: frame {} was not captured", c.file, f));
-  return it->second;
-}
-
 }  // namespace
 
 namespace {

@@ -153,7 +153,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1u, 64u));
   attribute
       ->add_option("--oracle-frames", attr.settings.oracle_frames,
-                   "the seed-mean oracles average each oracle render's last N frames too (static scenes; default 16)")
+                   "the seed-mean oracles average each oracle render's last N frames too (a still scene, or one "
+                   "frozen at an evaluation frame; default 16)")
       ->check(CLI::Range(1u, 1024u));
   attribute->add_option("--noise-spp", attr.settings.noise_spp,
                         "spp of the two reference renders the noise floor is scaled from (default 16)")

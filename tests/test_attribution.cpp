@@ -247,5 +247,157 @@ TEST(Attribution, TableJsonAndWaterfallSayTheSame) {
   EXPECT_EQ(mask_names(a.stages, 0), "none");
 }
 
+// A synthetic chain over a scene that changes (lag attribution): the light holds for 60 frames,
+// then falls linearly to a quarter by frame 121. "probes" is exact; "history" is a temporal
+// filter h_f = 0.9 h_(f-1) + 0.1 s_f whose oracle is its converged history (s_f itself);
+// "denoise" adds per-seed noise. Each evaluation frame's reference is the frozen scene there plus
+// its own fixed noise. A render returns the frames 61, 91 and 121 of one run.
+struct LagChain {
+  static constexpr uint32_t kW = 48, kH = 24;
+  std::vector<uint32_t> frames{61, 91, 121};
+  float noise = 0.01f, reference_noise = 0.002f;
+  FloatImage base{kW, kH, 4};
+  std::vector<FloatImage> references;
+  static double light(uint32_t f) { return f <= 60 ? 1.0 : 1.0 - 0.75 * double(f - 60) / 61.0; }
+  static double lagged(uint32_t f) {  // the filter's state after frame f, from a converged start
+    double h = light(1);
+    for (uint32_t k = 2; k <= f; ++k) h = 0.9 * h + 0.1 * light(k);
+    return h;
+  }
+  LagChain() {
+    for (uint32_t y = 0; y < kH; ++y)
+      for (uint32_t x = 0; x < kW; ++x)
+        for (uint32_t c = 0; c < 4; ++c) base.at(x, y, c) = 0.5f + 0.3f * std::sin(0.25f * float(x + 2 * y + c));
+    std::mt19937 rng(5);
+    std::normal_distribution<float> n(0.0f, 1.0f);
+    for (uint32_t f : frames) {
+      FloatImage ref = base;
+      for (float& v : ref.pixels) v = v * float(light(f)) + reference_noise * n(rng);
+      references.push_back(ref);
+    }
+  }
+  std::vector<FloatImage> render(uint32_t mask, uint32_t seed) const {
+    std::mt19937 rng(2000 + seed);
+    std::normal_distribution<float> n(0.0f, 1.0f);
+    std::vector<FloatImage> out;
+    for (uint32_t f : frames) {
+      const float scale = float(mask & 2u ? light(f) : lagged(f));  // history's oracle: converged
+      FloatImage img = base;
+      for (float& v : img.pixels) v = v * scale + (mask & 4u ? 0.0f : noise * n(rng));
+      out.push_back(img);
+    }
+    return out;
+  }
+  LagAttribution run(uint32_t seeds = 3) const {
+    std::vector<Options> o(frames.size());
+    for (Options& x : o) {
+      x.seeds = seeds;
+      x.noise_floor = {double(reference_noise) * reference_noise, double(reference_noise) * reference_noise};
+    }
+    return attribute_frames({"probes", "history", "denoise"}, [&](uint32_t m, uint32_t s) { return render(m, s); },
+                            frames, references, {{"all", {}}, {"top", {0.0, 0.0, 1.0, 0.5}}}, o);
+  }
+};
+
+TEST(Attribution, ALaggingStageTakesAtLeast90PercentOfTheIntegratedGap) {
+  const LagAttribution a = LagChain().run();
+  ASSERT_EQ(a.per_frame.size(), 3u);
+  EXPECT_EQ(a.integrated.renders, 8u * 3u);  // one run per subset and seed gives every frame
+  for (size_t r = 0; r < a.integrated.rois.size(); ++r) {
+    const RoiAttribution& x = a.integrated.rois[r];
+    const double gap = x.none.mse - x.all.mse;
+    ASSERT_GT(gap, 0.0);
+    EXPECT_GE(x.stages[1].shapley, 0.9 * gap) << x.roi;
+    EXPECT_EQ(x.largest, 1) << x.roi;
+    // The lag keeps the old, brighter light: its share of the signed energy ratio is positive.
+    EXPECT_GT(x.stages[1].signed_energy, 0.0) << x.roi;
+    // The integrated game is the mean of the frames' games: its error and each bar the frames' mean.
+    double mean_error = 0, mean_bar = 0;
+    for (const Attribution& f : a.per_frame) {
+      mean_error += f.rois[r].none.mse / 3.0;
+      mean_bar += f.rois[r].stages[1].shapley / 3.0;
+    }
+    EXPECT_NEAR(x.none.mse, mean_error, 1e-15);
+    EXPECT_NEAR(x.stages[1].shapley, mean_bar, 1e-15);
+  }
+  // The lag grows as the light falls: the history's bar at frame 121 is well above frame 61's.
+  EXPECT_GT(a.per_frame[2].rois[0].stages[1].shapley, 10.0 * a.per_frame[0].rois[0].stages[1].shapley);
+}
+
+TEST(Attribution, LagBarsSumToTheirGapsExactly) {
+  const LagAttribution a = LagChain().run();
+  auto check = [](const Attribution& g, const std::string& what) {
+    for (const RoiAttribution& x : g.rois) {
+      double sum = 0;
+      for (const StageBar& b : x.stages) sum += b.shapley;
+      EXPECT_NEAR(sum, x.none.mse - x.all.mse, 1e-12 * x.none.mse) << what << " " << x.roi;
+    }
+  };
+  check(a.integrated, "integrated");
+  for (size_t f = 0; f < a.frames.size(); ++f) check(a.per_frame[f], "frame " + std::to_string(a.frames[f]));
+}
+
+TEST(Attribution, AnExactStageIsNotResolvedOverTime) {
+  const LagAttribution a = LagChain().run();
+  for (const RoiAttribution& x : a.integrated.rois) {
+    EXPECT_FALSE(x.stages[0].resolved) << x.roi;
+    EXPECT_LT(std::abs(x.stages[0].shapley), 3.0 * x.noise_floor) << x.roi;
+  }
+  for (const Attribution& f : a.per_frame) EXPECT_FALSE(f.rois[0].stages[0].resolved);
+}
+
+TEST(Attribution, LagInputsAreOneClearError) {
+  const LagChain c;
+  std::vector<Options> o(2);
+  EXPECT_THROW(attribute_frames({"probes"}, [&](uint32_t m, uint32_t s) { return c.render(m, s); }, c.frames,
+                                c.references, {{"all", {}}}, o),
+               std::invalid_argument);  // options for 2 of 3 frames
+  o.resize(3);
+  try {
+    attribute_frames({"probes"}, [&](uint32_t, uint32_t) { return std::vector<FloatImage>(2, c.base); }, c.frames,
+                     c.references, {{"all", {}}}, o);
+    ADD_FAILURE();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "attribution: expected a render's 3 frames, got 2");
+  }
+  EXPECT_THROW(integrate({}), std::invalid_argument);
+}
+
+TEST(Attribution, FlipIntegratesOnlyWhenEveryFrameHasIt) {
+  const LagChain c;
+  std::vector<Options> o(3);
+  for (size_t f = 1; f < 3; ++f)  // frame 61 plays no FLIP game (as against a reference with no light)
+    o[f].flip_map = [](const FloatImage& img) { return FloatImage(img.width, img.height, 1, 0.5f); };
+  const LagAttribution a = attribute_frames({"probes", "history"}, [&](uint32_t m, uint32_t s) { return c.render(m, s); },
+                                            c.frames, c.references, {{"all", {}}}, o);
+  EXPECT_TRUE(a.per_frame[0].rois[0].flip.empty());
+  EXPECT_EQ(a.per_frame[1].rois[0].flip.size(), 4u);
+  EXPECT_TRUE(a.integrated.rois[0].flip.empty());
+}
+
+TEST(Attribution, LagTableJsonAndPageSayTheSame) {
+  const LagAttribution a = LagChain().run(2);
+  ReportContext ctx{"lag", "chain", "medium", "indirect_diffuse", "cpu",
+                    {{"probes", {"p"}, "exact"}, {"history", {"h"}, "converged"}, {"denoise", {"d"}, "mean"}}};
+  const std::string table = format_table(a, ctx);
+  EXPECT_NE(table.find("frames 61, 91, 121"), std::string::npos) << table;
+  EXPECT_NE(table.find("INTEGRATED"), std::string::npos);
+  EXPECT_NE(table.find("PER FRAME"), std::string::npos);
+  EXPECT_NE(table.find("largest share: history"), std::string::npos) << table;
+  const nlohmann::json j = to_json(a, ctx);
+  EXPECT_EQ(j["rois"][0]["largest"], "history");
+  EXPECT_NEAR(j["rois"][0]["technique"]["mse"].get<double>(), a.integrated.rois[0].none.mse, 1e-15);
+  ASSERT_EQ(j["lag"]["per_frame"].size(), 3u);
+  EXPECT_EQ(j["lag"]["per_frame"][2]["frame"], 121);
+  EXPECT_NEAR(j["lag"]["per_frame"][2]["rois"][0]["bars"][1]["shapley"].get<double>(),
+              a.per_frame[2].rois[0].stages[1].shapley, 1e-15);
+  const std::string html = waterfall_html(a, ctx);
+  size_t svgs = 0, tables = 0;
+  for (size_t at = html.find("<svg"); at != std::string::npos; at = html.find("<svg", at + 1)) ++svgs;
+  for (size_t at = html.find("<table"); at != std::string::npos; at = html.find("<table", at + 1)) ++tables;
+  EXPECT_EQ(svgs, 2u);    // one integrated waterfall per ROI
+  EXPECT_EQ(tables, 2u);  // one per-frame table per ROI
+}
+
 }  // namespace
 }  // namespace gib::attribution

@@ -116,5 +116,30 @@ TEST_F(ResourceOverrideTest, BadOverridesAreOneClearError) {
   expect_error({"produce", "buf", std::vector<uint8_t>(10)}, "expected 64 bytes (the buffer), got 10");
 }
 
+// Overrides over frame ranges: two of one resource, each over its own frames (a lag oracle
+// that follows a moving scene), and none outside them.
+TEST_F(ResourceOverrideTest, OverridesHoldOverTheirFramesOnly) {
+  auto ex = make();
+  auto filled = [](float v) {
+    std::vector<float> texels(8 * 4 * 4, v);
+    std::vector<uint8_t> bytes(texels.size() * 4);
+    std::memcpy(bytes.data(), texels.data(), bytes.size());
+    return bytes;
+  };
+  ex->add_override({"produce", "a", filled(2.0f), 1, 2});
+  ex->add_override({"produce", "a", filled(3.0f), 3, UINT32_MAX});
+  const float expected[] = {1.0f, 2.0f, 2.0f, 3.0f, 3.0f};
+  for (float e : expected) {
+    ex->run_frame();
+    EXPECT_EQ(ex->read("b").at(5, 3, 1), e) << "frame " << ex->frames_run() - 1;
+  }
+  try {
+    ex->add_override({"produce", "a", filled(1.0f), 4, 3});
+    ADD_FAILURE();
+  } catch (const GraphError& e) {
+    EXPECT_NE(std::string(e.what()).find("expected first_frame <= last_frame, got 4 > 3"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace gib

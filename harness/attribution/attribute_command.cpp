@@ -1,15 +1,19 @@
 #include "harness/attribution/attribute_command.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "harness/attribution/attribution.h"
 #include "harness/attribution/attribution_report.h"
+#include "harness/attribution/row_inputs.h"
 #include "harness/case_render.h"
 #include "harness/goldens.h"
 #include "harness/measure.h"
@@ -30,36 +34,10 @@ const TechniqueRun& find_run(const Case& c, const std::string& technique, const 
                               label.empty() ? "" : " with label '" + label + "'"));
 }
 
-FloatImage read_reference(const GoldenStore& store, const Case& c, const std::string& aov) {
-  const std::string stem = GoldenStore::reference_stem(aov, c.output);
-  const std::string path = store.find(stem, "");
-  if (path.empty())
-    throw std::runtime_error(fmt::format("attribute: {}: no reference '{}' in {} (gibench update-goldens --case {} "
-                                         "--reference creates it)", c.name, stem, store.dir(), c.name));
-  return store.read(path);
-}
-
-// The reference's per-pixel variance (MSE units) per ROI: two renders at `spp` with other
-// seeds give 2 x the variance at that spp; the committed reference's is that x spp / its spp.
-std::vector<double> reference_noise(Gpu& gpu, const Case& c, const std::string& aov, uint32_t spp,
-                                    uint32_t committed_spp, const std::vector<NamedRoi>& rois) {
-  TechniqueRun ref;
-  ref.technique = "reference";
-  ref.presets = {"ultra"};
-  ref.spp = spp;
-  ref.compare_aov = aov;
-  const FloatImage a = render_case(gpu, c, ref, "ultra", 7001).image;
-  const FloatImage b = render_case(gpu, c, ref, "ultra", 7002).image;
-  std::vector<double> out;
-  for (const NamedRoi& r : rois) {
-    const attribution::RoiError e = attribution::roi_error({a}, b, metrics::roi_pixels(r.box, a.width, a.height));
-    out.push_back(e.mse / 2.0 * double(spp) / double(std::max<uint32_t>(committed_spp, 1)));
-  }
-  return out;
-}
-
 bool has_reference(const GoldenStore& store, const Case& c, const std::string& aov) {
-  return !store.find(GoldenStore::reference_stem(aov, c.output), "").empty();
+  for (uint32_t f : evaluation_frames(c))
+    if (store.find(GoldenStore::reference_stem(aov, c.output, reference_frame(c, f)), "").empty()) return false;
+  return true;
 }
 
 // Why stage `s` cannot play in this row ("" when it can): the pass its oracle follows is culled,
@@ -77,7 +55,8 @@ std::string why_not_playable(const TechniqueStage& s, const Plan& plan, const Go
     if (analytic && !(a == "indirect_diffuse" && aov == "radiance" && t.contract_aovs.count("direct")))
       return fmt::format("the case is analytic and '{}' cannot be derived from it", a);
     if (!analytic && !has_reference(store, c, a))
-      return fmt::format("no reference '{}' committed for the case", GoldenStore::reference_stem(a, c.output));
+      return fmt::format("no reference '{}' committed for the case",
+                         GoldenStore::reference_stem(a, c.output, reference_frame(c, evaluation_frames(c).back())));
   }
   return "";
 }
@@ -140,96 +119,86 @@ nlohmann::json attribute_row(Gpu& gpu, const Case& c, Tier tier, const Technique
     for (const auto& [i, why] : excluded) fmt::print("  stage {}: {}\n", t.stages[i].name, why);
   if (game.empty()) throw CaseError(fmt::format("attribute: {}: no stage of {} can take its oracle in this row", c.name, run.name()));
 
-  OracleInputs in;
-  in.width = c.width;
-  in.height = c.height;
-  const FloatImage constant(c.width, c.height, 4, float(c.analytic_value.value_or(0.0)));
-  in.reference[aov] = analytic ? constant : read_reference(store, c, aov);
-  RunHooks reads;
-  reads.read_frames = st.oracle_frames;
-  bool derive_indirect = false;  // analytic: indirect_diffuse = the value - the technique's direct
-  for (size_t i : game) {
-    for (const std::string& a : t.stages[i].reference_aovs) {
-      if (in.reference.count(a)) continue;
-      if (!analytic) {
-        in.reference[a] = read_reference(store, c, a);
-      } else if (!derive_indirect) {
-        derive_indirect = true;
-        reads.read.push_back(t.contract_aovs.at("direct"));
-      }
-    }
-    for (const std::string& r : t.stages[i].seed_reads) reads.read.push_back(r);
-  }
+  const std::vector<uint32_t> frames = evaluation_frames(c);
+  const bool lag = per_frame_references(c);
   const auto t0 = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-  for (uint32_t s = 0; s < st.oracle_seeds; ++s) {
-    CaseRender r = render_case_hooked(gpu, c, run, preset, 1000 + s, reads);
-    for (const std::string& name : reads.read) {
-      const ResolvedResource* res = r.plan.find(name);
-      in.formats[name] = res->desc.format;
-      in.extents[name] = {res->width, res->height};
+  const OracleRow orow{gpu, c, run, preset, st, store, analytic, aov, t, verbose};
+  if (verbose && frames.size() > 1)
+    fmt::print("  evaluated at frames {} of every run{}\n", fmt::join(frames, ", "),
+               lag ? ", each against the reference of the scene frozen there (oracles: renders of those frozen scenes)"
+                   : "");
+  // The oracles: one set for a still scene. A scene that changes gets a set per evaluation frame,
+  // made from seed renders of the scene frozen at that frame (the converged state there: a
+  // temporal stage's oracle is its converged history, not the seed mean of a run that lags) and
+  // that frame's reference; each set holds from the frame after the previous evaluation frame
+  // through its own (executor frames are 0-based), the last to the end of the run.
+  std::vector<std::vector<ResourceOverride>> oracles(game.size());
+  for (size_t k = 0; k < (lag ? frames.size() : 1); ++k) {
+    const OracleInputs in = oracle_inputs(orow, game, lag ? frames[k] : 0, elapsed);
+    const uint32_t first = lag && k > 0 ? frames[k - 1] : 0;
+    const uint32_t last = lag && k + 1 < frames.size() ? frames[k] - 1 : UINT32_MAX;
+    for (size_t g = 0; g < game.size(); ++g) {
+      const TechniqueStage& s = t.stages[game[g]];
+      for (auto& [resource, bytes] : s.make(in))
+        oracles[g].push_back({s.after_pass_of.count(resource) ? s.after_pass_of.at(resource) : s.after_pass, resource,
+                              bytes, first, last});
     }
-    for (auto& before : r.read_before) in.seeds.push_back(std::move(before));
-    in.seeds.push_back(std::move(r.read));
-    if (verbose)
-      fmt::print("  oracle seed render {}/{}, reads of its last {} frames ({:.0f} s)\n", s + 1, st.oracle_seeds,
-               r.read_before.size() + 1, elapsed());
-    std::fflush(stdout);
   }
-  if (derive_indirect) {
-    const std::string direct = t.contract_aovs.at("direct");
-    FloatImage indirect = constant;
-    for (const auto& seed : in.seeds) {
-      const FloatImage d = decode_texels(in.formats.at(direct), c.width, c.height, seed.at(direct));
-      for (size_t i = 0; i < indirect.pixels.size(); ++i) indirect.pixels[i] -= d.pixels[i] / float(in.seeds.size());
-    }
-    in.reference["indirect_diffuse"] = indirect;
-    if (verbose) fmt::print("  analytic: indirect_diffuse reference = {} - the seeds' mean {}\n", *c.analytic_value, direct);
-  }
-  std::vector<std::vector<ResourceOverride>> oracles;
   std::vector<std::string> names;
-  for (size_t i : game) {
-    std::vector<ResourceOverride> ov;
-    const TechniqueStage& st_i = t.stages[i];
-    for (auto& [resource, bytes] : st_i.make(in))
-      ov.push_back({st_i.after_pass_of.count(resource) ? st_i.after_pass_of.at(resource) : st_i.after_pass, resource, bytes});
-    oracles.push_back(std::move(ov));
-    names.push_back(t.stages[i].name);
-  }
+  for (size_t i : game) names.push_back(t.stages[i].name);
 
   std::vector<NamedRoi> rois{{"image", {}}};
   for (const Roi& r : c.rois) rois.push_back({r.name, {r.x0, r.y0, r.x1, r.y1}});
-  attribution::Options opts;
-  opts.seeds = st.seeds;
-  const FloatImage& compared_reference = in.reference.at(aov);
+  // Per evaluation frame: its reference, noise floor and FLIP map against that reference.
+  std::vector<FloatImage> references;
+  for (uint32_t f : frames)
+    references.push_back(analytic ? FloatImage(c.width, c.height, 4, float(c.analytic_value.value_or(0.0)))
+                                  : read_reference(store, c, aov, reference_frame(c, f)));
   const FlipOptions flip_opts = flip_options(c);
-  opts.flip_map = [&](const FloatImage& img) { return flip(compared_reference, img, flip_opts).error_map; };
-  const uint32_t committed_spp =
-      analytic ? 0u : store.record_of(GoldenStore::reference_stem(aov, c.output) + ".exr").value("spp", 0u);
-  if (analytic) {
-    opts.noise_floor.assign(rois.size(), 0.0);
-    if (verbose) fmt::print("  reference: the analytic value {} (no noise floor)\n", *c.analytic_value);
-  } else {
-    opts.noise_floor = reference_noise(gpu, c, aov, st.noise_spp, committed_spp, rois);
-    if (verbose)
-      fmt::print("  reference noise floor from two {}-spp renders, scaled to the reference's {} spp ({:.0f} s)\n",
-               st.noise_spp, committed_spp, elapsed());
+  std::map<uint32_t, std::vector<double>> noise;  // by reference frame
+  std::vector<attribution::Options> opts(frames.size());
+  for (size_t k = 0; k < frames.size(); ++k) {
+    const uint32_t rf = reference_frame(c, frames[k]);
+    opts[k].seeds = st.seeds;
+    const FloatImage& ref = references[k];
+    // FLIP needs light in the reference to set its exposures; a dark frame plays no FLIP game.
+    bool lit = false;
+    for (uint32_t y = 0; y < ref.height && !lit; ++y)
+      for (uint32_t x = 0; x < ref.width && !lit; ++x) lit = metrics::luminance(ref, x, y) > 0;
+    if (lit) opts[k].flip_map = [&ref, &flip_opts](const FloatImage& img) { return flip(ref, img, flip_opts).error_map; };
+    if (analytic) {
+      opts[k].noise_floor.assign(rois.size(), 0.0);
+      continue;
+    }
+    if (!noise.count(rf)) {
+      const uint32_t committed_spp =
+          store.record_of(GoldenStore::reference_stem(aov, c.output, rf) + ".exr").value("spp", 0u);
+      noise[rf] = reference_noise(gpu, c, aov, st.noise_spp, committed_spp, rois, rf);
+      if (verbose)
+        fmt::print("  reference noise floor{} from two {}-spp renders, scaled to the reference's {} spp ({:.0f} s)\n",
+                   rf ? fmt::format(" at frame {}", rf) : "", st.noise_spp, committed_spp, elapsed());
+    }
+    opts[k].noise_floor = noise.at(rf);
   }
+  if (analytic && verbose) fmt::print("  reference: the analytic value {} (no noise floor)\n", *c.analytic_value);
+
   const uint32_t total = (1u << game.size()) * st.seeds;
   uint32_t done = 0;
   auto render = [&](uint32_t mask, uint32_t seed) {
     RunHooks hooks;
     for (size_t i = 0; i < oracles.size(); ++i)
       if (mask & (1u << i)) hooks.overrides.insert(hooks.overrides.end(), oracles[i].begin(), oracles[i].end());
-    FloatImage img = render_case_hooked(gpu, c, run, preset, seed, hooks).image;
+    const CaseRender r = render_case_hooked(gpu, c, run, preset, seed, hooks);
+    std::vector<FloatImage> images;  // every evaluation frame of this one run
+    for (uint32_t f : frames) images.push_back(frames.size() == 1 ? r.image : image_at(r, f, c));
     ++done;
     if (verbose)
       fmt::print("  render {}/{}: oracles {{{}}} seed {} ({:.0f} s)\n", done, total, attribution::mask_names(names, mask),
                  seed, elapsed());
     std::fflush(stdout);
-    return img;
+    return images;
   };
-  const attribution::Attribution a = attribution::attribute(names, render, in.reference.at(aov), rois, opts);
 
   attribution::ReportContext ctx;
   ctx.case_name = c.name;
@@ -240,13 +209,26 @@ nlohmann::json attribute_row(Gpu& gpu, const Case& c, Tier tier, const Technique
   for (size_t i = 0; i < t.stages.size(); ++i)
     ctx.stages.push_back({t.stages[i].name, t.stages[i].passes,
                           excluded.count(i) ? excluded.at(i) : t.stages[i].oracle});
-  if (verbose) fmt::print("{}", attribution::format_table(a, ctx));
+  std::string table, html;
+  nlohmann::json full;
+  if (frames.size() == 1) {
+    const attribution::Attribution a = attribution::attribute(
+        names, [&](uint32_t mask, uint32_t seed) { return render(mask, seed).front(); }, references[0], rois, opts[0]);
+    table = attribution::format_table(a, ctx);
+    full = attribution::to_json(a, ctx);
+    html = attribution::waterfall_html(a, ctx);
+  } else {
+    const attribution::LagAttribution a = attribution::attribute_frames(names, render, frames, references, rois, opts);
+    table = attribution::format_table(a, ctx);
+    full = attribution::to_json(a, ctx);
+    html = attribution::waterfall_html(a, ctx);
+  }
+  if (verbose) fmt::print("{}", table);
   const fs::path dir = fs::path(suite.out) / "attribution";
   fs::create_directories(dir);
   const std::string stem = fmt::format("{}.{}.{}", c.name, run.name(), preset);
-  const nlohmann::json full = attribution::to_json(a, ctx);
   std::ofstream(dir / (stem + ".json")) << full.dump(2) << "\n";
-  std::ofstream(dir / (stem + ".html")) << attribution::waterfall_html(a, ctx);
+  std::ofstream(dir / (stem + ".html")) << html;
   if (verbose) fmt::print("wrote {} and {}\n", (dir / (stem + ".json")).string(), (dir / (stem + ".html")).string());
   nlohmann::json summary = {{"page", "attribution/" + stem + ".html"},
                             {"json", "attribution/" + stem + ".json"},
@@ -254,6 +236,7 @@ nlohmann::json attribute_row(Gpu& gpu, const Case& c, Tier tier, const Technique
                             {"renders", full.value("renders", 0)},
                             {"seconds", elapsed()},
                             {"rois", nlohmann::json::array()}};
+  if (frames.size() > 1) summary["frames"] = frames;  // the rois' figures: the integrated game's
   for (const auto& r : full["rois"])
     summary["rois"].push_back({{"roi", r["roi"]},
                                {"largest", r["largest"]},

@@ -75,4 +75,29 @@ Attribution attribute_renders(const std::vector<std::string>& stages,
                               const std::vector<std::vector<FloatImage>>& renders, const FloatImage& reference,
                               const std::vector<NamedRoi>& rois, const Options& options);
 
+// Lag attribution: a case whose scene changes is evaluated at several frames of one run
+// (Case::eval_frames), each against the reference of the scene frozen at that frame. The game is
+// played at every frame, and on the integrated error: v(S) = the mean over the frames of v_f(S)
+// (every error, bias^2 / variance split, energy, per-seed MSE and FLIP). The mean, not the sum:
+// it keeps one frame's MSE units, so its noise floor (the frames' mean) and its waterfall read
+// like a single frame's, and the shares are those of the sum. Shapley values are linear in v, so
+// each integrated bar is the mean of the stage's per-frame bars and the bars sum to the mean gap.
+struct LagAttribution {
+  std::vector<uint32_t> frames;          // 1-based, increasing
+  std::vector<Attribution> per_frame;    // one per frame
+  Attribution integrated;
+};
+
+// One image per evaluation frame (in `frames` order) of one render: every frame from one run.
+using FramesRenderFn = std::function<std::vector<FloatImage>(uint32_t oracle_mask, uint32_t seed)>;
+
+// `references` and `options` (noise floor, FLIP map against that frame's reference) one per
+// frame; the seeds are options.front().seeds.
+LagAttribution attribute_frames(const std::vector<std::string>& stages, const FramesRenderFn& render,
+                                const std::vector<uint32_t>& frames, const std::vector<FloatImage>& references,
+                                const std::vector<NamedRoi>& rois, const std::vector<Options>& options);
+
+// The integrated game of per-frame attributions of one set of stages, ROIs and seeds.
+Attribution integrate(const std::vector<Attribution>& per_frame);
+
 }  // namespace gib::attribution

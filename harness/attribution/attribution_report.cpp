@@ -117,7 +117,7 @@ nlohmann::json to_json(const Attribution& a, const ReportContext& ctx) {
   return j;
 }
 
-std::string waterfall_html(const Attribution& a, const ReportContext& ctx) {
+std::string waterfalls(const Attribution& a) {
   std::string body;
   for (const RoiAttribution& r : a.rois) {
     const size_t bars = r.stages.size() + 2;
@@ -169,6 +169,10 @@ std::string waterfall_html(const Attribution& a, const ReportContext& ctx) {
                         100 * r.none.abs_energy, r.all.mse, r.noise_floor, svg);
     if (!r.flip.empty()) body += "<p>" + flip_line(a, r) + "</p>";
   }
+  return body;
+}
+
+std::string html_page(const Attribution& a, const ReportContext& ctx, const std::string& body) {
   std::string stages;
   for (const StageInfo& s : ctx.stages)
     stages += fmt::format("<li><b>{}</b> ({}): {}</li>", s.name, fmt::join(s.passes, ", "),
@@ -181,5 +185,7 @@ std::string waterfall_html(const Attribution& a, const ReportContext& ctx) {
                      "</body></html>\n",
                      ctx.case_name, ctx.row, ctx.preset, ctx.aov, a.seeds, a.stages.size(), stages, body);
 }
+
+std::string waterfall_html(const Attribution& a, const ReportContext& ctx) { return html_page(a, ctx, waterfalls(a)); }
 
 }  // namespace gib::attribution

@@ -173,8 +173,13 @@ void Executor::add_override(const ResourceOverride& o) {
                                  buffer ? "the buffer" : fmt::format("{}x{} {}", r->width, r->height,
                                                                      format_name(r->desc.format)),
                                  o.data.size()));
+  if (o.first_frame > o.last_frame)
+    throw GraphError(fmt::format("override of '{}': expected first_frame <= last_frame, got {} > {}", o.resource,
+                                 o.first_frame, o.last_frame));
   Override ov;
   ov.running_index = index;
+  ov.first_frame = o.first_frame;
+  ov.last_frame = o.last_frame;
   ov.resource = o.resource;
   if (buffer) {
     ov.buffer = gpu_.create_buffer(expected, BufferUsage::storage, o.resource + "_override");
@@ -189,7 +194,7 @@ void Executor::add_override(const ResourceOverride& o) {
 void Executor::record_overrides(Cmd& cmd, size_t running_index) {
   bool any = false;
   for (const Override& ov : overrides_) {
-    if (ov.running_index != running_index) continue;
+    if (ov.running_index != running_index || frame_ < ov.first_frame || frame_ > ov.last_frame) continue;
     if (!any) cmd.barrier(kStageCompute | kStageGraphics | kStageTransfer, kStageTransfer);
     any = true;
     auto& a = allocations_.at(ov.resource);

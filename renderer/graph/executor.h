@@ -3,6 +3,7 @@
 // the barriers the plan placed, and reads back GPU time per pass. Optionally scans every
 // resource a pass writes for NaN / Inf / out-of-domain values on the GPU (stability.h).
 #pragma once
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -47,11 +48,14 @@ struct FrameResult {
 // packed texels in its own format, or a buffer's bytes (one copy). Error attribution puts a
 // stage's oracle in its output this way, so no technique code changes; the graph stays
 // technique-agnostic (any pass, any written resource). Stability scans after the pass see the
-// override; on a CPU device the copy counts to the pass's host time.
+// override; on a CPU device the copy counts to the pass's host time. An override holds over the
+// executor frames first_frame..last_frame (0-based, inclusive): an oracle that follows a moving
+// scene is a sequence of overrides of one resource over consecutive frame ranges.
 struct ResourceOverride {
   std::string after_pass;
   std::string resource;
   std::vector<uint8_t> data;
+  uint32_t first_frame = 0, last_frame = UINT32_MAX;
 };
 
 class Executor {
@@ -144,6 +148,7 @@ class Executor {
   bool profile_dispatches_ = false;
   struct Override {
     size_t running_index = 0;
+    uint32_t first_frame = 0, last_frame = UINT32_MAX;
     std::string resource;
     std::shared_ptr<Image> image;
     std::shared_ptr<Buffer> buffer;
