@@ -375,6 +375,18 @@ TEST(Attribution, FlipIntegratesOnlyWhenEveryFrameHasIt) {
   EXPECT_TRUE(a.integrated.rois[0].flip.empty());
 }
 
+TEST(Attribution, AFrameWithNoErrorRanksNoStage) {
+  // A sealed room before its wall goes: reference and render are 0, the noise floor too.
+  const FloatImage black(8, 4, 4, 0.0f);
+  Options o;
+  o.seeds = 1;
+  o.noise_floor = {0.0};
+  const Attribution a = attribute({"probes", "history"}, [&](uint32_t, uint32_t) { return black; }, black,
+                                  {{"all", {}}}, o);
+  EXPECT_EQ(a.rois[0].largest, -1);
+  EXPECT_FALSE(a.rois[0].stages[0].resolved);
+}
+
 TEST(Attribution, LagTableJsonAndPageSayTheSame) {
   const LagAttribution a = LagChain().run(2);
   ReportContext ctx{"lag", "chain", "medium", "indirect_diffuse", "cpu",

@@ -66,7 +66,8 @@ void play(RoiAttribution& ra, const std::vector<std::string>& stages, uint32_t s
       for (auto& p : per_seed) sq += (p[i] - mean) * (p[i] - mean);
       b.ci95 = 1.96 * std::sqrt(sq / (seeds - 1) / seeds);
     }
-    b.resolved = std::abs(b.shapley) >= 3.0 * ra.noise_floor;
+    // An exact 0 (nothing to remove: a frame with no error) is not resolved either.
+    b.resolved = b.shapley != 0.0 && std::abs(b.shapley) >= 3.0 * ra.noise_floor;
     ra.stages.push_back(b);
   }
   ra.flip_shapley = ra.flip.empty() ? std::vector<double>{} : shapley(ra.flip, n);
