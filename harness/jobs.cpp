@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -152,6 +153,19 @@ std::vector<std::string> worker_env(bool cpu_device, unsigned threads) {
   return env;
 }
 
+// A GPU worker's environment: GIB_GPU_SUBMIT_LOCK names one lock file per device, so that the
+// workers sharing a GPU submit one at a time (renderer/vk/submit_lock.h: without it they are
+// time-sliced, wait through each other's slices and time each other's work). A lock the
+// caller set is kept.
+std::vector<std::string> with_submit_lock(std::vector<std::string> env, const std::string& device) {
+  if (std::getenv("GIB_GPU_SUBMIT_LOCK")) return env;
+  std::string name = device.empty() ? "default" : device;
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  env.push_back(fmt::format("GIB_GPU_SUBMIT_LOCK={}", (fs::temp_directory_path() / ("gibench-gpu-" + name + ".lock")).string()));
+  return env;
+}
+
 Worker spawn(unsigned index, const std::string& exe, const std::vector<std::string>& args,
              const std::vector<std::string>& env, const fs::path& dir) {
   int in[2], out[2];
@@ -222,7 +236,8 @@ JobsResult run_jobs(const SuiteOptions& o, const std::string& tier, const std::s
     fs::path dir = jobs_dir / std::to_string(k);
     fs::create_directories(dir);
     const std::string device = devices.empty() ? "" : devices[k % devices.size()];
-    workers.push_back(spawn(k, exe, worker_args(o, tier, golden_class, device, dir), env, dir));
+    workers.push_back(spawn(k, exe, worker_args(o, tier, golden_class, device, dir),
+                            cpu_device ? env : with_submit_lock(env, device), dir));
   }
   auto feed = [&](Worker& w) {
     if (next < queue.size()) {

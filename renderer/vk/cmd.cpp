@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "renderer/vk/internal.h"
+#include "renderer/vk/submit_lock.h"
 
 namespace gib::vkimpl {
 namespace {
@@ -258,8 +259,12 @@ std::vector<double> VkGpu::submit(std::unique_ptr<Cmd> cmd_) {
   VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   si.commandBufferCount = 1;
   si.pCommandBuffers = &cmd->cb;
-  VkResult r = vkQueueSubmit(queue, 1, &si, fence);
-  if (r == VK_SUCCESS) r = vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX);
+  VkResult r;
+  {
+    SubmitGuard alone;  // no other process's work on this GPU from submission to fence
+    r = vkQueueSubmit(queue, 1, &si, fence);
+    if (r == VK_SUCCESS) r = vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX);
+  }
   if (r == VK_SUCCESS) r = vkResetFences(device, 1, &fence);
   check(r, "vkQueueSubmit/vkWaitForFences");
   std::vector<double> ns;

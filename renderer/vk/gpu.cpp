@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "renderer/vk/internal.h"
+#include "renderer/vk/submit_lock.h"
 #include "device_spec_shared.h"
 #include "renderer/codecs/half.h"
 
@@ -406,8 +407,11 @@ void VkGpu::one_shot(const std::function<void(VkCommandBuffer)>& record) {
   si.commandBufferCount = 1;
   si.pCommandBuffers = &cmd.cb;
   VkFence fence = submit_fence();
-  check(vkQueueSubmit(queue, 1, &si, fence), "vkQueueSubmit");
-  check(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  {
+    SubmitGuard alone;  // no other process's work on this GPU from submission to fence
+    check(vkQueueSubmit(queue, 1, &si, fence), "vkQueueSubmit");
+    check(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  }
   check(vkResetFences(device, 1, &fence), "vkResetFences");
 }
 
