@@ -84,9 +84,11 @@ inline ResourceDesc vc_cube_desc(const VoxelClipmapSettings& p) {
   return d;
 }
 inline ResourceDesc vc_cell_state_desc(const VoxelClipmapSettings& p) { return vc_buffer(vc_cell_count(p) * 4, true); }
-// Each cell's flood mask for the cube lookups' wall test (voxel_clipmap_shared.h), written by the relight.
+// Each cell's flood mask for the cube lookups' wall test (voxel_clipmap_shared.h), written by the
+// relight. Only wall_test 2 writes or reads it; otherwise one word keeps the binding valid
+// (the masks are 28 bytes a cell: 0.46 MB at 4 levels of 16^3 cells).
 inline ResourceDesc vc_cell_vis_desc(const VoxelClipmapSettings& p) {
-  return vc_buffer(vc_cell_count(p) * glsl::kVcCellVisWords * 4, true);
+  return vc_buffer(p.wall_test == 2 ? vc_cell_count(p) * glsl::kVcCellVisWords * 4 : 4, true);
 }
 
 }  // namespace gib
