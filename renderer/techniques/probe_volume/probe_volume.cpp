@@ -103,6 +103,12 @@ std::vector<TechniqueOption> own_options() {
       option("pixel_range", "per-pixel rays reach this many times the probe trace range", 0.1, 100, &S::pixel_range),
       option("denoise_radius", "pixel_denoise spatial half-width in ray pixels (0: off)", 0, 8, &S::denoise_radius),
       option("history_max_frames", "pixel_denoise temporal n_max (1: no history)", 1, 1024, &S::history_max_frames),
+      option("anti_lag_sigma",
+             "pixel_denoise anti-lag: the history is clamped to the fast history +- this many standard deviations of "
+             "their difference, estimated from the frame's noise (0: off)",
+             0, 100, &S::anti_lag_sigma),
+      option("fast_history_frames", "pixel_denoise anti-lag: the fast history's n_max", 1, 64,
+             &S::fast_history_frames),
       option("material_mask", "pixel_denoise keeps translucent and opaque pixels apart (0/1)", 0, 1,
              &S::material_mask),
       option("translucent_rays",

@@ -47,6 +47,8 @@ struct ProbeVolumeSettings : TechniqueSettingsOf<ProbeVolumeSettings>, DirectLig
   float min_start = 0.0f;
   uint32_t denoise_radius = 2;      // spatial filter half-width (quarter-res pixels; 0: off)
   uint32_t history_max_frames = 16; // temporal filter n_max (1: no history)
+  float anti_lag_sigma = 3.0f;      // slow history clamped to the fast one +- this many std devs of their difference (0: off)
+  uint32_t fast_history_frames = 4; // the anti-lag's fast history n_max
   bool material_mask = true;        // spatial filter keeps translucent and opaque pixels apart
   bool translucent_rays = true;     // per-pixel rays on translucent surfaces may take the back side
 };

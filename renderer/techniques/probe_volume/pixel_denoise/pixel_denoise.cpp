@@ -1,5 +1,7 @@
 #include "renderer/techniques/probe_volume/pixel_denoise/pixel_denoise.h"
 
+#include <algorithm>
+
 #include "renderer/techniques/probe_volume/pixel_denoise/pixel_denoise_shared.h"
 #include "renderer/techniques/probe_volume/probe_volume_params.h"
 
@@ -23,6 +25,10 @@ class PixelDenoisePass final : public Pass {
     ResourceDesc history_y = history, history_c = history;
     history_y.values = y.values;
     history_c.values = c.values;
+    // The anti-lag's fast history of Y0, the spatial noise estimate's mean over frames, its frames.
+    ResourceDesc history_fast{Format::rgba32_float, size};
+    history_fast.persistent = true;
+    history_fast.values = non_negative_values();
     d.slots = {{"pixel_sh", Access::read},
                {"gbuffer_position", Access::read},
                {"gbuffer_normal", Access::read},
@@ -31,6 +37,8 @@ class PixelDenoisePass final : public Pass {
                {"pixel_history_c", Access::write, history_c},
                {"pixel_history_y", Access::read_prev},
                {"pixel_history_c", Access::read_prev},
+               {"pixel_history_fast", Access::write, history_fast},
+               {"pixel_history_fast", Access::read_prev},
                {"pixel_gi_y", Access::write, y},
                {"pixel_gi_c", Access::write, c}};
     d.work = {{"pixels", pv_ray_pixels(s)}};
@@ -39,7 +47,9 @@ class PixelDenoisePass final : public Pass {
 
   void record(RecordContext& ctx) override {
     using namespace glsl;
-    PvDenoisePush push{make_pv_params(ctx.settings, ctx.frame)};
+    const ProbeVolumeSettings& p = ctx.settings.params<ProbeVolumeSettings>();
+    PvDenoisePush push{make_pv_params(ctx.settings, ctx.frame),
+                       {p.anti_lag_sigma, float(std::max(p.fast_history_frames, 1u)), 0.0f, 0.0f}};
     const Image& out = ctx.image("pixel_gi_y");
     for (uint32_t kernel : {kPvDenoiseFilter, kPvDenoisePoisson}) {
       ctx.cmd.begin_label(kernel == kPvDenoiseFilter ? "pixel_denoise/filter" : "pixel_denoise/poisson");
@@ -53,7 +63,9 @@ class PixelDenoisePass final : public Pass {
                                       {kPvDenoiseBindHistoryY, "pixel_history_y"},
                                       {kPvDenoiseBindHistoryC, "pixel_history_c"},
                                       {kPvDenoiseBindGiY, "pixel_gi_y"},
-                                      {kPvDenoiseBindGiC, "pixel_gi_c"}},
+                                      {kPvDenoiseBindGiC, "pixel_gi_c"},
+                                      {kPvDenoiseBindPrevFast, "pixel_history_fast", true},
+                                      {kPvDenoiseBindFast, "pixel_history_fast"}},
                            .groups_x = div_up(out.width(), kPvDenoiseGroup),
                            .groups_y = div_up(out.height(), kPvDenoiseGroup),
                            .push = &push,
