@@ -76,16 +76,6 @@ class DeferredTexturingPass final : public Pass {
                              .buffers = buffers,
                              .indirect = "material_segments",
                              .indirect_offset = 16ull * shader});
-    if (!ds.vrcs) return;
-    // The followers read the albedo their anchors stored above.
-    ctx.cmd.barrier(kStageCompute, kStageCompute);
-    record_compute(ctx, {.shader = "deferred_texturing_followers.comp",
-                         .images = images,
-                         .groups_x = div_up(w, 8),
-                         .groups_y = div_up(h, 8),
-                         .push = &push,
-                         .push_bytes = sizeof(push),
-                         .buffers = {{kTexBindRates, "vrcs_rates"}}});
   }
 };
 

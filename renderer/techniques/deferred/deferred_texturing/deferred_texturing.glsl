@@ -3,8 +3,7 @@
 // deferred_texturing_uber.comp (GIB_TEXTURING_UBER: every pixel, no lists bound);
 // deferred_texturing_sky.comp (GIB_TEXTURING_SKY) writes the sky pixels the lists leave out. One invocation
 // per list entry or per pixel; all call load_texel(), material_albedo() and store_texel(), so
-// they agree bit for bit. GIB_TEXTURING_VRCS (the *_vrcs kernels): variable-rate shading over the lists,
-// whose coarse cells' other pixels deferred_texturing_followers.comp (GIB_TEXTURING_FOLLOWERS) writes.
+// they agree bit for bit. GIB_TEXTURING_VRCS (the *_vrcs kernels): variable-rate shading over the lists.
 #include "renderer/techniques/deferred/deferred_texturing/deferred_texturing_shared.h"
 #include "frame.glsl"
 #include "scene.glsl"
@@ -24,19 +23,15 @@ layout(set = 0, binding = kTexBindVbuffer, rg32ui) uniform readonly uimage2D vbu
 layout(set = 0, binding = kTexBindBary, rg16f) uniform readonly image2D in_bary;
 layout(set = 0, binding = kTexBindBaryDeriv, rgba16ui) uniform readonly uimage2D in_deriv;
 layout(set = 0, binding = kTexBindTangentFrame, rgba16f) uniform readonly image2D in_frame;
-#ifdef GIB_TEXTURING_FOLLOWERS
-layout(set = 0, binding = kTexBindAlbedo, rgba16f) uniform image2D out_albedo;  // reads the anchors'
-#else
 layout(set = 0, binding = kTexBindAlbedo, rgba16f) uniform writeonly image2D out_albedo;
-#endif
 layout(set = 0, binding = kTexBindNormal, rgba16f) uniform writeonly image2D out_normal;
 layout(set = 0, binding = kTexBindPosition, rgba32f) uniform writeonly image2D out_position;
 layout(set = 0, binding = kTexBindEmissive, rgba16f) uniform writeonly image2D out_emissive;
-#if !defined(GIB_TEXTURING_UBER) && !defined(GIB_TEXTURING_SKY) && !defined(GIB_TEXTURING_FOLLOWERS)
+#if !defined(GIB_TEXTURING_UBER) && !defined(GIB_TEXTURING_SKY)
 layout(std430, set = 0, binding = kTexBindSegments) buffer Segments { uint seg[]; };
 layout(std430, set = 0, binding = kTexBindCommands) readonly buffer Commands { uint commands[]; };
 #endif
-#if defined(GIB_TEXTURING_VRCS) || defined(GIB_TEXTURING_FOLLOWERS)
+#ifdef GIB_TEXTURING_VRCS
 layout(std430, set = 0, binding = kTexBindRates) buffer Rates { uint vrcs_rate_words[]; };
 #include "renderer/techniques/deferred/include/vrcs.glsl"
 #endif
@@ -127,24 +122,6 @@ void main() {
   imageStore(out_emissive, p, vec4(0.0));
 }
 
-#elif defined(GIB_TEXTURING_FOLLOWERS)
-// VRCS's second kernel, after the list kernels: a pixel that follows its coarse cell's anchor
-// writes its own texel (its own position, normal and emission) with the albedo the anchor
-// stored. The stored value is a binary16 one, which any device stores again exactly: the
-// texel's bits are those the anchor would write for it. One invocation per follower, where the
-// anchor wrote its up to three followers one after another while their lanes sat idle.
-void main() {
-  ivec2 p = ivec2(gl_WorkGroupID.xy) * 8 + ivec2(gl_LocalInvocationIndex % 8u, gl_LocalInvocationIndex / 8u);
-  if (any(greaterThanEqual(p, imageSize(vbuffer)))) return;
-  uvec2 ids = imageLoad(vbuffer, p).xy;
-  if (ids.x == kVisibilityNone) return;
-  ivec2 cell;
-  ivec2 anchor = gib_vrcs_anchor(p, gib_vrcs_rate(p, push.rate_tiles_x), cell);
-  if (!gib_vrcs_follows(p, anchor, imageSize(vbuffer))) return;
-  GpuMaterial m = gib_materials[gib_instances[ids.y].material];
-  store_texel(p, load_texel(p, ids.x - 1u), m, imageLoad(out_albedo, anchor).rgb);
-}
-
 #elif defined(GIB_TEXTURING_UBER)
 void main() {
   // 8x8 pixels per workgroup.
@@ -198,11 +175,15 @@ void main() {
   vec3 albedo = material_albedo(x, m, kShader);
   store_texel(p, x, m, albedo);
 #ifdef GIB_TEXTURING_VRCS
-  // The followers write their own texels with this albedo (deferred_texturing_followers.comp).
   uint covered = 0u;
   if (p == anchor)
     for (int y = 0; y < cell.y; ++y)
-      for (int x = 0; x < cell.x; ++x) covered += gib_vrcs_follows(anchor + ivec2(x, y), anchor, imageSize(vbuffer)) ? 1u : 0u;
+      for (int x = 0; x < cell.x; ++x) {
+        ivec2 q = anchor + ivec2(x, y);
+        if (!gib_vrcs_follows(q, anchor, imageSize(vbuffer))) continue;
+        store_texel(q, load_texel(q, imageLoad(vbuffer, q).x - 1u), m, albedo);
+        ++covered;
+      }
   gib_vrcs_count(kVrcsStats + kVrcsStatTextured, 1u, 1u + covered);  // kVrcsStatTexturedOf follows
 #endif
 }
