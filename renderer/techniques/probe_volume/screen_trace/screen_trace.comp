@@ -61,6 +61,10 @@ void main() {
     store_world(q, pv_min_start(), flags);
     return;
   }
+  // The indoor / outdoor class of the side the ray leaves from (pv_point_indoor): a screen
+  // result of the other class goes to the BVH (below).
+  vec3 n0 = imageLoad(gb_normal, p).xyz;
+  bool indoor = pv_point_indoor(pos.xyz, gib_finite(n0) && dot(n0, n0) > 0.25 ? normalize(n0) : vec3(0.0));
   float range = pv_pixel_range(pos.xyz);
   // The march's end: the range, or just before the camera plane if the ray crosses it.
   vec3 c0 = clip_xyw(r.origin), cd = clip_xyw(r.origin + r.dir) - c0;
@@ -121,6 +125,15 @@ void main() {
       store_world(q, last, flags);
       return;
     }
+    // ... and only where the lookups that light it are of the ray's own class. The plane of the
+    // pixel's surface runs on past the surface's edge: where a floor meets a wall, the point on
+    // the floor's plane may lie inside the wall, past the indoor volume's boundary, and would
+    // light the hit with the outdoor probes (extreme-range's closed building: 3.6e3 x the
+    // reference). A ray that really leaves its class (through a window) needs the BVH as well.
+    if (pv_point_indoor(r.origin + r.dir * hit_t, hn) != indoor) {
+      store_world(q, last, flags);
+      return;
+    }
     imageStore(out_hits, q, uvec4(mat.x, pv_pack_normal16(hn), floatBitsToUint(hit_t), flags | kPvPixelHit | kPvPixelScreen));
     atomicAdd(stats.y, 1u);
     return;
@@ -129,7 +142,14 @@ void main() {
     store_world(q, last, flags);
     return;
   }
-  // The whole range stayed in front of the depth buffer: a miss settled on screen.
+  // The whole range stayed in front of the depth buffer: a miss settled on screen, its end lit by
+  // the radiance probes of the end's class. Only within the ray's class: a pixel straddling a
+  // floor-wall corner shows the floor at its centre, and a point beyond the wall, over the floor's
+  // plane, compares as in front (extreme-range: the interior 2.5x the reference from such ends).
+  if (pv_point_indoor(r.origin + r.dir * range, vec3(0.0)) != indoor) {
+    store_world(q, last, flags);
+    return;
+  }
   imageStore(out_hits, q, uvec4(0u, 0u, floatBitsToUint(range), flags | kPvPixelScreen));
   atomicAdd(stats.z, 1u);
 }
