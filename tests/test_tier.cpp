@@ -241,6 +241,31 @@ TEST(Tier, GpuTierRendersReferencesOnceApprovesFromARunAndMatchesItsGoldens) {
       EXPECT_EQ(r["metrics"]["golden_differing_values"], 0.0) << r["technique"];
     }
 
+  {  // A row the run did not render (the quick profile's not_run) is skipped and counted; a
+     // selected row without its output is an error raised before any golden is replaced.
+    const fs::path run = dir.path() / "second";
+    json res = json::parse(std::ifstream(run / "results.json"));
+    json row;
+    for (auto& r : res["results"])
+      if (r["kind"] == "technique") row = r;
+    ASSERT_FALSE(row.is_null());
+    json skipped = row;
+    skipped["status"] = "not_run";
+    skipped["image"] = "";
+    res["results"].push_back(skipped);
+    std::ofstream(run / "results.json") << res.dump();
+    up.from_run = run.string();
+    EXPECT_EQ(cmd_update_goldens(up), 0);
+    const fs::path golden = goldens / "furnace" / "gpu" / "reference.ultra.exr";
+    const auto stamp = fs::last_write_time(golden);
+    json missing = row;
+    missing["image"] = "no-such-row";
+    res["results"].push_back(missing);
+    std::ofstream(run / "results.json") << res.dump();
+    EXPECT_THROW(cmd_update_goldens(up), std::runtime_error);
+    EXPECT_EQ(fs::last_write_time(golden), stamp) << "nothing is replaced before the error";
+  }
+
   c["description"] = "the same furnace, its scene inline and one value changed";
   json scene = json::parse(std::ifstream(std::string(GIB_SOURCE_DIR) + "/cases/scenes/furnace.json"));
   scene["frame_time"] = 0.02;
