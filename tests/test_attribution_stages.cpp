@@ -16,6 +16,7 @@
 #include "renderer/techniques/stage_oracles.h"
 #include "renderer/techniques/technique.h"
 #include "tests/gpu_fixture.h"
+#include "tests/case_rows.h"
 #include "tests/temp_dir.h"
 
 namespace gib {
@@ -188,9 +189,7 @@ void ExactGiOracleGpu::check(const std::string& technique, const std::string& st
   c.width = 32;
   c.height = 18;
   c.frames = 2;
-  TechniqueRun run;
-  for (const TechniqueRun& r : c.techniques)
-    if (r.technique == technique && r.label.empty()) run = r;
+  TechniqueRun run = test::plain_row(c, technique);
   ASSERT_EQ(run.technique, technique);
   ASSERT_EQ(run.compare_aov, "indirect_diffuse");
   run.frames = 2;

@@ -20,6 +20,7 @@
 #include "renderer/codecs/packed_float.h"
 #include "renderer/codecs/rgb9e5.h"
 #include "renderer/techniques/probe_volume/include/probe_volume_shared.h"
+#include "tests/case_rows.h"
 #include "tests/gpu_fixture.h"
 
 namespace gib {
@@ -40,18 +41,10 @@ BoxRun closed_box(uint32_t frames) {
   b.c.width = 16;
   b.c.height = 9;
   b.c.frames = frames;
-  for (const TechniqueRun& r : b.c.techniques)
-    if (r.technique == "probe-volume" && r.label.empty()) b.run = r;
+  b.run = test::plain_row(b.c, "probe-volume");
   b.run.frames = frames;
   b.spacing = b.run.options.at("probe_spacing");
   return b;
-}
-
-std::vector<PvProbe> probes_of(const std::vector<uint8_t>& bytes) {
-  const size_t header = glsl::kPvMaxCascades * sizeof(PvCascade);
-  std::vector<PvProbe> p((bytes.size() - header) / sizeof(PvProbe));
-  std::memcpy(p.data(), bytes.data() + header, p.size() * sizeof(PvProbe));
-  return p;
 }
 
 // The probe's position: its cell's centre (cascade 0) plus its relocation offset.
@@ -107,7 +100,7 @@ TEST_F(ProbeVolumeEnergy, OneBounceGivesAlbedoTimesIrradiancePlusEmission) {
   RunHooks first;
   first.read = {"probe_state", "probe_irradiance"};
   const CaseRender r1 = render_case_hooked(gpu(), one.c, one.run, "low", 0, first);
-  const auto probes1 = probes_of(r1.read.at("probe_state"));
+  const auto probes1 = test::probes_of(r1.read.at("probe_state"));
   const double a = stored_albedo(), e = stored_emission();
   for (int k = 0; k < int(probes1.size()); ++k) {
     if (in_box(probes1[k], one.spacing)) continue;
@@ -125,7 +118,7 @@ TEST_F(ProbeVolumeEnergy, OneBounceGivesAlbedoTimesIrradiancePlusEmission) {
     hooks.overrides.push_back(
         {"probe_convolve", "probe_irradiance", set_irradiance(probes1, r1.read.at("probe_irradiance").size(), two.spacing, u, 0.0f)});
     const CaseRender r = render_case_hooked(gpu(), two.c, two.run, "low", 0, hooks);
-    const auto probes = probes_of(r.read.at("probe_state"));
+    const auto probes = test::probes_of(r.read.at("probe_state"));
     int inside = 0;
     for (size_t i = 0; i < probes.size(); ++i) {
       if (!in_box(probes[i], two.spacing)) continue;
@@ -146,7 +139,7 @@ TEST_F(ProbeVolumeEnergy, EveryFrameAddsOneBounce) {
   RunHooks hooks;
   hooks.read = {"probe_state", "probe_irradiance"};
   const CaseRender r = render_case_hooked(gpu(), b.c, b.run, "low", 0, hooks);
-  const auto probes = probes_of(r.read.at("probe_state"));
+  const auto probes = test::probes_of(r.read.at("probe_state"));
   const double a = stored_albedo(), e = stored_emission();
   double expected = 0;
   for (uint32_t k = 0; k < kFrames; ++k) expected = expected * a + e;

@@ -13,6 +13,7 @@
 #include "harness/case_render.h"
 #include "metrics/image_metrics.h"
 #include "renderer/techniques/probe_volume/include/probe_volume_shared.h"
+#include "tests/case_rows.h"
 #include "tests/gpu_fixture.h"
 
 namespace gib {
@@ -34,8 +35,7 @@ DarkBuilding dark_building(uint32_t frames) {
   b.c.height = 27;
   b.c.frames = frames;
   b.c.scene.lights.clear();
-  for (const TechniqueRun& r : b.c.techniques)
-    if (r.technique == "probe-volume" && r.label.empty()) b.pv = r;
+  b.pv = test::plain_row(b.c, "probe-volume");
   b.pv.frames = frames;
   for (const Roi& roi : b.c.rois)
     if (roi.name == "interior") b.interior = roi;
@@ -44,13 +44,6 @@ DarkBuilding dark_building(uint32_t frames) {
 
 double interior_mean(const DarkBuilding& b, const FloatImage& img) {
   return metrics::roi_mean_luminance(img, b.interior.x0, b.interior.y0, b.interior.x1, b.interior.y1);
-}
-
-std::vector<PvProbe> probes_of(const std::vector<uint8_t>& bytes) {
-  const size_t header = glsl::kPvMaxCascades * sizeof(PvCascade);
-  std::vector<PvProbe> p((bytes.size() - header) / sizeof(PvProbe));
-  std::memcpy(p.data(), bytes.data() + header, p.size() * sizeof(PvProbe));
-  return p;
 }
 
 class ProbeVolumeLeak : public test::GpuTest {};
@@ -67,7 +60,7 @@ TEST_F(ProbeVolumeLeak, ClosedBuildingStaysDarkInside) {
   const CaseRender r = render_case_hooked(gpu(), b.c, b.pv, "medium", 0, hooks);
   EXPECT_EQ(interior_mean(b, r.image), 0.0);
   int indoor = 0;
-  for (const PvProbe& p : probes_of(r.read.at("probe_state"))) {
+  for (const PvProbe& p : test::probes_of(r.read.at("probe_state"))) {
     const uint32_t f = uint32_t(p.coord.w);
     if (!(f & glsl::kPvProbeIndoor) || !(f & glsl::kPvProbeValid) || (f & glsl::kPvProbeDisabled)) continue;
     ++indoor;

@@ -28,6 +28,7 @@
 #include "renderer/codecs/octahedral.h"
 #include "renderer/codecs/packed_float.h"
 #include "renderer/techniques/probe_volume/include/probe_volume_shared.h"
+#include "tests/case_rows.h"
 #include "tests/gpu_fixture.h"
 
 namespace gib {
@@ -139,10 +140,7 @@ TEST_F(SlowProbeVolumePixelEnergy, ProbeLookupsCarryTheSecondInterreflection) {
     RunHooks hooks;
     hooks.read = {"probe_state", "probe_irradiance", "probe_radiance"};
     const CaseRender r = render_case_hooked(gpu(), room.c, room.pv, "medium", 0, hooks);
-    const auto& bytes = r.read.at("probe_state");
-    const size_t header = glsl::kPvMaxCascades * sizeof(glsl::PvCascade);
-    std::vector<glsl::PvProbe> probes((bytes.size() - header) / sizeof(glsl::PvProbe));
-    std::memcpy(probes.data(), bytes.data() + header, probes.size() * sizeof(glsl::PvProbe));
+    const std::vector<glsl::PvProbe> probes = test::probes_of(r.read.at("probe_state"));
     Room full = sunlit_room(48, ground, 100);
     full.pv.options = room.pv.options;
     full.pv.frames = 48;
@@ -185,10 +183,7 @@ TEST_F(ProbeVolumePixelEnergy, ProbesHoldTheIrradianceAroundThem) {
   RunHooks hooks;
   hooks.read = {"probe_state", "probe_irradiance"};
   const CaseRender r = render_case_hooked(gpu(), room.c, room.pv, "medium", 0, hooks);
-  const auto& bytes = r.read.at("probe_state");
-  const size_t header = glsl::kPvMaxCascades * sizeof(glsl::PvCascade);
-  std::vector<glsl::PvProbe> probes((bytes.size() - header) / sizeof(glsl::PvProbe));
-  std::memcpy(probes.data(), bytes.data() + header, probes.size() * sizeof(glsl::PvProbe));
+  const std::vector<glsl::PvProbe> probes = test::probes_of(r.read.at("probe_state"));
   const auto& irr = r.read.at("probe_irradiance");
   const int interior = int(glsl::kPvIrradianceInterior), side = int(glsl::kPvIrradianceSide);
   // Bilinear lookup in probe i's bordered tile, as pv_irradiance_at: luminance of E / pi.
