@@ -5,7 +5,6 @@
 #include <cstring>
 
 #include "renderer/vk/internal.h"
-#include "renderer/vk/submit_lock.h"
 
 namespace gib::vkimpl {
 namespace {
@@ -255,18 +254,7 @@ std::unique_ptr<Cmd> VkGpu::begin(uint32_t query_count) {
 std::vector<double> VkGpu::submit(std::unique_ptr<Cmd> cmd_) {
   auto* cmd = static_cast<VkCmd*>(cmd_.get());
   check(vkEndCommandBuffer(cmd->cb), "vkEndCommandBuffer");
-  VkFence fence = submit_fence();
-  VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-  si.commandBufferCount = 1;
-  si.pCommandBuffers = &cmd->cb;
-  VkResult r;
-  {
-    SubmitGuard alone;  // no other process's work on this GPU from submission to fence
-    r = vkQueueSubmit(queue, 1, &si, fence);
-    if (r == VK_SUCCESS) r = vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX);
-  }
-  if (r == VK_SUCCESS) r = vkResetFences(device, 1, &fence);
-  check(r, "vkQueueSubmit/vkWaitForFences");
+  submit_and_wait(cmd->cb);
   std::vector<double> ns;
   if (cmd->queries_written) {
     std::vector<uint64_t> ticks(cmd->queries_written);

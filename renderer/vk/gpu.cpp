@@ -403,9 +403,13 @@ void VkGpu::one_shot(const std::function<void(VkCommandBuffer)>& record) {
   VkCmd cmd(*this, pool_, 0);
   record(cmd.cb);
   check(vkEndCommandBuffer(cmd.cb), "vkEndCommandBuffer");
+  submit_and_wait(cmd.cb);
+}
+
+void VkGpu::submit_and_wait(VkCommandBuffer cb) {
   VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   si.commandBufferCount = 1;
-  si.pCommandBuffers = &cmd.cb;
+  si.pCommandBuffers = &cb;
   VkFence fence = submit_fence();
   {
     SubmitGuard alone;  // no other process's work on this GPU from submission to fence

@@ -98,6 +98,9 @@ class VkGpu final : public Gpu {
   VkQueryPool take_query_pool(uint32_t count);
   void keep_query_pool(VkQueryPool pool, uint32_t count);
   VkFence submit_fence();  // unsignalled; reset after each wait
+  // Submits one ended command buffer and waits for it (fence reset after), alone on the GPU
+  // among the processes that share its submit lock (submit_lock.h).
+  void submit_and_wait(VkCommandBuffer cb);
   struct Staging {
     VkBuffer buffer = VK_NULL_HANDLE;
     VkDeviceMemory memory = VK_NULL_HANDLE;
